@@ -1,0 +1,29 @@
+#pragma once
+// The subcommands of the facecap program. Each registers its options on the
+// CLI and maps them onto the library's option structs; none holds an algorithm.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "facecap/model/face_model.hpp"
+
+namespace facecap::cli {
+
+struct GlobalOptions {
+  std::string model_dir;  // empty: default_model_dir()
+  bool quiet = false;
+};
+
+// Loads the face model (through its cache), with a one-line note on stderr.
+FaceModel load_model(const GlobalOptions& global);
+// Prints a JSON object on stdout.
+void print_json(const nlohmann::json& j);
+
+void register_probe(CLI::App& app, GlobalOptions& global);
+void register_model(CLI::App& app, GlobalOptions& global);
+void register_synth(CLI::App& app, GlobalOptions& global);
+void register_eval(CLI::App& app, GlobalOptions& global);
+void register_demo(CLI::App& app, GlobalOptions& global);
+
+}  // namespace facecap::cli

@@ -1,0 +1,24 @@
+#include <cstdio>
+#include <iostream>
+
+#include "commands.hpp"
+#include "facecap/core/paths.hpp"
+#include "facecap/model/model_cache.hpp"
+
+namespace facecap::cli {
+
+FaceModel load_model(const GlobalOptions& global) {
+  const std::filesystem::path dir = global.model_dir.empty() ? default_model_dir() : std::filesystem::path(global.model_dir);
+  ModelLoadReport report;
+  FaceModel model = load_face_model(dir, &report);
+  if (!global.quiet) {
+    std::fprintf(stderr, "model: %s (%s, %.2f s)\n", dir.string().c_str(),
+                 report.from_cache ? "from cache" : (report.cache_written ? "parsed, cache written" : "parsed"),
+                 report.seconds);
+  }
+  return model;
+}
+
+void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
+
+}  // namespace facecap::cli

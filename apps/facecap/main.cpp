@@ -1,0 +1,38 @@
+// facecap: real-time face capture and manipulation from ordinary RGB video.
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "facecap/core/error.hpp"
+#include "facecap/core/paths.hpp"
+#include "facecap/core/version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace facecap;
+  CLI::App app{"facecap " + std::string(kFacecapVersion) +
+               ": capture a face from RGB video (pose, focal length, identity, expression)\n"
+               "and render synthetic ground truth. Every subcommand has --help."};
+  app.set_version_flag("--version", std::string(kFacecapVersion));
+  app.require_subcommand(1);
+  cli::GlobalOptions global;
+  app.add_option("--model-dir", global.model_dir,
+                 "ICT face model folder (default: $FACECAP_MODEL_DIR or ../shared/models/ict-facekit)");
+  app.add_flag("-q,--quiet", global.quiet, "No progress output on stderr");
+  cli::register_probe(app, global);
+  cli::register_model(app, global);
+  cli::register_synth(app, global);
+  cli::register_eval(app, global);
+  cli::register_demo(app, global);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "facecap: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facecap: unexpected error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,58 @@
+#include "facecap/core/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+
+#include "facecap/core/error.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+void ensure_writable_dir(const fs::path& dir) {
+  const fs::path d = dir.empty() ? fs::path(".") : dir;
+  std::error_code ec;
+  if (fs::exists(d, ec) && !fs::is_directory(d, ec)) throw Error("output folder is not a folder: " + d.string());
+  if (!fs::exists(d, ec)) {
+    fs::create_directories(d, ec);
+    if (ec) throw Error("cannot create output folder " + d.string() + ": " + ec.message());
+  }
+  if (::access(d.c_str(), W_OK) != 0) throw Error("output folder is not writable: " + d.string());
+}
+
+AtomicFile::AtomicFile(fs::path final_path) : final_(std::move(final_path)) {
+  ensure_writable_dir(final_.parent_path());
+  static std::atomic<int> counter{0};
+  // Keep the extension last so that tools choosing a format by name (ffmpeg, OpenCV) still do.
+  const std::string tag = ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  temp_ = final_.parent_path() / (final_.stem().string() + tag + final_.extension().string());
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove(temp_, ec);
+  }
+}
+
+void AtomicFile::commit() {
+  std::error_code ec;
+  if (!fs::exists(temp_, ec)) throw Error("nothing was written to " + final_.string());
+  fs::rename(temp_, final_, ec);
+  if (ec) throw Error("cannot write " + final_.string() + ": " + ec.message());
+  committed_ = true;
+}
+
+void write_text_file(const fs::path& path, const std::string& text) {
+  AtomicFile file(path);
+  {
+    std::ofstream out(file.temp_path(), std::ios::binary);
+    out << text;
+    if (!out.flush()) throw Error("cannot write " + path.string());
+  }
+  file.commit();
+}
+
+}  // namespace facecap

@@ -1,0 +1,36 @@
+#pragma once
+// Write-then-rename output: the content goes to a temporary name beside the
+// final path and is renamed over it only by commit(), so a failed or
+// interrupted run never leaves a half-written file under the final name (and
+// never destroys a good file that was there). Uncommitted temporaries are
+// removed by the destructor.
+#include <filesystem>
+#include <string>
+
+namespace facecap {
+
+class AtomicFile {
+ public:
+  // Checks that the destination folder exists and is writable (throws facecap::Error).
+  explicit AtomicFile(std::filesystem::path final_path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::filesystem::path& temp_path() const { return temp_; }
+  const std::filesystem::path& final_path() const { return final_; }
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path temp_;
+  bool committed_ = false;
+};
+
+// Throws facecap::Error unless `dir` exists (or can be created) and is writable.
+void ensure_writable_dir(const std::filesystem::path& dir);
+
+// Writes text atomically.
+void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace facecap

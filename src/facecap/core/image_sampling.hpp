@@ -1,0 +1,34 @@
+#pragma once
+// Bilinear image lookups at sub-pixel positions (pixel centres at integers).
+#include <algorithm>
+#include <opencv2/core.hpp>
+
+#include "facecap/core/geometry.hpp"
+
+namespace facecap {
+
+// Samples a CV_32FC3 image; positions outside are clamped to the border.
+inline Vec3f sample_bilinear(const cv::Mat& image, float x, float y) {
+  x = std::clamp(x, 0.0f, float(image.cols - 1));
+  y = std::clamp(y, 0.0f, float(image.rows - 1));
+  const int x0 = std::min(int(x), image.cols - 2 < 0 ? 0 : image.cols - 2);
+  const int y0 = std::min(int(y), image.rows - 2 < 0 ? 0 : image.rows - 2);
+  const int x1 = std::min(x0 + 1, image.cols - 1);
+  const int y1 = std::min(y0 + 1, image.rows - 1);
+  const float fx = x - x0, fy = y - y0;
+  const auto& a = image.at<cv::Vec3f>(y0, x0);
+  const auto& b = image.at<cv::Vec3f>(y0, x1);
+  const auto& c = image.at<cv::Vec3f>(y1, x0);
+  const auto& d = image.at<cv::Vec3f>(y1, x1);
+  const cv::Vec3f v = (a * (1 - fx) + b * fx) * (1 - fy) + (c * (1 - fx) + d * fx) * fy;
+  return {v[0], v[1], v[2]};
+}
+
+// Samples a texture at UV (u right, v up, OBJ convention) into RGB, for a
+// BGR CV_32FC3 texture.
+inline Vec3f sample_uv_rgb(const cv::Mat& texture_bgr, const Vec2f& uv) {
+  const Vec3f bgr = sample_bilinear(texture_bgr, uv.x() * (texture_bgr.cols - 1), (1.0f - uv.y()) * (texture_bgr.rows - 1));
+  return {bgr.z(), bgr.y(), bgr.x()};
+}
+
+}  // namespace facecap

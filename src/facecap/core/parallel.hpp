@@ -1,0 +1,14 @@
+#pragma once
+// Data-parallel loop over an index range on the machine's cores.
+#include <functional>
+
+namespace facecap {
+
+// Number of worker threads parallel_for uses (hardware concurrency, at least 1).
+int worker_count();
+
+// Calls body(begin, end) on disjoint chunks that cover [0, n), in parallel.
+// Small ranges (n < min_chunk) run on the calling thread.
+void parallel_for(int n, const std::function<void(int, int)>& body, int min_chunk = 256);
+
+}  // namespace facecap

@@ -1,0 +1,154 @@
+// The only translation unit that includes dlib: detection and landmarks.
+#include <dlib/image_processing.h>
+#include <dlib/image_processing/frontal_face_detector.h>
+#include <dlib/opencv/cv_image.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/error.hpp"
+#include "facecap/detect/face_detector.hpp"
+#include "facecap/detect/landmark_detector.hpp"
+
+namespace facecap {
+
+namespace {
+
+cv::Mat to_grey(const cv::Mat& image) {
+  if (image.channels() == 1) return image;
+  cv::Mat grey;
+  cv::cvtColor(image, grey, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- detector
+
+struct FaceDetector::Impl {
+  dlib::frontal_face_detector detector = dlib::get_frontal_face_detector();
+};
+
+FaceDetector::FaceDetector(FaceDetectorOptions options) : impl_(std::make_unique<Impl>()), options_(options) {}
+FaceDetector::~FaceDetector() = default;
+FaceDetector::FaceDetector(FaceDetector&&) noexcept = default;
+FaceDetector& FaceDetector::operator=(FaceDetector&&) noexcept = default;
+
+std::vector<FaceDetection> FaceDetector::detect(const cv::Mat& image) const {
+  return detect_in(image, Box{0, 0, float(image.cols), float(image.rows)});
+}
+
+std::vector<FaceDetection> FaceDetector::detect_in(const cv::Mat& image, const Box& region) const {
+  if (image.empty()) return {};
+  const int x0 = std::clamp(int(region.x), 0, image.cols);
+  const int y0 = std::clamp(int(region.y), 0, image.rows);
+  const int x1 = std::clamp(int(region.x + region.width), 0, image.cols);
+  const int y1 = std::clamp(int(region.y + region.height), 0, image.rows);
+  if (x1 - x0 < 20 || y1 - y0 < 20) return {};
+  cv::Mat grey = to_grey(image(cv::Rect(x0, y0, x1 - x0, y1 - y0)));
+  double scale = 1.0;
+  const int side = std::max(grey.cols, grey.rows);
+  if (options_.max_side > 0 && side > options_.max_side) {
+    scale = double(options_.max_side) / side;
+    cv::resize(grey, grey, cv::Size(), scale, scale, cv::INTER_AREA);
+  }
+  for (int i = 0; i < options_.upsample; ++i) {
+    cv::pyrUp(grey, grey);
+    scale *= 2.0;
+  }
+  if (!grey.isContinuous()) grey = grey.clone();
+  dlib::cv_image<unsigned char> img(grey);
+  std::vector<dlib::rect_detection> dets;
+  impl_->detector(img, dets, options_.adjust_threshold);
+  std::vector<FaceDetection> out;
+  for (const auto& d : dets) {
+    const auto& r = d.rect;
+    out.push_back({Box{float(r.left() / scale + x0), float(r.top() / scale + y0), float(r.width() / scale),
+                       float(r.height() / scale)},
+                   d.detection_confidence});
+  }
+  std::sort(out.begin(), out.end(), [](const FaceDetection& a, const FaceDetection& b) { return a.box.area() > b.box.area(); });
+  return out;
+}
+
+// ---------------------------------------------------------------- landmarks
+
+std::filesystem::path default_landmark_model_path() {
+  if (const char* v = std::getenv("FACECAP_LANDMARK_MODEL"); v != nullptr && *v != '\0') return v;
+  return "/usr/share/dlib/shape_predictor_68_face_landmarks.dat";
+}
+
+// dlib::shape_predictor, read field by field from its serialised form so that
+// the landmarks keep their sub-pixel positions: dlib's own operator() rounds
+// every point to whole pixels (full_object_detection holds integer points),
+// which would add about 0.3 px of quantisation noise to each coordinate.
+// The cascade below is the same computation as shape_predictor::operator().
+struct LandmarkDetector::Impl {
+  dlib::matrix<float, 0, 1> initial_shape;
+  std::vector<std::vector<dlib::impl::regression_tree>> forests;
+  std::vector<std::vector<unsigned long>> anchor_idx;
+  std::vector<std::vector<dlib::vector<float, 2>>> deltas;
+
+  unsigned long num_parts() const { return initial_shape.size() / 2; }
+
+  void read(std::istream& in) {
+    int version = 0;
+    dlib::deserialize(version, in);
+    if (version != 1) throw dlib::serialization_error("unexpected shape_predictor version");
+    dlib::deserialize(initial_shape, in);
+    dlib::deserialize(forests, in);
+    dlib::deserialize(anchor_idx, in);
+    dlib::deserialize(deltas, in);
+  }
+
+  template <typename Image>
+  std::vector<dlib::vector<double, 2>> predict(const Image& img, const dlib::rectangle& rect) const {
+    dlib::matrix<float, 0, 1> shape = initial_shape;
+    std::vector<float> feature_pixel_values;
+    for (unsigned long iter = 0; iter < forests.size(); ++iter) {
+      dlib::impl::extract_feature_pixel_values(img, rect, shape, initial_shape, anchor_idx[iter], deltas[iter],
+                                               feature_pixel_values);
+      unsigned long leaf_idx = 0;
+      for (const auto& tree : forests[iter]) shape += tree(feature_pixel_values, leaf_idx);
+    }
+    const dlib::point_transform_affine to_image = dlib::impl::unnormalizing_tform(rect);
+    std::vector<dlib::vector<double, 2>> parts(num_parts());
+    for (unsigned long i = 0; i < parts.size(); ++i) parts[i] = to_image(dlib::impl::location(shape, i));
+    return parts;
+  }
+};
+
+LandmarkDetector::LandmarkDetector(const std::filesystem::path& model_path) : impl_(std::make_unique<Impl>()) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(model_path, ec)) {
+    throw Error("landmark model not found: " + model_path.string() + " (install the Debian package libdlib-data)");
+  }
+  try {
+    std::ifstream in(model_path, std::ios::binary);
+    impl_->read(in);
+  } catch (const std::exception&) {
+    throw Error("cannot read landmark model " + model_path.string() + ": not a dlib shape predictor or truncated");
+  }
+  if (impl_->num_parts() != kNumLandmarks) {
+    throw Error("landmark model " + model_path.string() + " predicts " + std::to_string(impl_->num_parts()) +
+                " points, expected 68");
+  }
+}
+LandmarkDetector::~LandmarkDetector() = default;
+LandmarkDetector::LandmarkDetector(LandmarkDetector&&) noexcept = default;
+LandmarkDetector& LandmarkDetector::operator=(LandmarkDetector&&) noexcept = default;
+
+Landmarks LandmarkDetector::detect(const cv::Mat& grey_in, const Box& box) const {
+  const cv::Mat grey = to_grey(grey_in);
+  dlib::cv_image<unsigned char> img(grey);
+  const dlib::rectangle rect(long(std::lround(box.x)), long(std::lround(box.y)), long(std::lround(box.x + box.width - 1)),
+                             long(std::lround(box.y + box.height - 1)));
+  const auto parts = impl_->predict(img, rect);
+  Landmarks lm;
+  for (int i = 0; i < kNumLandmarks; ++i) lm[i] = Vec2f(float(parts[i].x()), float(parts[i].y()));
+  return lm;
+}
+
+}  // namespace facecap

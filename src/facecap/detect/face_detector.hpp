@@ -1,0 +1,47 @@
+#pragma once
+// Frontal face detection with dlib's HOG + linear SVM detector, run on a
+// downscaled grey image for speed.
+#include <memory>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/detect/landmarks.hpp"
+
+namespace facecap {
+
+struct FaceDetectorOptions {
+  // The image is downscaled so that its longer side is at most this many
+  // pixels before detection (dlib's detector finds faces of 80 px and up, so
+  // 640 finds faces down to about 1/8 of the frame). 0 = never downscale.
+  int max_side = 640;
+  // Upsample the image this many times (doubles the smallest detectable face).
+  int upsample = 0;
+  // Detection score threshold offset (dlib's adjust_threshold; lower finds more).
+  double adjust_threshold = 0.0;
+};
+
+struct FaceDetection {
+  Box box;  // in full-image pixels
+  double score = 0.0;
+};
+
+class FaceDetector {
+ public:
+  explicit FaceDetector(FaceDetectorOptions options = {});
+  ~FaceDetector();
+  FaceDetector(FaceDetector&&) noexcept;
+  FaceDetector& operator=(FaceDetector&&) noexcept;
+
+  // Faces in a BGR or grey image, largest first.
+  std::vector<FaceDetection> detect(const cv::Mat& image) const;
+  // Faces within `region` of the image only (the region is clipped to the image).
+  std::vector<FaceDetection> detect_in(const cv::Mat& image, const Box& region) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  FaceDetectorOptions options_;
+};
+
+}  // namespace facecap

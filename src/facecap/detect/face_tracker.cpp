@@ -1,0 +1,139 @@
+#include "facecap/detect/face_tracker.hpp"
+
+#include <algorithm>
+#include <opencv2/imgproc.hpp>
+
+namespace facecap {
+
+float box_overlap(const Box& a, const Box& b) {
+  const float x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  const float x1 = std::min(a.x + a.width, b.x + b.width), y1 = std::min(a.y + a.height, b.y + b.height);
+  const float inter = std::max(0.0f, x1 - x0) * std::max(0.0f, y1 - y0);
+  const float uni = a.area() + b.area() - inter;
+  return uni > 0 ? inter / uni : 0.0f;
+}
+
+const char* to_string(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::kTracked:
+      return "tracked";
+    case TrackStatus::kRedetected:
+      return "redetected";
+    case TrackStatus::kLost:
+      return "lost";
+  }
+  return "lost";
+}
+
+FaceTracker::FaceTracker(const LandmarkDetector& landmarks, FaceTrackerOptions options)
+    : landmarks_(landmarks),
+      options_(options),
+      detector_(options.detector),
+      // The check runs on a crop about twice the face's size, scaled so that the
+      // face is roughly 100 px: cheap, and still well above the detector's 80 px.
+      verifier_(FaceDetectorOptions{.max_side = 240, .upsample = 0, .adjust_threshold = 0.0}) {}
+
+void FaceTracker::reset() {
+  previous_.reset();
+  frames_since_check_ = 0;
+}
+
+std::optional<Box> FaceTracker::detect_largest(const cv::Mat& grey, int* faces_seen) const {
+  const auto faces = detector_.detect(grey);
+  *faces_seen = static_cast<int>(faces.size());
+  if (faces.empty()) return std::nullopt;
+  return faces.front().box;
+}
+
+Box FaceTracker::box_from_landmarks(const Landmarks& lm) const {
+  const Box b = bounding_box(lm);
+  const float size = 0.5f * (b.width + b.height);
+  const Vec2f c = b.center() + Vec2f(box_relation_[0], box_relation_[1]) * size;
+  const float w = box_relation_[2] * size;
+  const float h = box_relation_[3] * size;
+  return {c.x() - 0.5f * w, c.y() - 0.5f * h, w, h};
+}
+
+void FaceTracker::learn_box_relation(const Box& det, const Landmarks& lm) {
+  const Box b = bounding_box(lm);
+  const float size = 0.5f * (b.width + b.height);
+  if (size < 1.0f) return;
+  const Vec2f offset = (det.center() - b.center()) / size;
+  const Eigen::Vector4f measured(offset.x(), offset.y(), det.width / size, det.height / size);
+  box_relation_ = 0.7f * box_relation_ + 0.3f * measured;
+}
+
+TrackedFace FaceTracker::next(const cv::Mat& image) {
+  cv::Mat grey;
+  if (image.channels() == 1) {
+    grey = image;
+  } else {
+    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  }
+  TrackedFace out;
+
+  auto plausible = [&](const Landmarks& lm, const Box& reference) {
+    const Box b = bounding_box(lm);
+    if (outer_eye_distance(lm) < options_.min_eye_distance) return false;
+    const Vec2f c = b.center();
+    if (c.x() < 0 || c.y() < 0 || c.x() >= grey.cols || c.y() >= grey.rows) return false;
+    const float s = std::sqrt(std::max(1.0f, b.area()) / std::max(1.0f, reference.area()));
+    return s < options_.max_scale_change && s > 1.0f / options_.max_scale_change;
+  };
+
+  if (previous_) {
+    const Box box = box_from_landmarks(*previous_);
+    Landmarks lm = landmarks_.detect(grey, box);
+    Box used = box;
+    bool ok = plausible(lm, bounding_box(*previous_));
+    bool reanchored = false;
+    if (ok && options_.verify_every > 0 && ++frames_since_check_ >= options_.verify_every) {
+      frames_since_check_ = 0;
+      const Box b = bounding_box(lm);
+      const Box crop{b.x - 0.6f * b.width, b.y - 0.6f * b.height, 2.2f * b.width, 2.2f * b.height};
+      const auto faces = verifier_.detect_in(grey, crop);
+      out.detector_ran = true;
+      out.faces_seen = static_cast<int>(faces.size());
+      ok = !faces.empty();
+      if (ok) {
+        // The shape predictor was trained on detector boxes: when the box
+        // implied by the tracked landmarks has drifted from the detector's,
+        // re-anchor on the detector's box.
+        const Box& det = faces.front().box;
+        if (box_overlap(det, box_from_landmarks(lm)) < options_.min_box_overlap) {
+          lm = landmarks_.detect(grey, det);
+          used = det;
+          reanchored = true;
+        }
+        learn_box_relation(det, lm);
+      }
+    }
+    if (ok) {
+      out.status = reanchored ? TrackStatus::kRedetected : TrackStatus::kTracked;
+      out.landmarks = lm;
+      out.box = used;
+      previous_ = lm;
+      return out;
+    }
+    previous_.reset();
+  }
+
+  int faces_seen = 0;
+  const auto box = detect_largest(grey, &faces_seen);
+  out.detector_ran = true;
+  out.faces_seen = faces_seen;
+  if (!box) {
+    out.status = TrackStatus::kLost;
+    return out;
+  }
+  const Landmarks lm = landmarks_.detect(grey, *box);
+  learn_box_relation(*box, lm);
+  out.status = TrackStatus::kRedetected;
+  out.landmarks = lm;
+  out.box = *box;
+  previous_ = lm;
+  frames_since_check_ = 0;
+  return out;
+}
+
+}  // namespace facecap

@@ -1,0 +1,69 @@
+#pragma once
+// Per-frame 68-point landmarks for a video: the face box is predicted from the
+// previous frame's landmarks, and the HOG detector runs (on a downscaled image)
+// only at the start, after a loss, and as a periodic check on a small crop.
+#include <optional>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/detect/face_detector.hpp"
+#include "facecap/detect/landmark_detector.hpp"
+
+namespace facecap {
+
+// Intersection over union of two boxes.
+float box_overlap(const Box& a, const Box& b);
+
+enum class TrackStatus { kTracked, kRedetected, kLost };
+const char* to_string(TrackStatus status);
+
+struct FaceTrackerOptions {
+  FaceDetectorOptions detector;
+  // Re-check every this many tracked frames that a face is still in the box
+  // (detector on a crop around it); 0 disables the check.
+  int verify_every = 3;
+  // When the detector's box and the box implied by the tracked landmarks
+  // overlap less than this (intersection over union), the landmarks are
+  // re-anchored on the detector's box (status `redetected`).
+  float min_box_overlap = 0.55f;
+  // A tracked box that grows or shrinks by more than this factor between
+  // frames is treated as a loss.
+  float max_scale_change = 1.35f;
+  // Faces smaller than this (outer-eye distance, pixels) count as lost.
+  float min_eye_distance = 12.0f;
+};
+
+struct TrackedFace {
+  TrackStatus status = TrackStatus::kLost;
+  Landmarks landmarks{};
+  Box box;            // the box the shape predictor ran on
+  int faces_seen = 0;  // faces found when the detector ran this frame (0 if it did not run)
+  bool detector_ran = false;
+};
+
+class FaceTracker {
+ public:
+  FaceTracker(const LandmarkDetector& landmarks, FaceTrackerOptions options = {});
+
+  // Landmarks for the next frame of the sequence (BGR or grey image).
+  TrackedFace next(const cv::Mat& image);
+  // Forget the previous frame (the next call detects from scratch).
+  void reset();
+
+ private:
+  std::optional<Box> detect_largest(const cv::Mat& grey, int* faces_seen) const;
+  Box box_from_landmarks(const Landmarks& lm) const;
+  void learn_box_relation(const Box& detector_box, const Landmarks& lm);
+
+  const LandmarkDetector& landmarks_;
+  FaceTrackerOptions options_;
+  FaceDetector detector_;
+  FaceDetector verifier_;
+  std::optional<Landmarks> previous_;
+  int frames_since_check_ = 0;
+  // Detector box relative to the landmark bounding box: centre offset and
+  // size, in units of the landmark box size (learned at each detection).
+  Eigen::Vector4f box_relation_{0.0f, 0.06f, 1.0f, 0.95f};
+};
+
+}  // namespace facecap

@@ -1,0 +1,35 @@
+#pragma once
+// 68 facial landmarks in the iBUG 300-W order, image pixels (0-based, pixel
+// centres at integer coordinates).
+#include <array>
+#include <filesystem>
+#include <vector>
+
+#include "facecap/core/geometry.hpp"
+
+namespace facecap {
+
+inline constexpr int kNumLandmarks = 68;
+using Landmarks = std::array<Vec2f, kNumLandmarks>;
+
+// Axis-aligned box in pixels.
+struct Box {
+  float x = 0, y = 0, width = 0, height = 0;
+  float area() const { return width * height; }
+  Vec2f center() const { return {x + 0.5f * width, y + 0.5f * height}; }
+};
+
+Box bounding_box(const Landmarks& lm);
+
+// Distance between the outer eye corners (iBUG 36 and 45): the normaliser of NME.
+float outer_eye_distance(const Landmarks& lm);
+
+// Mean point-to-point error of `estimate` against `truth`, divided by the
+// truth's outer-eye-corner distance (the 300-W "NME, inter-ocular").
+float landmark_nme(const Landmarks& estimate, const Landmarks& truth);
+
+// Reads an iBUG .pts file (1-based coordinates, converted to 0-based).
+// Throws facecap::Error naming the file when it is missing or malformed.
+Landmarks read_pts(const std::filesystem::path& path);
+
+}  // namespace facecap

@@ -1,0 +1,171 @@
+#include "facecap/io/input.hpp"
+
+#include <algorithm>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+#include <vector>
+
+#include "facecap/core/error.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+const char* to_string(InputKind kind) {
+  switch (kind) {
+    case InputKind::kVideo:
+      return "video";
+    case InputKind::kImage:
+      return "image";
+    case InputKind::kImageFolder:
+      return "image_folder";
+    case InputKind::kCamera:
+      return "camera";
+  }
+  return "video";
+}
+
+bool is_image_path(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif" || ext == ".tiff" ||
+         ext == ".webp" || ext == ".ppm" || ext == ".pgm";
+}
+
+namespace {
+
+cv::Mat read_image(const fs::path& path) {
+  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  return image;
+}
+
+class ImageSource final : public FrameSource {
+ public:
+  explicit ImageSource(const fs::path& path) {
+    image_ = read_image(path);
+    if (image_.empty()) throw Error("cannot decode image " + path.string() + ": not an image or corrupt");
+    info_.spec = path.string();
+    info_.kind = InputKind::kImage;
+    info_.width = image_.cols;
+    info_.height = image_.rows;
+    info_.frames = 1;
+  }
+  const InputInfo& info() const override { return info_; }
+  bool read(Frame& frame) override {
+    if (done_) return false;
+    done_ = true;
+    frame = Frame{image_, 0, 0.0, {}};
+    return true;
+  }
+
+ private:
+  InputInfo info_;
+  cv::Mat image_;
+  bool done_ = false;
+};
+
+class FolderSource final : public FrameSource {
+ public:
+  explicit FolderSource(const fs::path& dir) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (entry.is_regular_file() && is_image_path(entry.path())) files_.push_back(entry.path());
+    }
+    if (files_.empty()) throw Error("input folder holds no images: " + dir.string());
+    std::sort(files_.begin(), files_.end());
+    info_.spec = dir.string();
+    info_.kind = InputKind::kImageFolder;
+    info_.frames = static_cast<int>(files_.size());
+    // The first readable image sets the frame size.
+    for (const auto& f : files_) {
+      const cv::Mat first = read_image(f);
+      if (!first.empty()) {
+        info_.width = first.cols;
+        info_.height = first.rows;
+        break;
+      }
+    }
+    if (info_.width == 0) throw Error("no image in folder " + dir.string() + " can be decoded");
+  }
+  const InputInfo& info() const override { return info_; }
+  bool read(Frame& frame) override {
+    if (next_ >= files_.size()) return false;
+    const fs::path& f = files_[next_];
+    frame = Frame{read_image(f), static_cast<int>(next_), 0.0, {}};
+    if (frame.image.empty()) frame.error = "cannot decode image " + f.string();
+    ++next_;
+    return true;
+  }
+
+ private:
+  InputInfo info_;
+  std::vector<fs::path> files_;
+  size_t next_ = 0;
+};
+
+class VideoSource final : public FrameSource {
+ public:
+  // `info` from the container probe (file) or filled here (camera).
+  VideoSource(cv::VideoCapture capture, InputInfo info) : capture_(std::move(capture)), info_(std::move(info)) {
+    // Decode the first frame now: a file that opens but cannot decode fails here, not mid-run.
+    if (!capture_.read(first_) || first_.empty()) {
+      throw Error("cannot decode " + info_.spec + ": no frame could be decoded (corrupt or unsupported video)");
+    }
+    info_.width = first_.cols;
+    info_.height = first_.rows;
+    if (info_.fps <= 0) info_.fps = capture_.get(cv::CAP_PROP_FPS);
+    if (info_.fps <= 0 || info_.fps > 1000) info_.fps = 30.0;
+  }
+  const InputInfo& info() const override { return info_; }
+  bool read(Frame& frame) override {
+    cv::Mat image;
+    if (!first_.empty()) {
+      image = first_;
+      first_.release();
+    } else if (!capture_.read(image) || image.empty()) {
+      return false;
+    }
+    frame = Frame{image, index_, index_ / info_.fps, {}};
+    ++index_;
+    return true;
+  }
+
+ private:
+  cv::VideoCapture capture_;
+  InputInfo info_;
+  cv::Mat first_;
+  int index_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSource> open_input(const std::string& spec) {
+  if (spec.rfind("cam:", 0) == 0) {
+    int id = -1;
+    try {
+      id = std::stoi(spec.substr(4));
+    } catch (const std::exception&) {
+      throw Error("bad camera input '" + spec + "': use cam:N with N a camera number");
+    }
+    cv::VideoCapture capture(id);
+    if (!capture.isOpened()) throw Error("cannot open camera " + std::to_string(id) + " (" + spec + ")");
+    InputInfo info;
+    info.spec = spec;
+    info.kind = InputKind::kCamera;
+    info.fps = capture.get(cv::CAP_PROP_FPS);
+    return std::make_unique<VideoSource>(std::move(capture), info);
+  }
+  const fs::path path(spec);
+  std::error_code ec;
+  if (spec.empty()) throw Error("no input given");
+  if (!fs::exists(path, ec)) throw Error("input not found: " + spec);
+  if (fs::is_directory(path, ec)) return std::make_unique<FolderSource>(path);
+  if (!fs::is_regular_file(path, ec)) throw Error("input is not a regular file: " + spec);
+  if (fs::file_size(path, ec) == 0) throw Error("input is empty (0 bytes): " + spec);
+  if (is_image_path(path)) return std::make_unique<ImageSource>(path);
+  InputInfo info = probe_video_file(path);
+  cv::VideoCapture capture(path.string(), cv::CAP_FFMPEG);
+  if (!capture.isOpened()) throw Error("cannot decode " + spec + ": not a video OpenCV's FFmpeg backend can read");
+  return std::make_unique<VideoSource>(std::move(capture), info);
+}
+
+}  // namespace facecap

@@ -1,0 +1,51 @@
+#pragma once
+// Frame sources: a video file, a still image, a folder of images, or a camera
+// ("cam:N"). Opening validates the input and throws facecap::Error with a
+// one-line message naming the problem (missing, empty, a folder with no
+// images, not a video, undecodable).
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace facecap {
+
+enum class InputKind { kVideo, kImage, kImageFolder, kCamera };
+const char* to_string(InputKind kind);
+
+struct InputInfo {
+  std::string spec;  // what the user gave
+  InputKind kind = InputKind::kVideo;
+  int width = 0;
+  int height = 0;
+  double fps = 0.0;     // 0 for stills
+  int frames = -1;      // -1 when unknown (camera)
+  bool audio = false;   // has an audio stream
+  double duration = 0;  // seconds, 0 when unknown
+};
+
+struct Frame {
+  cv::Mat image;  // BGR, 8 bit; empty when this frame could not be decoded
+  int index = 0;
+  double time = 0.0;  // seconds from the start
+  std::string error;  // why `image` is empty, for per-frame status
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  virtual const InputInfo& info() const = 0;
+  // The next frame; false at the end of the input.
+  virtual bool read(Frame& frame) = 0;
+};
+
+std::unique_ptr<FrameSource> open_input(const std::string& spec);
+
+// Width, height, frame rate, frame count, audio and duration of a video file
+// (via libavformat); throws facecap::Error when the file is not a readable video.
+InputInfo probe_video_file(const std::filesystem::path& path);
+
+bool is_image_path(const std::filesystem::path& path);
+
+}  // namespace facecap

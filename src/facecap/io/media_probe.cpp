@@ -1,0 +1,85 @@
+// Container-level facts about a video file, read with libavformat.
+extern "C" {
+#include <libavformat/avformat.h>
+#include <libavutil/error.h>
+}
+
+#include <cmath>
+
+#include "facecap/core/error.hpp"
+#include "facecap/io/input.hpp"
+
+namespace facecap {
+
+namespace {
+
+struct FormatCloser {
+  void operator()(AVFormatContext* ctx) const { avformat_close_input(&ctx); }
+};
+
+std::string av_message(int code) {
+  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
+  av_strerror(code, buf, sizeof(buf));
+  return buf;
+}
+
+}  // namespace
+
+InputInfo probe_video_file(const std::filesystem::path& path) {
+  av_log_set_level(AV_LOG_QUIET);
+  AVFormatContext* raw = nullptr;
+  const int open_code = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
+  if (open_code < 0) {
+    throw Error("cannot read " + path.string() + ": not a video file or corrupt (" + av_message(open_code) + ")");
+  }
+  std::unique_ptr<AVFormatContext, FormatCloser> ctx(raw);
+  const int info_code = avformat_find_stream_info(ctx.get(), nullptr);
+  if (info_code < 0) {
+    throw Error("cannot read " + path.string() + ": corrupt or truncated video (" + av_message(info_code) + ")");
+  }
+  // A file cut short after its index (mp4 with the moov box first) opens
+  // fine but its samples point past the end of the file.
+  const int64_t file_size = ctx->pb ? avio_size(ctx->pb) : -1;
+  if (file_size > 0) {
+    for (unsigned i = 0; i < ctx->nb_streams; ++i) {
+      AVStream* s = ctx->streams[i];
+      const int entries = avformat_index_get_entries_count(s);
+      if (entries <= 0) continue;
+      const AVIndexEntry* last = avformat_index_get_entry(s, entries - 1);
+      if (last != nullptr && last->pos + last->size > file_size) {
+        throw Error("cannot read " + path.string() + ": the video is truncated (its index points past the end of the file)");
+      }
+    }
+  }
+  InputInfo info;
+  info.spec = path.string();
+  info.kind = InputKind::kVideo;
+  const AVStream* video = nullptr;
+  for (unsigned i = 0; i < ctx->nb_streams; ++i) {
+    const AVStream* s = ctx->streams[i];
+    if (s->codecpar->codec_type == AVMEDIA_TYPE_VIDEO && video == nullptr &&
+        !(s->disposition & AV_DISPOSITION_ATTACHED_PIC)) {
+      video = s;
+    }
+    if (s->codecpar->codec_type == AVMEDIA_TYPE_AUDIO) info.audio = true;
+  }
+  if (video == nullptr) throw Error("cannot read " + path.string() + ": it has no video stream");
+  info.width = video->codecpar->width;
+  info.height = video->codecpar->height;
+  if (info.width <= 0 || info.height <= 0) throw Error("cannot read " + path.string() + ": video has no frame size");
+  const AVRational rate = video->avg_frame_rate.num > 0 ? video->avg_frame_rate : video->r_frame_rate;
+  info.fps = rate.den > 0 ? av_q2d(rate) : 0.0;
+  if (video->duration != AV_NOPTS_VALUE && video->duration > 0) {
+    info.duration = double(video->duration) * av_q2d(video->time_base);
+  } else if (ctx->duration > 0) {
+    info.duration = double(ctx->duration) / AV_TIME_BASE;
+  }
+  if (video->nb_frames > 0) {
+    info.frames = static_cast<int>(video->nb_frames);
+  } else if (info.duration > 0 && info.fps > 0) {
+    info.frames = static_cast<int>(std::lround(info.duration * info.fps));
+  }
+  return info;
+}
+
+}  // namespace facecap

@@ -1,0 +1,41 @@
+#include "facecap/io/synthetic_mark.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <nlohmann/json.hpp>
+
+#include "facecap/core/atomic_file.hpp"
+#include "facecap/core/version.hpp"
+
+namespace facecap {
+
+std::map<std::string, std::string> synthetic_metadata(const SyntheticMark& mark) {
+  return {{"synthetic", "true"},
+          {"facecap_edit", mark.kind},
+          {"comment", "SYNTHETIC MEDIA: " + mark.description + " Made with facecap " + kFacecapVersion + "."},
+          {"encoder_note", "facecap " + std::string(kFacecapVersion)}};
+}
+
+std::filesystem::path sidecar_path(const std::filesystem::path& media_path) {
+  return media_path.string() + ".json";
+}
+
+void write_synthetic_sidecar(const std::filesystem::path& media_path, const SyntheticMark& mark) {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  nlohmann::json j;
+  j["synthetic"] = true;
+  j["media"] = media_path.filename().string();
+  j["edit"] = mark.kind;
+  j["description"] = mark.description;
+  j["sources"] = mark.sources;
+  j["parameters"] = mark.parameters;
+  j["tool"] = {{"name", "facecap"}, {"version", kFacecapVersion}};
+  j["created_utc"] = stamp;
+  j["notice"] =
+      "This media was generated or altered by software. It does not show a real recording of what it depicts.";
+  write_text_file(sidecar_path(media_path), j.dump(2) + "\n");
+}
+
+}  // namespace facecap

@@ -1,0 +1,153 @@
+#include "facecap/io/video_writer.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <fstream>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <vector>
+
+#include "facecap/core/error.hpp"
+
+extern char** environ;
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
+    : path_(path), options_(std::move(options)), file_(path) {
+  if (options_.width <= 0 || options_.height <= 0) throw Error("video writer: frame size not set");
+  // yuv420p needs even sizes; odd inputs are padded by one pixel.
+  options_.width += options_.width % 2;
+  options_.height += options_.height % 2;
+  if (options_.fps <= 0) options_.fps = 30.0;
+  log_path_ = file_.temp_path();
+  log_path_ += ".log";
+
+  std::vector<std::string> args{"ffmpeg", "-hide_banner", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt",
+                                "bgr24", "-s", std::to_string(options_.width) + "x" + std::to_string(options_.height),
+                                "-r", std::to_string(options_.fps), "-i", "-"};
+  const bool audio = options_.audio_source.has_value();
+  if (audio) {
+    args.insert(args.end(), {"-i", options_.audio_source->string(), "-map", "0:v:0", "-map", "1:a:0?", "-c:a", "aac",
+                             "-b:a", "160k"});
+  }
+  args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.preset, "-crf", std::to_string(options_.crf),
+                           "-pix_fmt", "yuv420p", "-movflags", "+faststart+use_metadata_tags"});
+  for (const auto& [key, value] : options_.metadata) args.insert(args.end(), {"-metadata", key + "=" + value});
+  args.insert(args.end(), {"-f", "mp4", file_.temp_path().string()});
+
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error("cannot start ffmpeg: pipe failed");
+  ::fcntl(fds[1], F_SETFD, FD_CLOEXEC);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[0]);
+  if (rc != 0) {
+    ::close(fds[1]);
+    throw Error("cannot start ffmpeg (is the ffmpeg package installed?)");
+  }
+  pid_ = pid;
+  pipe_fd_ = fds[1];
+  // A dead encoder must surface as an error from write(), not kill us with SIGPIPE.
+  ::signal(SIGPIPE, SIG_IGN);
+}
+
+VideoWriter::~VideoWriter() {
+  if (!finished_) stop_encoder(true);
+  std::error_code ec;
+  fs::remove(log_path_, ec);
+}
+
+std::string VideoWriter::encoder_log() const {
+  std::ifstream in(log_path_);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+void VideoWriter::write(const cv::Mat& bgr_in) {
+  if (pipe_fd_ < 0) throw Error("video writer for " + path_.string() + " is closed");
+  cv::Mat bgr = bgr_in;
+  if (bgr.type() != CV_8UC3) throw Error("video writer: frames must be 8-bit BGR");
+  const int pad_x = options_.width - bgr.cols;
+  const int pad_y = options_.height - bgr.rows;
+  if (pad_x != 0 || pad_y != 0) {
+    cv::Mat fitted;
+    if (pad_x >= 0 && pad_x <= 1 && pad_y >= 0 && pad_y <= 1) {
+      // Odd input sizes: one replicated row/column for yuv420p.
+      cv::copyMakeBorder(bgr, fitted, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
+    } else {
+      cv::resize(bgr, fitted, cv::Size(options_.width, options_.height), 0, 0, cv::INTER_AREA);
+    }
+    bgr = fitted;
+  }
+  if (!bgr.isContinuous()) bgr = bgr.clone();
+  const char* data = reinterpret_cast<const char*>(bgr.data);
+  size_t left = bgr.total() * bgr.elemSize();
+  while (left > 0) {
+    const ssize_t n = ::write(pipe_fd_, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::string why = encoder_log();
+      stop_encoder(true);
+      throw Error("ffmpeg stopped while writing " + path_.string() + (why.empty() ? "" : ": " + why));
+    }
+    data += n;
+    left -= static_cast<size_t>(n);
+  }
+  ++frames_;
+}
+
+void VideoWriter::stop_encoder(bool kill) {
+  if (pipe_fd_ >= 0) {
+    ::close(pipe_fd_);
+    pipe_fd_ = -1;
+  }
+  if (pid_ > 0) {
+    if (kill) ::kill(pid_, SIGTERM);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+  }
+}
+
+void VideoWriter::finish() {
+  if (finished_) return;
+  if (frames_ == 0) {
+    stop_encoder(true);
+    throw Error("no frames were written to " + path_.string());
+  }
+  ::close(pipe_fd_);
+  pipe_fd_ = -1;
+  int status = 0;
+  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw Error("ffmpeg failed to write " + path_.string() + ": " + encoder_log());
+  }
+  file_.commit();
+  finished_ = true;
+}
+
+}  // namespace facecap

@@ -1,0 +1,60 @@
+#pragma once
+// H.264 mp4 output through the ffmpeg program: raw BGR frames go down a pipe,
+// the input's audio track (when it has one) is muxed in, and the file is
+// written under a temporary name that finish() renames to the final one. A
+// writer destroyed without finish() (an error, an interruption) removes its
+// temporary file and leaves whatever was at the final path untouched.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/core/atomic_file.hpp"
+
+namespace facecap {
+
+struct VideoWriterOptions {
+  int width = 0;
+  int height = 0;
+  double fps = 30.0;
+  // Take the audio track from this file (the input), if it has one.
+  std::optional<std::filesystem::path> audio_source;
+  // Container metadata (mp4 tags), e.g. {"comment", "..."}.
+  std::map<std::string, std::string> metadata;
+  int crf = 18;                     // x264 quality: lower is better, 18 is visually lossless
+  std::string preset = "veryfast";  // x264 speed/size trade-off
+};
+
+class VideoWriter {
+ public:
+  // Starts ffmpeg; throws facecap::Error when the output folder is not
+  // writable or ffmpeg cannot be started.
+  VideoWriter(const std::filesystem::path& path, VideoWriterOptions options);
+  ~VideoWriter();
+  VideoWriter(const VideoWriter&) = delete;
+  VideoWriter& operator=(const VideoWriter&) = delete;
+
+  // Appends one BGR frame of the declared size (other sizes are resized).
+  void write(const cv::Mat& bgr);
+  // Closes the stream, waits for ffmpeg and renames the file into place.
+  void finish();
+  int frames_written() const { return frames_; }
+
+ private:
+  void stop_encoder(bool kill);
+  std::string encoder_log() const;
+
+  std::filesystem::path path_;
+  VideoWriterOptions options_;
+  AtomicFile file_;
+  std::filesystem::path log_path_;
+  int pipe_fd_ = -1;
+  int pid_ = -1;
+  int frames_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace facecap

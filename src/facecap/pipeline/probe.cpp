@@ -1,0 +1,18 @@
+#include "facecap/pipeline/probe.hpp"
+
+#include "facecap/core/error.hpp"
+#include "facecap/detect/face_detector.hpp"
+
+namespace facecap {
+
+ProbeReport probe_input(const std::string& spec) {
+  auto source = open_input(spec);
+  ProbeReport report;
+  report.info = source->info();
+  Frame frame;
+  if (!source->read(frame) || frame.image.empty()) throw Error("cannot decode the first frame of " + spec);
+  report.faces = static_cast<int>(FaceDetector().detect(frame.image).size());
+  return report;
+}
+
+}  // namespace facecap

@@ -1,0 +1,134 @@
+#include "facecap/render/rasterizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "facecap/core/parallel.hpp"
+
+namespace facecap {
+
+void RasterBuffers::resize(int w, int h) {
+  width = w;
+  height = h;
+  const size_t n = size_t(w) * size_t(h);
+  depth.assign(n, std::numeric_limits<float>::infinity());
+  triangle.assign(n, -1);
+  bary.assign(n, Vec2f::Zero());
+}
+
+namespace {
+
+struct ProjectedTriangle {
+  Vec2f p[3];
+  float inv_z[3];
+  int index;
+  float min_y, max_y;
+};
+
+}  // namespace
+
+void rasterize(const Positions& camera_points, const std::vector<Triangle>& triangles, const PinholeCamera& camera,
+               RasterBuffers& out, const RasterOptions& options) {
+  const int width = out.width;
+  const int height = out.height;
+  std::fill(out.depth.begin(), out.depth.end(), std::numeric_limits<float>::infinity());
+  std::fill(out.triangle.begin(), out.triangle.end(), -1);
+
+  // Project and cull once.
+  std::vector<ProjectedTriangle> tris;
+  tris.reserve(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle& tri = triangles[t];
+    const Vec3f a = camera_points.col(tri[0]);
+    const Vec3f b = camera_points.col(tri[1]);
+    const Vec3f c = camera_points.col(tri[2]);
+    if (a.z() < options.near_z || b.z() < options.near_z || c.z() < options.near_z) continue;
+    if (options.cull_back_faces && (b - a).cross(c - a).dot(a) >= 0.0f) continue;
+    ProjectedTriangle pt;
+    pt.p[0] = camera.project(a);
+    pt.p[1] = camera.project(b);
+    pt.p[2] = camera.project(c);
+    pt.inv_z[0] = 1.0f / a.z();
+    pt.inv_z[1] = 1.0f / b.z();
+    pt.inv_z[2] = 1.0f / c.z();
+    pt.index = static_cast<int>(t);
+    pt.min_y = std::min({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
+    pt.max_y = std::max({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
+    if (pt.max_y < 0 || pt.min_y > height - 1) continue;
+    tris.push_back(pt);
+  }
+
+  // Each worker owns a band of rows, so no two threads write the same pixel.
+  const int bands = std::max(1, std::min(height, worker_count() * 4));
+  parallel_for(
+      bands,
+      [&](int band_begin, int band_end) {
+        for (int band = band_begin; band < band_end; ++band) {
+          const int y_lo = height * band / bands;
+          const int y_hi = height * (band + 1) / bands - 1;
+          for (const ProjectedTriangle& pt : tris) {
+            if (pt.max_y < y_lo || pt.min_y > y_hi) continue;
+            const Vec2f& p0 = pt.p[0];
+            const Vec2f& p1 = pt.p[1];
+            const Vec2f& p2 = pt.p[2];
+            const float area = (p1.x() - p0.x()) * (p2.y() - p0.y()) - (p1.y() - p0.y()) * (p2.x() - p0.x());
+            if (std::abs(area) < 1e-8f) continue;
+            const float inv_area = 1.0f / area;
+            const int x0 = std::max(0, int(std::ceil(std::min({p0.x(), p1.x(), p2.x()}))));
+            const int x1 = std::min(width - 1, int(std::floor(std::max({p0.x(), p1.x(), p2.x()}))));
+            const int y0 = std::max(y_lo, int(std::ceil(pt.min_y)));
+            const int y1 = std::min(y_hi, int(std::floor(pt.max_y)));
+            for (int y = y0; y <= y1; ++y) {
+              const float py = float(y);
+              for (int x = x0; x <= x1; ++x) {
+                const float px = float(x);
+                // Screen-space barycentrics from edge functions.
+                float w0 = ((p1.x() - px) * (p2.y() - py) - (p1.y() - py) * (p2.x() - px)) * inv_area;
+                float w1 = ((p2.x() - px) * (p0.y() - py) - (p2.y() - py) * (p0.x() - px)) * inv_area;
+                float w2 = 1.0f - w0 - w1;
+                if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+                // Perspective-correct: interpolate 1/z linearly in screen space.
+                const float iz = w0 * pt.inv_z[0] + w1 * pt.inv_z[1] + w2 * pt.inv_z[2];
+                const float z = 1.0f / iz;
+                const size_t idx = size_t(y) * width + x;
+                if (z >= out.depth[idx]) continue;
+                out.depth[idx] = z;
+                out.triangle[idx] = pt.index;
+                out.bary[idx] = Vec2f(w1 * pt.inv_z[1] * z, w2 * pt.inv_z[2] * z);
+              }
+            }
+          }
+        }
+      },
+      1);
+}
+
+std::vector<bool> vertex_visibility(const Positions& camera_points, const Positions& camera_normals,
+                                    const PinholeCamera& camera, const RasterBuffers& buffers, float depth_tolerance) {
+  const int n = static_cast<int>(camera_points.cols());
+  std::vector<bool> visible(n, false);
+  for (int i = 0; i < n; ++i) {
+    const Vec3f p = camera_points.col(i);
+    if (p.z() <= 0) continue;
+    if (camera_normals.col(i).dot(p) >= 0.0f) continue;  // faces away from the camera
+    const Vec2f q = camera.project(p);
+    const int x = int(std::lround(q.x()));
+    const int y = int(std::lround(q.y()));
+    if (x < 0 || y < 0 || x >= buffers.width || y >= buffers.height) continue;
+    // The nearest surface among the pixel and its neighbours: a vertex sits on
+    // triangle corners, where rounding can land on a neighbouring triangle.
+    float nearest = std::numeric_limits<float>::infinity();
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int xx = x + dx, yy = y + dy;
+        if (xx < 0 || yy < 0 || xx >= buffers.width || yy >= buffers.height) continue;
+        nearest = std::min(nearest, buffers.depth[size_t(yy) * buffers.width + xx]);
+      }
+    }
+    visible[i] = p.z() <= nearest + depth_tolerance;
+  }
+  return visible;
+}
+
+}  // namespace facecap

@@ -1,0 +1,105 @@
+#include "facecap/synth/skin_albedo.hpp"
+
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "facecap/core/image_sampling.hpp"
+
+namespace facecap {
+
+namespace {
+
+cv::Scalar bgr(const Vec3f& rgb) { return cv::Scalar(rgb.z(), rgb.y(), rgb.x()); }
+
+}  // namespace
+
+SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint64_t seed, int size) {
+  SynthAppearance out;
+  const TriangleMesh face = model.region_mesh(regions::kFace);
+  const std::vector<Vec2f> uv = per_vertex_uvs(face);
+  auto to_px = [&](int vertex) {
+    const Vec2f t = uv[vertex];
+    return cv::Point2f(t.x() * (size - 1), (1.0f - t.y()) * (size - 1));
+  };
+  auto landmark_px = [&](int i) { return to_px(model.landmarks.vertices[i]); };
+
+  // Base tone with gentle low-frequency variation.
+  cv::Mat tex(size, size, CV_32FC3, bgr(tone));
+  std::mt19937_64 rng(seed ^ 0x5eed5eedull);
+  cv::Mat variation(size / 32, size / 32, CV_32F);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  for (int y = 0; y < variation.rows; ++y)
+    for (int x = 0; x < variation.cols; ++x) variation.at<float>(y, x) = 0.04f * normal(rng);
+  cv::resize(variation, variation, cv::Size(size, size), 0, 0, cv::INTER_CUBIC);
+  cv::GaussianBlur(variation, variation, cv::Size(0, 0), size / 64.0);
+  std::vector<cv::Mat> ch;
+  cv::split(tex, ch);
+  for (auto& c : ch) c = c.mul(1.0f + variation);
+  cv::merge(ch, tex);
+
+  const float eye_px = float(cv::norm(landmark_px(36) - landmark_px(45)));
+  const auto polyline = [&](int from, int to, bool closed, const Vec3f& colour, float width) {
+    std::vector<cv::Point> pts;
+    for (int i = from; i <= to; ++i) pts.push_back(landmark_px(i));
+    cv::polylines(tex, pts, closed, bgr(colour), std::max(1, int(width)), cv::LINE_AA);
+  };
+  const auto fill = [&](int from, int to, const Vec3f& colour) {
+    std::vector<cv::Point> pts;
+    for (int i = from; i <= to; ++i) pts.push_back(landmark_px(i));
+    cv::fillPoly(tex, std::vector<std::vector<cv::Point>>{pts}, bgr(colour), cv::LINE_AA);
+  };
+  // Soft shading around the eyes, cheeks with a touch of red.
+  cv::Mat soft(size, size, CV_32FC3, cv::Scalar::all(0));
+  for (int eye : {0, 1}) {
+    cv::Point2f c(0, 0);
+    for (int i = 36 + 6 * eye; i < 42 + 6 * eye; ++i) c += landmark_px(i) / 6.0f;
+    cv::ellipse(soft, c, cv::Size2f(0.3f * eye_px, 0.17f * eye_px), 0, 0, 360, cv::Scalar::all(-0.18), -1);
+  }
+  cv::GaussianBlur(soft, soft, cv::Size(0, 0), 0.05 * eye_px);
+  tex = tex.mul(cv::Scalar::all(1.0) + soft);
+
+  const Vec3f brow = tone.cwiseProduct(Vec3f(0.30f, 0.26f, 0.24f));
+  const Vec3f lip = tone.cwiseProduct(Vec3f(0.95f, 0.62f, 0.62f));
+  const Vec3f lid = tone.cwiseProduct(Vec3f(0.35f, 0.3f, 0.3f));
+  polyline(17, 21, false, brow, 0.07f * eye_px);
+  polyline(22, 26, false, brow, 0.07f * eye_px);
+  fill(48, 59, lip);
+  polyline(48, 59, true, lip * 0.9f, 0.02f * eye_px);
+  polyline(36, 41, true, lid, 0.025f * eye_px);
+  polyline(42, 47, true, lid, 0.025f * eye_px);
+  for (int n : {31, 35}) cv::circle(tex, landmark_px(n), int(0.03f * eye_px), bgr(tone * 0.35f), -1, cv::LINE_AA);
+  cv::GaussianBlur(tex, tex, cv::Size(0, 0), std::max(0.8, size / 700.0));
+  out.face_texture = tex;
+
+  // Per-vertex albedo of the whole head.
+  out.vertex_albedo = Positions(3, model.num_vertices);
+  out.drawn.assign(model.num_vertices, true);
+  Eigen::Map<const Positions> neutral(model.neutral.data(), 3, model.num_vertices);
+  auto paint_range = [&](const Region& r, const Vec3f& c) {
+    for (int v = r.first_vertex; v <= r.last_vertex; ++v) out.vertex_albedo.col(v) = c;
+  };
+  for (int v = 0; v < regions::kFace.num_vertices(); ++v) out.vertex_albedo.col(v) = sample_uv_rgb(tex, uv[v]);
+  paint_range(regions::kHeadAndNeck, tone);
+  paint_range(regions::kMouthSocket, Vec3f(0.25f, 0.08f, 0.08f));
+  paint_range(regions::kEyeSocketLeft, tone * 0.3f);
+  paint_range(regions::kEyeSocketRight, tone * 0.3f);
+  paint_range(regions::kGumsAndTongue, Vec3f(0.55f, 0.2f, 0.2f));
+  paint_range(regions::kTeeth, Vec3f(0.85f, 0.82f, 0.74f));
+  const Vec3f iris = Vec3f(0.25f, 0.16f, 0.1f) * float(0.6 + 0.8 * std::uniform_real_distribution<double>()(rng));
+  for (const Region& eyeball : {regions::kEyeballLeft, regions::kEyeballRight}) {
+    int front = eyeball.first_vertex;
+    for (int v = eyeball.first_vertex; v <= eyeball.last_vertex; ++v)
+      if (neutral(2, v) > neutral(2, front)) front = v;
+    for (int v = eyeball.first_vertex; v <= eyeball.last_vertex; ++v) {
+      const float r = (neutral.col(v) - neutral.col(front)).norm();
+      out.vertex_albedo.col(v) = r < 0.22f ? Vec3f(0.02f, 0.02f, 0.02f) : r < 0.55f ? iris : Vec3f(0.85f, 0.82f, 0.8f);
+    }
+  }
+  for (int v = regions::kEyeExtras.first_vertex; v <= regions::kEyeExtras.last_vertex; ++v) {
+    out.vertex_albedo.col(v) = Vec3f::Zero();
+    out.drawn[v] = false;
+  }
+  return out;
+}
+
+}  // namespace facecap

@@ -1,0 +1,141 @@
+#include "facecap/synth/synth_renderer.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/image_sampling.hpp"
+#include "facecap/render/shading.hpp"
+#include "facecap/synth/wrinkles.hpp"
+
+namespace facecap {
+
+SynthRenderer::SynthRenderer(const FaceModel& model, const SynthPerformance& performance)
+    : model_(model),
+      performance_(performance),
+      appearance_(paint_appearance(model, performance.skin_tone, performance.options.seed)),
+      contour_(build_jaw_contour(model)) {
+  const TriangleMesh face = model.region_mesh(regions::kFace);
+  face_triangles_ = face.triangles;
+  // Everything but the face polygons (drawn from the face mesh) and the
+  // transparent eye overlays.
+  const std::vector<Polygon> rest(model.polygons.begin() + regions::kFace.last_polygon + 1, model.polygons.end());
+  for (const Triangle& t : triangulate(rest, {}, model.num_vertices).triangles) {
+    if (appearance_.drawn[t[0]] && appearance_.drawn[t[1]] && appearance_.drawn[t[2]]) head_triangles_.push_back(t);
+  }
+  detail_ = performance.options.detail;
+  if (detail_) {
+    subdivision_ = subdivide_midpoint(face_triangles_, regions::kFace.num_vertices(), 2);
+    Eigen::Map<const Positions> neutral(model.neutral.data(), 3, model.num_vertices);
+    const Positions fine_neutral = subdivision_.prolong(Positions(neutral.leftCols(regions::kFace.num_vertices())));
+    displacement_.resize(subdivision_.num_vertices);
+    for (int v = 0; v < subdivision_.num_vertices; ++v) displacement_[v] = wrinkle_displacement(fine_neutral.col(v));
+    const std::vector<Vec2f> fine_uv = subdivision_.prolong(per_vertex_uvs(face));
+    fine_albedo_.resize(3, subdivision_.num_vertices);
+    for (int v = 0; v < subdivision_.num_vertices; ++v) fine_albedo_.col(v) = sample_uv_rgb(appearance_.face_texture, fine_uv[v]);
+  }
+  // A quiet studio background: a vertical gradient with soft blotches.
+  const int w = performance.options.width * kSupersample, h = performance.options.height * kSupersample;
+  background_ = cv::Mat(h, w, CV_32FC3);
+  for (int y = 0; y < h; ++y) {
+    const float t = float(y) / h;
+    background_.row(y).setTo(cv::Scalar(0.55f - 0.15f * t, 0.5f - 0.12f * t, 0.45f - 0.1f * t));
+  }
+  std::mt19937_64 rng(performance.options.seed * 7919ull + 17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  cv::Mat blotch(h, w, CV_32FC3, cv::Scalar::all(0));
+  for (int i = 0; i < 6; ++i) {
+    cv::circle(blotch, cv::Point(int(u(rng) * w), int(u(rng) * h)), int((0.1f + 0.2f * u(rng)) * w),
+               cv::Scalar::all(0.08f * (u(rng) - 0.5f)), -1);
+  }
+  cv::GaussianBlur(blotch, blotch, cv::Size(0, 0), 0.08 * w);
+  background_ += blotch;
+}
+
+Positions SynthRenderer::head_positions(const SynthFrame& frame) const {
+  return to_camera(model_.evaluate(performance_.identity, frame.expression), frame.pose);
+}
+
+Positions SynthRenderer::detailed_face(const SynthFrame& frame) const {
+  const Positions cam = head_positions(frame);
+  const Positions face = cam.leftCols(regions::kFace.num_vertices());
+  if (!detail_) return face;
+  const Positions coarse_normals = vertex_normals(face, face_triangles_);
+  Positions normals = subdivision_.prolong(coarse_normals);
+  Positions fine = subdivision_.prolong(face);
+  for (int v = 0; v < fine.cols(); ++v) fine.col(v) += displacement_[v] * normals.col(v).normalized();
+  return fine;
+}
+
+cv::Mat SynthRenderer::render(const SynthFrame& frame, std::mt19937_64& noise_rng) const {
+  const SynthOptions& o = performance_.options;
+  const Positions head = head_positions(frame);
+  // One mesh: the whole head's vertices, then (with detail) the fine face.
+  Positions vertices;
+  std::vector<Triangle> triangles = head_triangles_;
+  Positions albedo;
+  if (detail_) {
+    const Positions fine = detailed_face(frame);
+    vertices.resize(3, head.cols() + fine.cols());
+    vertices << head, fine;
+    albedo.resize(3, vertices.cols());
+    albedo << appearance_.vertex_albedo, fine_albedo_;
+    const int offset = static_cast<int>(head.cols());
+    for (const Triangle& t : subdivision_.triangles) triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  } else {
+    vertices = head;
+    albedo = appearance_.vertex_albedo;
+    triangles.insert(triangles.end(), face_triangles_.begin(), face_triangles_.end());
+  }
+  const Positions normals = vertex_normals(vertices, triangles);
+
+  // Supersampled camera: high-resolution pixel centres 2x and 2x+1 average to x.
+  PinholeCamera cam = performance_.camera;
+  cam.focal *= kSupersample;
+  cam.cx = cam.cx * kSupersample + 0.5 * (kSupersample - 1);
+  cam.cy = cam.cy * kSupersample + 0.5 * (kSupersample - 1);
+  RasterBuffers buffers;
+  buffers.resize(o.width * kSupersample, o.height * kSupersample);
+  rasterize(vertices, triangles, cam, buffers);
+  cv::Mat canvas = background_.clone();
+  shade_lambertian(buffers, triangles, albedo, normals, frame.lighting, canvas);
+  cv::Mat small;
+  cv::resize(canvas, small, cv::Size(o.width, o.height), 0, 0, cv::INTER_AREA);
+  if (o.noise_sigma > 0) {
+    cv::Mat noise(small.size(), CV_32FC3);
+    std::normal_distribution<float> n(0.0f, float(o.noise_sigma / 255.0));
+    for (auto it = noise.begin<cv::Vec3f>(); it != noise.end<cv::Vec3f>(); ++it) {
+      const float g = n(noise_rng);
+      *it = cv::Vec3f(g, g, g) + cv::Vec3f(n(noise_rng), n(noise_rng), n(noise_rng)) * 0.3f;
+    }
+    small += noise;
+  }
+  cv::Mat out;
+  small.convertTo(out, CV_8UC3, 255.0);
+  return out;
+}
+
+Landmarks SynthRenderer::landmarks(const SynthFrame& frame) const {
+  const Positions model_face =
+      model_.evaluate(performance_.identity, frame.expression, regions::kFace);
+  const Mat3d r = frame.pose.model_to_camera_rotation();
+  const auto vertices =
+      landmark_vertices_for_pose(model_, contour_, model_face, r, frame.pose.translation, performance_.camera.focal);
+  Landmarks lm;
+  for (int i = 0; i < kNumLandmarks; ++i) {
+    const Vec3d p = r * model_face.col(vertices[i]).cast<double>() + frame.pose.translation;
+    lm[i] = performance_.camera.project(p).cast<float>();
+  }
+  return lm;
+}
+
+Landmarks SynthRenderer::landmark_vertex_projections(const SynthFrame& frame) const {
+  const Positions model_face = model_.evaluate(performance_.identity, frame.expression, regions::kFace);
+  const Mat3d r = frame.pose.model_to_camera_rotation();
+  Landmarks lm;
+  for (int i = 0; i < kNumLandmarks; ++i) {
+    const Vec3d p = r * model_face.col(model_.landmarks.vertices[i]).cast<double>() + frame.pose.translation;
+    lm[i] = performance_.camera.project(p).cast<float>();
+  }
+  return lm;
+}
+
+}  // namespace facecap

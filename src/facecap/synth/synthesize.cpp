@@ -1,0 +1,66 @@
+#include "facecap/synth/synthesize.hpp"
+
+#include <chrono>
+#include <opencv2/imgcodecs.hpp>
+
+#include "facecap/core/atomic_file.hpp"
+#include "facecap/core/error.hpp"
+#include "facecap/core/progress.hpp"
+#include "facecap/io/synthetic_mark.hpp"
+#include "facecap/io/video_writer.hpp"
+#include "facecap/synth/synth_renderer.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, const fs::path& out_dir, bool quiet) {
+  const auto start = std::chrono::steady_clock::now();
+  options.check();
+  ensure_writable_dir(out_dir);
+  SynthJobResult result;
+  result.video = out_dir / "video.mp4";
+  result.truth = out_dir / "truth.json";
+  result.albedo = out_dir / "albedo.png";
+
+  SynthTruth& truth = result.ground_truth;
+  truth.performance = make_performance(model, options);
+  truth.expression_names = model.expression_names;
+  const SynthRenderer renderer(model, truth.performance);
+
+  SyntheticMark mark;
+  mark.kind = "synthetic-render";
+  mark.description = "A face rendered from the ICT face model with known parameters; no real person.";
+  mark.parameters = {{"seed", std::to_string(options.seed)}, {"frames", std::to_string(options.frames)},
+                     {"detail", options.detail ? "true" : "false"}};
+  VideoWriterOptions vo;
+  vo.width = options.width;
+  vo.height = options.height;
+  vo.fps = options.fps;
+  vo.crf = 12;  // near-lossless: the renders are test inputs
+  vo.metadata = synthetic_metadata(mark);
+  VideoWriter writer(result.video, vo);
+
+  std::mt19937_64 noise_rng(options.seed * 104729ull + 3);
+  Progress progress("synth", options.frames, quiet);
+  for (const SynthFrame& frame : truth.performance.frames) {
+    writer.write(renderer.render(frame, noise_rng));
+    truth.landmarks.push_back(renderer.landmarks(frame));
+    truth.vertex_landmarks.push_back(renderer.landmark_vertex_projections(frame));
+    progress.update(frame.index + 1);
+  }
+  progress.finish();
+  writer.finish();
+  write_synthetic_sidecar(result.video, mark);
+  write_truth(result.truth, truth);
+
+  cv::Mat albedo8;
+  renderer.appearance().face_texture.convertTo(albedo8, CV_8UC3, 255.0);
+  AtomicFile albedo_file(result.albedo);
+  if (!cv::imwrite(albedo_file.temp_path().string(), albedo8)) throw Error("cannot write " + result.albedo.string());
+  albedo_file.commit();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace facecap

@@ -1,0 +1,82 @@
+// The facecap program end to end: exit codes and one-line errors.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "facecap/core/temp_dir.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace {
+
+struct RunResult {
+  int code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+RunResult run(const std::string& args) {
+  const std::string cmd = std::string(FACECAP_BINARY) + " -q " + args + " 2>&1";
+  RunResult r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  while (pipe && std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = pipe ? ::pclose(pipe) : -1;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+TEST(Cli, HelpListsTheSubcommands) {
+  const RunResult r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* sub : {"probe", "model", "synth", "eval", "demo"}) EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
+}
+
+TEST(Cli, BadInputsExitNonZeroWithOneLine) {
+  TempDir dir;
+  std::ofstream(dir.path() / "empty.mp4").close();
+  std::ofstream(dir.path() / "text.mp4") << "not a video";
+  for (const std::string& input :
+       {(dir.path() / "missing.mp4").string(), (dir.path() / "empty.mp4").string(), (dir.path() / "text.mp4").string(),
+        dir.path().string()}) {
+    const RunResult r = run("probe " + input);
+    EXPECT_EQ(r.code, 1) << input << ": " << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_EQ(r.out.rfind("facecap: error: ", 0), 0u) << r.out;
+  }
+}
+
+TEST(Cli, UnwritableOutputFolderIsAClearError) {
+  FACECAP_REQUIRE_MODEL(model);
+  const RunResult r = run("synth -o /proc/facecap-test --frames 2");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("/proc/facecap-test"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BadOptionValuesAreNamed) {
+  FACECAP_REQUIRE_MODEL(model);
+  const RunResult r = run("synth -o /tmp/x --frames 0");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--frames"), std::string::npos) << r.out;
+  EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
+  EXPECT_NE(run("probe").code, 0);
+}
+
+TEST(Cli, ProbeDescribesAVideoAsJson) {
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  const RunResult r = run("probe " + video.string());
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("\"width\": 1280"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"audio\": true"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
+}
+
+}  // namespace facecap

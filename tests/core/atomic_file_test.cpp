@@ -1,0 +1,58 @@
+#include "facecap/core/atomic_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+
+namespace facecap {
+
+namespace {
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+TEST(AtomicFile, CommitReplacesTheFinalFile) {
+  TempDir dir;
+  const auto path = dir.path() / "out.txt";
+  write_text_file(path, "old");
+  write_text_file(path, "new");
+  EXPECT_EQ(slurp(path), "new");
+}
+
+TEST(AtomicFile, AbandonedWriteLeavesTheOldFileAndNoTemporary) {
+  TempDir dir;
+  const auto path = dir.path() / "out.mp4";
+  write_text_file(path, "good");
+  {
+    AtomicFile f(path);
+    std::ofstream(f.temp_path()) << "half-written";
+    EXPECT_EQ(f.temp_path().extension(), ".mp4");  // tools that pick formats by name still work
+  }
+  EXPECT_EQ(slurp(path), "good");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+TEST(AtomicFile, UnwritableFolderIsAClearError) {
+  EXPECT_THROW(AtomicFile("/proc/facecap-no-such-dir/out.txt"), Error);
+  TempDir dir;
+  const auto file = dir.path() / "plain";
+  write_text_file(file, "x");
+  try {
+    AtomicFile f(file / "out.txt");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a folder"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace facecap

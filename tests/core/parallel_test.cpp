@@ -1,0 +1,43 @@
+#include "facecap/core/parallel.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <numeric>
+#include <thread>
+#include <vector>
+
+namespace facecap {
+
+TEST(ParallelFor, CoversEveryIndexExactlyOnce) {
+  std::vector<int> hits(100000, 0);
+  parallel_for(static_cast<int>(hits.size()), [&](int b, int e) {
+    for (int i = b; i < e; ++i) ++hits[i];
+  });
+  for (int h : hits) ASSERT_EQ(h, 1);
+}
+
+TEST(ParallelFor, NestedAndConcurrentCallsComplete) {
+  std::atomic<long> sum{0};
+  auto job = [&] {
+    for (int rep = 0; rep < 50; ++rep) {
+      parallel_for(64, [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          parallel_for(100, [&](int bb, int ee) { sum += ee - bb; }, 10);
+        }
+      }, 1);
+    }
+  };
+  std::thread other(job);
+  job();
+  other.join();
+  EXPECT_EQ(sum.load(), 2L * 50 * 64 * 100);
+}
+
+TEST(ParallelFor, EmptyRangeCallsNothing) {
+  bool called = false;
+  parallel_for(0, [&](int, int) { called = true; });
+  EXPECT_FALSE(called);
+}
+
+}  // namespace facecap

@@ -1,0 +1,111 @@
+#include "facecap/io/video_writer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/io/input.hpp"
+#include "facecap/io/synthetic_mark.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+cv::Mat gradient_frame(int i, int w, int h) {
+  cv::Mat m(h, w, CV_8UC3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) m.at<cv::Vec3b>(y, x) = cv::Vec3b(uchar(x + i), uchar(y), uchar(128));
+  return m;
+}
+
+}  // namespace
+
+TEST(VideoWriter, WritesH264WithTheInputsAudioAndMetadata) {
+  FACECAP_REQUIRE_DATA(source, "address_720p_a.mp4");
+  TempDir dir;
+  const fs::path out = dir.path() / "out.mp4";
+  SyntheticMark mark{"expression-transform", "test", {source.string()}, {}};
+  VideoWriterOptions o;
+  o.width = 160;
+  o.height = 90;
+  o.fps = 29.97;
+  o.audio_source = source;
+  o.metadata = synthetic_metadata(mark);
+  {
+    VideoWriter w(out, o);
+    for (int i = 0; i < 30; ++i) w.write(gradient_frame(i, 160, 90));
+    w.finish();
+  }
+  const InputInfo info = probe_video_file(out);
+  EXPECT_EQ(info.width, 160);
+  EXPECT_EQ(info.frames, 30);
+  EXPECT_TRUE(info.audio);
+  // The container carries the synthetic tag.
+  std::ifstream in(out, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("SYNTHETIC MEDIA"), std::string::npos);
+  EXPECT_NE(bytes.find("facecap_edit"), std::string::npos);
+}
+
+TEST(VideoWriter, OddSizesArePaddedForYuv420) {
+  TempDir dir;
+  VideoWriterOptions o;
+  o.width = 101;
+  o.height = 75;
+  {
+    VideoWriter w(dir.path() / "odd.mp4", o);
+    for (int i = 0; i < 3; ++i) w.write(gradient_frame(i, 101, 75));
+    w.finish();
+  }
+  EXPECT_EQ(probe_video_file(dir.path() / "odd.mp4").width, 102);
+}
+
+TEST(VideoWriter, AnAbandonedWriteKeepsTheOldFileAndLeavesNoPartial) {
+  TempDir dir;
+  const fs::path out = dir.path() / "keep.mp4";
+  std::ofstream(out) << "previous good output";
+  VideoWriterOptions o;
+  o.width = 64;
+  o.height = 64;
+  {
+    VideoWriter w(out, o);
+    w.write(gradient_frame(0, 64, 64));
+    // destroyed without finish(): an error or an interruption
+  }
+  std::ifstream in(out);
+  std::string content;
+  std::getline(in, content);
+  EXPECT_EQ(content, "previous good output");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+TEST(VideoWriter, UnwritableOutputFolderIsAClearError) {
+  VideoWriterOptions o;
+  o.width = 64;
+  o.height = 64;
+  try {
+    VideoWriter w("/proc/facecap-test/out.mp4", o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/proc/facecap-test"), std::string::npos) << e.what();
+  }
+}
+
+TEST(VideoWriter, FinishingWithNoFramesIsAnError) {
+  TempDir dir;
+  VideoWriterOptions o;
+  o.width = 64;
+  o.height = 64;
+  VideoWriter w(dir.path() / "none.mp4", o);
+  EXPECT_THROW(w.finish(), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "none.mp4"));
+}
+
+}  // namespace facecap

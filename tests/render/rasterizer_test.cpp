@@ -1,0 +1,103 @@
+#include "facecap/render/rasterizer.hpp"
+
+#include <gtest/gtest.h>
+
+namespace facecap {
+
+namespace {
+
+const PinholeCamera kCamera{100.0, 50.0, 50.0};
+
+// Square [-1, 1]^2 at depth z, wound to face the camera.
+void square(Positions& p, std::vector<Triangle>& t, float z, int offset = 0) {
+  Positions q(3, 4);
+  q << -1, 1, 1, -1, -1, -1, 1, 1, z, z, z, z;
+  const int n = static_cast<int>(p.cols());
+  p.conservativeResize(3, n + 4);
+  p.rightCols(4) = q;
+  t.push_back({n + 0, n + 2, n + 1});
+  t.push_back({n + 0, n + 3, n + 2});
+  (void)offset;
+}
+
+}  // namespace
+
+TEST(Rasterizer, CoversTheProjectedSquareAtItsDepth) {
+  Positions p(3, 0);
+  std::vector<Triangle> t;
+  square(p, t, 10.0f);
+  RasterBuffers b;
+  b.resize(100, 100);
+  rasterize(p, t, kCamera, b);
+  int covered = 0;
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 100; ++x) {
+      if (!b.covered(x, y)) continue;
+      ++covered;
+      EXPECT_NEAR(b.depth[y * 100 + x], 10.0f, 1e-4f);
+      EXPECT_TRUE(x >= 40 && x <= 60 && y >= 40 && y <= 60);
+    }
+  }
+  EXPECT_EQ(covered, 21 * 21);  // pixel centres on [40, 60] inclusive
+}
+
+TEST(Rasterizer, BackFacesAreCulled) {
+  Positions p(3, 0);
+  std::vector<Triangle> t;
+  square(p, t, 10.0f);
+  for (auto& tri : t) std::swap(tri[1], tri[2]);
+  RasterBuffers b;
+  b.resize(100, 100);
+  rasterize(p, t, kCamera, b);
+  EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 100 * 100);
+  rasterize(p, t, kCamera, b, {.cull_back_faces = false});
+  EXPECT_LT(std::count(b.triangle.begin(), b.triangle.end(), -1), 100 * 100);
+}
+
+TEST(Rasterizer, NearerSurfaceWinsAndBarycentricsArePerspectiveCorrect) {
+  Positions p(3, 0);
+  std::vector<Triangle> t;
+  square(p, t, 20.0f);
+  // A slanted triangle in front: z from 8 to 12 across x.
+  const int n = static_cast<int>(p.cols());
+  p.conservativeResize(3, n + 3);
+  p.col(n) = Vec3f(-1, -1, 8);
+  p.col(n + 1) = Vec3f(1, -1, 12);
+  p.col(n + 2) = Vec3f(-1, 1, 8);
+  t.push_back({n, n + 2, n + 1});
+  RasterBuffers b;
+  b.resize(100, 100);
+  rasterize(p, t, kCamera, b);
+  // Pixel (50, 45): ray (0, -0.05, 1) hits the slanted plane z = 10 + 2x where x = 0 -> z = 10.
+  const size_t i = 45 * 100 + 50;
+  ASSERT_EQ(b.triangle[i], 2);
+  EXPECT_NEAR(b.depth[i], 10.0f, 1e-3f);
+  const Triangle& tri = t[2];
+  const Vec2f w = b.bary[i];
+  const Vec3f point = (1 - w.x() - w.y()) * p.col(tri[0]) + w.x() * p.col(tri[1]) + w.y() * p.col(tri[2]);
+  EXPECT_NEAR(point.x(), 0.0f, 1e-3f);
+  EXPECT_NEAR(point.y(), -0.5f, 1e-3f);
+  EXPECT_NEAR(point.z(), 10.0f, 1e-3f);
+}
+
+TEST(Rasterizer, OccludedVerticesAreNotVisible) {
+  Positions p(3, 0);
+  std::vector<Triangle> t;
+  square(p, t, 10.0f);
+  Positions pts(3, 2);
+  pts.col(0) = Vec3f(0.2f, 0.2f, 10.0f);   // on the square
+  pts.col(1) = Vec3f(0.4f, 0.4f, 20.0f);   // behind it
+  Positions normals(3, 2);
+  normals.col(0) = Vec3f(0, 0, -1);
+  normals.col(1) = Vec3f(0, 0, -1);
+  RasterBuffers b;
+  b.resize(100, 100);
+  rasterize(p, t, kCamera, b);
+  const auto vis = vertex_visibility(pts, normals, kCamera, b);
+  EXPECT_TRUE(vis[0]);
+  EXPECT_FALSE(vis[1]);
+  normals.col(0) = Vec3f(0, 0, 1);  // facing away
+  EXPECT_FALSE(vertex_visibility(pts, normals, kCamera, b)[0]);
+}
+
+}  // namespace facecap

@@ -1,0 +1,72 @@
+#include "facecap/synth/performance.hpp"
+
+#include <gtest/gtest.h>
+
+#include "facecap/core/error.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+TEST(SynthPerformance, SameSeedSameParameters) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o;
+  o.frames = 20;
+  o.seed = 5;
+  const SynthPerformance a = make_performance(*model, o), b = make_performance(*model, o);
+  EXPECT_TRUE(a.identity.isApprox(b.identity));
+  EXPECT_TRUE(a.frames[13].expression.isApprox(b.frames[13].expression));
+  o.seed = 6;
+  EXPECT_FALSE(a.identity.isApprox(make_performance(*model, o).identity));
+}
+
+TEST(SynthPerformance, WeightsPoseAndLightingStayInRange) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o;
+  o.frames = 120;  // one full yaw sweep
+  const SynthPerformance p = make_performance(*model, o);
+  EXPECT_EQ(p.identity.head(50).cwiseAbs().maxCoeff() > 0.3f, true);
+  EXPECT_EQ(p.identity.tail(50).cwiseAbs().maxCoeff(), 0.0f);
+  double min_yaw = 1e9, max_yaw = -1e9, max_jaw = 0;
+  const int jaw = model->expression_index("jawOpen");
+  for (const SynthFrame& f : p.frames) {
+    EXPECT_GE(f.expression.minCoeff(), 0.0f);
+    EXPECT_LE(f.expression.maxCoeff(), 1.0f);
+    const double yaw = yaw_pitch_roll_deg(f.pose.rotation_matrix()).x();
+    min_yaw = std::min(min_yaw, yaw);
+    max_yaw = std::max(max_yaw, yaw);
+    max_jaw = std::max(max_jaw, double(f.expression[jaw]));
+    EXPECT_GT(sh_shade(f.lighting, 0.0, 0.0, 1.0), 0.3);
+  }
+  EXPECT_LT(min_yaw, -27.0);
+  EXPECT_GT(max_yaw, 27.0);
+  EXPECT_GT(max_jaw, 0.2);  // it talks
+}
+
+TEST(SynthPerformance, StillModeHoldsEverything) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o;
+  o.frames = 10;
+  o.still = true;
+  const SynthPerformance p = make_performance(*model, o);
+  for (const SynthFrame& f : p.frames) {
+    EXPECT_TRUE(f.pose.rotation.isApprox(p.frames[0].pose.rotation));
+    EXPECT_TRUE(f.pose.translation.isApprox(p.frames[0].pose.translation));
+    EXPECT_EQ(f.expression.maxCoeff(), 0.0f);
+  }
+}
+
+TEST(SynthPerformance, BadOptionsAreRejectedByName) {
+  SynthOptions o;
+  o.frames = 0;
+  try {
+    o.check();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--frames"), std::string::npos);
+  }
+  o = SynthOptions{};
+  o.width = 10;
+  EXPECT_THROW(o.check(), Error);
+}
+
+}  // namespace facecap

@@ -1,0 +1,107 @@
+#include "facecap/synth/synth_renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/io/input.hpp"
+#include "facecap/io/synthetic_mark.hpp"
+#include "facecap/synth/synthesize.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace {
+
+SynthOptions small_options() {
+  SynthOptions o;
+  o.frames = 8;
+  o.width = 320;
+  o.height = 240;
+  o.seed = 11;
+  return o;
+}
+
+}  // namespace
+
+TEST(SynthRenderer, TruthLandmarksAreProjectedLandmarkVertices) {
+  FACECAP_REQUIRE_MODEL(model);
+  const SynthPerformance p = make_performance(*model, small_options());
+  const SynthRenderer r(*model, p);
+  for (const SynthFrame& f : p.frames) {
+    const Landmarks lm = r.landmarks(f);
+    const Landmarks fixed = r.landmark_vertex_projections(f);
+    for (int i = 17; i < kNumLandmarks; ++i) EXPECT_LT((lm[i] - fixed[i]).norm(), 1e-3f);
+    EXPECT_LT((lm[8] - fixed[8]).norm(), 1e-3f);  // the chin does not slide
+    // The face is about 45% of the image high, so the eye corners are tens of pixels apart.
+    EXPECT_GT(outer_eye_distance(lm), 40.0f);
+    EXPECT_LT(outer_eye_distance(lm), 120.0f);
+  }
+}
+
+TEST(SynthRenderer, DrawsTheFaceWhereTheLandmarksAre) {
+  FACECAP_REQUIRE_MODEL(model);
+  const SynthPerformance p = make_performance(*model, small_options());
+  const SynthRenderer r(*model, p);
+  std::mt19937_64 rng(1);
+  const cv::Mat img = r.render(p.frames[0], rng);
+  ASSERT_EQ(img.cols, 320);
+  const Landmarks lm = r.landmarks(p.frames[0]);
+  const cv::Vec3b nose = img.at<cv::Vec3b>(int(lm[30].y()), int(lm[30].x()));
+  const cv::Vec3b corner = img.at<cv::Vec3b>(3, 3);
+  // Skin is redder than the blue-grey background.
+  EXPECT_GT(int(nose[2]) - int(nose[0]), 10);
+  EXPECT_LT(int(corner[2]) - int(corner[0]), 10);
+}
+
+TEST(SynthRenderer, DetailDisplacesTheSurfaceAlongItsNormals) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o = small_options();
+  o.noise_sigma = 0;
+  const SynthPerformance plain = make_performance(*model, o);
+  o.detail = true;
+  const SynthPerformance detailed = make_performance(*model, o);
+  const SynthRenderer rp(*model, plain), rd(*model, detailed);
+  ASSERT_NE(rd.detail_mesh(), nullptr);
+  float max_d = 0;
+  for (float d : rd.detail_displacement()) max_d = std::max(max_d, std::abs(d));
+  EXPECT_GT(max_d, 0.03f);  // wrinkles of a few tenths of a millimetre...
+  EXPECT_LT(max_d, 0.15f);  // ...not centimetres
+  // The detailed surface is the subdivided coarse surface moved by d along its normal.
+  const Positions fine = rd.detailed_face(detailed.frames[0]);
+  const Positions coarse = rd.detail_mesh()->prolong(rp.detailed_face(plain.frames[0]));
+  ASSERT_EQ(fine.cols(), coarse.cols());
+  double max_err = 0;
+  for (Eigen::Index v = 0; v < fine.cols(); ++v) {
+    max_err = std::max(max_err, double(std::abs((fine.col(v) - coarse.col(v)).norm() - std::abs(rd.detail_displacement()[v]))));
+  }
+  EXPECT_LT(max_err, 1e-4);
+  // And it shows in the image: the face pixels change, the background does not.
+  std::mt19937_64 r1(1), r2(1);
+  cv::Mat a, b, diff;
+  rp.render(plain.frames[0], r1).convertTo(a, CV_32F);
+  rd.render(detailed.frames[0], r2).convertTo(b, CV_32F);
+  cv::absdiff(a, b, diff);
+  const Box box = bounding_box(rp.landmarks(plain.frames[0]));
+  const cv::Rect face(int(box.x), int(box.y), int(box.width), int(box.height));
+  double max_face = 0;
+  cv::minMaxLoc(diff(face).reshape(1), nullptr, &max_face);
+  EXPECT_GT(max_face, 10.0);
+  EXPECT_LT(cv::mean(diff(cv::Rect(0, 0, 20, 20)))[0], 0.5);
+}
+
+TEST(Synthesize, WritesVideoTruthAlbedoAndTheSyntheticMarks) {
+  FACECAP_REQUIRE_MODEL(model);
+  TempDir dir;
+  SynthOptions o = small_options();
+  o.frames = 5;
+  const SynthJobResult r = synthesize(*model, o, dir.path(), true);
+  auto video = open_input(r.video.string());
+  EXPECT_EQ(video->info().frames, 5);
+  EXPECT_EQ(video->info().width, 320);
+  EXPECT_TRUE(std::filesystem::exists(r.truth));
+  EXPECT_TRUE(std::filesystem::exists(r.albedo));
+  EXPECT_TRUE(std::filesystem::exists(sidecar_path(r.video)));
+  EXPECT_EQ(r.ground_truth.landmarks.size(), 5u);
+}
+
+}  // namespace facecap

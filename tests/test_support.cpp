@@ -1,0 +1,23 @@
+#include "test_support.hpp"
+
+#include <memory>
+#include <mutex>
+
+#include "facecap/model/model_cache.hpp"
+
+namespace facecap::test {
+
+const FaceModel* shared_model() {
+  static std::once_flag once;
+  static std::unique_ptr<FaceModel> model;
+  std::call_once(once, [] {
+    std::error_code ec;
+    if (!std::filesystem::exists(default_model_dir() / "vertex_indices.json", ec)) return;
+    model = std::make_unique<FaceModel>(load_face_model(default_model_dir()));
+  });
+  return model.get();
+}
+
+std::optional<std::filesystem::path> data_path(const std::string& name) { return data_file(name); }
+
+}  // namespace facecap::test
