@@ -2,6 +2,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
 #include "facecap/pipeline/synth_landmark_eval.hpp"
+#include "facecap/pipeline/track_eval.hpp"
 
 namespace facecap::cli {
 
@@ -51,12 +52,88 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
   });
 }
 
+void register_eval_track(CLI::App& eval, GlobalOptions& global) {
+  auto* cmd = eval.add_subcommand("track",
+                                  "Coarse-tracking accuracy as JSON: on a synthetic performance (--synthetic N) "
+                                  "against its truth, or on real footage (--video PATH)");
+  struct Args {
+    int synthetic = 0;
+    std::string video;
+    std::string landmarks = "truth";
+    std::string size = "1280x720";
+    bool true_focal = false;
+    TrackEvalOptions options;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--synthetic", a->synthetic, "Render and fit N synthetic frames");
+  cmd->add_option("--video", a->video, "Fit real footage");
+  cmd->add_option("--seed", a->options.seed, "Seed of the synthetic performance")->capture_default_str();
+  cmd->add_option("--landmarks", a->landmarks, "truth (projected truth + noise) or dlib (on the rendered video)")
+      ->check(CLI::IsMember({"truth", "dlib"}))
+      ->capture_default_str();
+  cmd->add_option("--noise", a->options.landmark_noise_px, "Landmark noise sigma in pixels (truth landmarks)")
+      ->capture_default_str();
+  cmd->add_option("--still-frames", a->options.still_frames, "Still-head frames for the jitter measurement")
+      ->capture_default_str();
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video");
+  cmd->add_option("--init-frames", a->options.capture.fit.init_frames, "Frames for the identity and focal solve")
+      ->capture_default_str();
+  cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
+  cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
+  cmd->callback([a, &global] {
+    const FaceModel model = load_model(global);
+    a->options.capture.quiet = global.quiet;
+    if (!a->video.empty()) {
+      const VideoEvalResult r = evaluate_track_video(model, a->video, a->options.capture);
+      const StageTimings& t = r.summary.timings;
+      print_json({{"video", a->video},
+                  {"frames", r.frames},
+                  {"lost_frames", r.lost_frames},
+                  {"landmark_nme", r.landmark_nme},
+                  {"landmark_nme_mean", r.landmark_nme_mean},
+                  {"landmark_nme_p90", r.landmark_nme_p90},
+                  {"focal", r.focal},
+                  {"identity_frames", r.summary.identity.frames_used},
+                  {"fps", t.total_s > 0 ? t.frames / t.total_s : 0.0}});
+      return;
+    }
+    if (a->synthetic <= 0) throw Error("eval track needs --synthetic N or --video PATH");
+    a->options.frames = a->synthetic;
+    parse_size(a->size, a->options.synth.width, a->options.synth.height);
+    a->options.landmarks = a->landmarks == "dlib" ? LandmarkSource::kDlib : LandmarkSource::kTruth;
+    if (a->true_focal) {
+      a->options.capture.fit.focal_known = true;
+      a->options.capture.fit.focal_guess = (a->options.synth.focal > 0 ? a->options.synth.focal : 1.1 * a->options.synth.width);
+    }
+    const TrackEvalResult r = evaluate_track_synthetic(model, a->options);
+    print_json({{"frames", r.frames},
+                {"seed", a->options.seed},
+                {"landmarks", a->landmarks},
+                {"lost_frames", r.lost_frames},
+                {"vertex_error_mm", r.vertex_error_mm},
+                {"vertex_error_similarity_mm", r.vertex_error_similarity_mm},
+                {"rotation_error_deg", r.rotation_error_deg},
+                {"translation_error_cm", r.translation_error_cm},
+                {"focal", r.focal},
+                {"focal_true", r.focal_true},
+                {"focal_error_rel", r.focal_error_rel},
+                {"weights_mae", r.weights_mae},
+                {"jitter_mm", r.jitter_mm},
+                {"jitter_camera_mm", r.jitter_camera_mm},
+                {"identity_error", r.identity_error},
+                {"fit_ms_per_frame", r.fit_ms_per_frame}});
+  });
+}
+
 }  // namespace
 
 void register_eval(CLI::App& app, GlobalOptions& global) {
   auto* eval = app.add_subcommand("eval", "Measure accuracy against ground truth; prints one JSON object");
   eval->require_subcommand(1);
   register_eval_landmarks(*eval, global);
+  register_eval_track(*eval, global);
 }
 
 }  // namespace facecap::cli

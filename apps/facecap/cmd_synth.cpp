@@ -6,14 +6,6 @@
 
 namespace facecap::cli {
 
-namespace {
-
-void parse_size(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2) throw Error("--size must look like 640x480, got '" + s + "'");
-}
-
-}  // namespace
-
 void register_synth(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand("synth",
                                  "Render a synthetic performance with known parameters: DIR/video.mp4, "

@@ -19,6 +19,8 @@ struct GlobalOptions {
 FaceModel load_model(const GlobalOptions& global);
 // Prints a JSON object on stdout.
 void print_json(const nlohmann::json& j);
+// Parses "WxH"; throws facecap::Error naming --size otherwise.
+void parse_size(const std::string& s, int& width, int& height);
 
 void register_probe(CLI::App& app, GlobalOptions& global);
 void register_model(CLI::App& app, GlobalOptions& global);

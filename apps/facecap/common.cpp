@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/model/model_cache.hpp"
 
@@ -20,5 +21,12 @@ FaceModel load_model(const GlobalOptions& global) {
 }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
+
+void parse_size(const std::string& s, int& w, int& h) {
+  char tail = 0;
+  if (std::sscanf(s.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0) {
+    throw Error("--size must look like 640x480, got '" + s + "'");
+  }
+}
 
 }  // namespace facecap::cli

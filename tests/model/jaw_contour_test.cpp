@@ -14,7 +14,7 @@ std::array<int, 17> silhouette_at_yaw(const FaceModel& model, const JawContour& 
   HeadPose pose;
   pose.rotation = axis_angle_from_rotation(rotation_from_yaw_pitch_roll_deg(yaw, 0, 0));
   pose.translation = Vec3d(0, 0, 60);
-  return silhouette_vertices(contour, face, pose.model_to_camera_rotation(), pose.translation, 1000.0);
+  return silhouette_vertices(contour, face, pose.model_to_camera_rotation(), pose.translation);
 }
 
 }  // namespace

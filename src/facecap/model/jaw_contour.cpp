@@ -41,21 +41,20 @@ JawContour build_jaw_contour(const FaceModel& model) {
   return contour;
 }
 
-std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positions& face_positions,
-                                        const Mat3d& model_to_camera, const Vec3d& translation, double focal) {
+std::array<int, 17> silhouette_vertices(const JawContour& contour,
+                                        const std::function<Vec3d(int vertex)>& camera_position) {
   std::array<int, 17> out{};
-  const Mat3f r = model_to_camera.cast<float>();
-  const Vec3f t = translation.cast<float>();
   for (int k = 0; k < 17; ++k) {
     const auto& line = contour.lines[k];
-    const float outward = k < 8 ? -1.0f : 1.0f;  // subject's right side appears at image left
-    float best = -std::numeric_limits<float>::infinity();
+    const double outward = k < 8 ? -1.0 : 1.0;  // subject's right side appears at image left
+    double best = -std::numeric_limits<double>::infinity();
     int best_v = line.front();
     for (int v : line) {
-      const Vec3f p = r * face_positions.col(v) + t;
-      const float x = float(focal) * p.x() / p.z();
-      if (outward * x > best) {
-        best = outward * x;
+      const Vec3d p = camera_position(v);
+      // x/z orders points by image column for any focal length.
+      const double x = outward * p.x() / p.z();
+      if (x > best) {
+        best = x;
         best_v = v;
       }
     }
@@ -64,12 +63,19 @@ std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positio
   return out;
 }
 
+std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positions& face_positions,
+                                        const Mat3d& model_to_camera, const Vec3d& translation) {
+  return silhouette_vertices(contour, [&](int v) -> Vec3d {
+    return model_to_camera * face_positions.col(v).cast<double>() + translation;
+  });
+}
+
 std::array<int, 68> landmark_vertices_for_pose(const FaceModel& model, const JawContour& contour,
                                                const Positions& face_positions, const Mat3d& model_to_camera,
-                                               const Vec3d& translation, double focal) {
+                                               const Vec3d& translation) {
   std::array<int, 68> out{};
   std::copy(model.landmarks.vertices.begin(), model.landmarks.vertices.end(), out.begin());
-  const auto jaw = silhouette_vertices(contour, face_positions, model_to_camera, translation, focal);
+  const auto jaw = silhouette_vertices(contour, face_positions, model_to_camera, translation);
   std::copy(jaw.begin(), jaw.end(), out.begin());
   return out;
 }

@@ -11,6 +11,7 @@
 // on the side turning away from the camera the outline moves inward along the
 // line, as eos and 3DDFA's landmark marching do.
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "facecap/core/geometry.hpp"
@@ -27,16 +28,21 @@ struct JawContour {
 // Builds the march lines from the model's neutral shape.
 JawContour build_jaw_contour(const FaceModel& model);
 
-// For each jaw landmark, the line vertex on the silhouette under the rotation
-// `model_to_camera` (R * F of camera.hpp), given model-space positions of the
-// face region (column = global vertex index). Returns 17 vertex indices.
+// For each jaw landmark, the line vertex on the silhouette: the one whose
+// camera-space position (given by `camera_position(vertex)`) projects
+// furthest outward. Returns 17 vertex indices.
+std::array<int, 17> silhouette_vertices(const JawContour& contour,
+                                        const std::function<Vec3d(int vertex)>& camera_position);
+
+// The same for model-space face-region positions (column = global vertex
+// index) under the rotation `model_to_camera` (R * F of camera.hpp) and translation.
 std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positions& face_positions,
-                                        const Mat3d& model_to_camera, const Vec3d& translation, double focal);
+                                        const Mat3d& model_to_camera, const Vec3d& translation);
 
 // The 68 correspondence vertices for a pose: the landmark map with the jaw
 // landmarks replaced by their silhouette vertices.
 std::array<int, 68> landmark_vertices_for_pose(const FaceModel& model, const JawContour& contour,
                                                const Positions& face_positions, const Mat3d& model_to_camera,
-                                               const Vec3d& translation, double focal);
+                                               const Vec3d& translation);
 
 }  // namespace facecap

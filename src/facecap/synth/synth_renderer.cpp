@@ -118,7 +118,7 @@ Landmarks SynthRenderer::landmarks(const SynthFrame& frame) const {
       model_.evaluate(performance_.identity, frame.expression, regions::kFace);
   const Mat3d r = frame.pose.model_to_camera_rotation();
   const auto vertices =
-      landmark_vertices_for_pose(model_, contour_, model_face, r, frame.pose.translation, performance_.camera.focal);
+      landmark_vertices_for_pose(model_, contour_, model_face, r, frame.pose.translation);
   Landmarks lm;
   for (int i = 0; i < kNumLandmarks; ++i) {
     const Vec3d p = r * model_face.col(vertices[i]).cast<double>() + frame.pose.translation;

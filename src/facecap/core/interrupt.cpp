@@ -1,0 +1,35 @@
+#include "facecap/core/interrupt.hpp"
+
+#include <csignal>
+#include <cstdlib>
+#include <unistd.h>
+
+#include "facecap/core/error.hpp"
+
+namespace facecap {
+
+namespace {
+
+volatile std::sig_atomic_t g_interrupted = 0;
+
+extern "C" void on_signal(int) {
+  if (g_interrupted) std::_Exit(130);
+  g_interrupted = 1;
+  static const char msg[] = "\nfacecap: interrupted, cleaning up (press Ctrl-C again to quit at once)\n";
+  [[maybe_unused]] const auto n = ::write(STDERR_FILENO, msg, sizeof(msg) - 1);
+}
+
+}  // namespace
+
+void install_interrupt_handler() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+
+bool interrupted() { return g_interrupted != 0; }
+
+void throw_if_interrupted() {
+  if (interrupted()) throw Error("interrupted");
+}
+
+}  // namespace facecap

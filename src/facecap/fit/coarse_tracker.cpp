@@ -1,0 +1,117 @@
+#include "facecap/fit/coarse_tracker.hpp"
+
+#include <algorithm>
+
+namespace facecap {
+
+CoarseTracker::CoarseTracker(const FaceModel& model, const CoarseFitOptions& options, int width, int height)
+    : fitter_(model, options, width, height) {
+  identity_.identity = Eigen::VectorXd::Zero(fitter_.identity_modes());
+  identity_.focal_guess = fitter_.focal_guess();
+  identity_.focal = identity_.focal_guess;
+}
+
+std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::optional<Landmarks>& landmarks) {
+  if (initialized_) return {track({index, time, landmarks})};
+  pending_.push_back({index, time, landmarks});
+  if (landmarks) ++pending_faces_;
+  if (pending_faces_ < fitter_.options().init_frames) return {};
+  return finish();
+}
+
+std::vector<CoarseFit> CoarseTracker::finish() {
+  std::vector<CoarseFit> out;
+  if (!initialized_ && pending_faces_ > 0) initialize();
+  for (const Pending& p : pending_) {
+    if (initialized_) {
+      out.push_back(track(p));
+    } else {
+      CoarseFit lost;
+      lost.index = p.index;
+      lost.time = p.time;
+      out.push_back(lost);
+    }
+  }
+  pending_.clear();
+  pending_faces_ = 0;
+  return out;
+}
+
+void CoarseTracker::initialize() {
+  std::vector<Landmarks> observed;
+  for (const Pending& p : pending_)
+    if (p.landmarks) observed.push_back(*p.landmarks);
+
+  const int nf = fitter_.num_expressions();
+  Eigen::VectorXd identity = Eigen::VectorXd::Zero(fitter_.identity_modes());
+  double focal = fitter_.focal_guess();
+  std::vector<FrameParameters> frames(observed.size(), FrameParameters(nf));
+  // Each frame on its own with the mean face first, then everything jointly.
+  for (size_t i = 0; i < observed.size(); ++i) {
+    fitter_.initialize_frame(observed[i], identity, focal, frames[i]);
+    fitter_.fit_frame(observed[i], identity, focal, nullptr, frames[i]);
+  }
+  fitter_.fit_identity(observed, frames, identity, focal);
+
+  // Frames whose landmarks the joint model cannot explain (a detector
+  // failure) must not shape the identity: drop them and solve again.
+  std::vector<Landmarks> kept;
+  std::vector<FrameParameters> kept_frames;
+  for (size_t i = 0; i < observed.size(); ++i) {
+    if (fitter_.landmark_error(observed[i], frames[i], identity, focal) <= fitter_.options().lost_landmark_error) {
+      kept.push_back(observed[i]);
+      kept_frames.push_back(frames[i]);
+    }
+  }
+  if (!kept.empty() && kept.size() < observed.size()) {
+    fitter_.fit_identity(kept, kept_frames, identity, focal);
+  }
+  identity_.identity = identity;
+  identity_.focal = focal;
+  identity_.frames_used = static_cast<int>(kept.empty() ? observed.size() : kept.size());
+  initialized_ = true;
+}
+
+CoarseFit CoarseTracker::track(const Pending& frame) {
+  CoarseFit fit;
+  fit.index = frame.index;
+  fit.time = frame.time;
+  fit.focal = identity_.focal;
+  if (!frame.landmarks) {
+    previous_.reset();  // no temporal link across a gap
+    return fit;
+  }
+  FrameParameters params(fitter_.num_expressions());
+  if (previous_) {
+    params = *previous_;
+  } else {
+    fitter_.initialize_frame(*frame.landmarks, identity_.identity, identity_.focal, params);
+  }
+  const FrameParameters* previous = previous_ ? &*previous_ : nullptr;
+  FrameFitReport report = fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, previous, params);
+  if (report.landmark_error > fitter_.options().lost_landmark_error && previous != nullptr) {
+    // Maybe the warm start was the problem (a fast turn): start afresh once.
+    FrameParameters fresh(fitter_.num_expressions());
+    fitter_.initialize_frame(*frame.landmarks, identity_.identity, identity_.focal, fresh);
+    const FrameFitReport second = fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, nullptr, fresh);
+    if (second.landmark_error < report.landmark_error) {
+      report = second;
+      params = fresh;
+    }
+  }
+  fit.observed = *frame.landmarks;
+  fit.landmark_error = report.landmark_error;
+  fit.correspondences = report.correspondences;
+  fit.pose = params.pose();
+  fit.expression = params.expression().cast<float>();
+  fit.fitted = fitter_.project(params, identity_.identity, identity_.focal);
+  fit.valid = report.landmark_error <= fitter_.options().lost_landmark_error;
+  if (fit.valid) {
+    previous_ = params;
+  } else {
+    previous_.reset();
+  }
+  return fit;
+}
+
+}  // namespace facecap

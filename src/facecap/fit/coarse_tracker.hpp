@@ -1,0 +1,69 @@
+#pragma once
+// Coarse tracking of a video (§4.1): identity and focal length are solved
+// jointly over the first frames that show a face (several frames, so that head
+// motion makes the focal length observable) and then held fixed; every frame's
+// pose and expression follow by block coordinate descent with temporal terms
+// to the previous frame. A still image is the one-frame case with a stronger
+// focal prior.
+//
+// Frames go in as they arrive; fits come out in frame order once they are
+// final (the first ones after the identity solve, then one per frame).
+#include <optional>
+#include <vector>
+
+#include "facecap/fit/face_fitter.hpp"
+
+namespace facecap {
+
+// Per-frame result of the coarse fit.
+struct CoarseFit {
+  int index = 0;
+  double time = 0.0;
+  bool valid = false;            // false: no face, or landmarks the model cannot explain
+  HeadPose pose;
+  double focal = 0.0;
+  Eigen::VectorXf expression;    // 53 weights in [0, 1]
+  double landmark_error = 0.0;   // NME of the projected fit against the observed landmarks
+  Landmarks observed{};          // the detector's landmarks
+  Landmarks fitted{};            // the model's landmarks projected
+  std::array<int, 68> correspondences{};
+};
+
+struct IdentityEstimate {
+  Eigen::VectorXd identity;  // leading ICT modes
+  double focal = 0.0;
+  int frames_used = 0;
+  double focal_guess = 0.0;
+};
+
+class CoarseTracker {
+ public:
+  CoarseTracker(const FaceModel& model, const CoarseFitOptions& options, int width, int height);
+
+  // Next frame (landmarks, or nullopt when no face was found).
+  std::vector<CoarseFit> push(int index, double time, const std::optional<Landmarks>& landmarks);
+  // End of input: fits still waiting for the identity solve.
+  std::vector<CoarseFit> finish();
+
+  bool initialized() const { return initialized_; }
+  const IdentityEstimate& identity() const { return identity_; }
+  const FaceFitter& fitter() const { return fitter_; }
+
+ private:
+  struct Pending {
+    int index;
+    double time;
+    std::optional<Landmarks> landmarks;
+  };
+  void initialize();
+  CoarseFit track(const Pending& frame);
+
+  FaceFitter fitter_;
+  IdentityEstimate identity_;
+  bool initialized_ = false;
+  std::vector<Pending> pending_;
+  int pending_faces_ = 0;
+  std::optional<FrameParameters> previous_;
+};
+
+}  // namespace facecap

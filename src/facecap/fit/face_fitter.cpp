@@ -1,0 +1,122 @@
+#include "facecap/fit/face_fitter.hpp"
+
+#include <cmath>
+
+#include "facecap/fit/frame_energy.hpp"
+#include "facecap/fit/frame_solver.hpp"
+#include "facecap/fit/identity_solver.hpp"
+
+namespace facecap {
+
+FaceFitter::FaceFitter(const FaceModel& model, const CoarseFitOptions& options, int width, int height)
+    : model_(model),
+      options_(options),
+      width_(width),
+      height_(height),
+      num_expressions_(model.num_expressions()),
+      basis_(gather_landmark_basis(model, options.identity_modes)) {
+  options_.check();
+}
+
+double FaceFitter::focal_guess() const {
+  return options_.focal_guess > 0 ? options_.focal_guess : 1.0 * std::max(width_, height_);
+}
+
+Landmarks FaceFitter::project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
+                              std::array<int, 68>* correspondences) const {
+  const HeadPose pose = params.pose();
+  const Mat3d rf = pose.model_to_camera_rotation();
+  const Eigen::VectorXd w = params.expression();
+  const auto vertices = pose_correspondences(model_, basis_, identity, w, rf, pose.translation);
+  if (correspondences != nullptr) *correspondences = vertices;
+  const PinholeCamera cam{focal, 0.5 * width_, 0.5 * height_};
+  Landmarks out;
+  for (int i = 0; i < 68; ++i) {
+    const Vec3d y = rf * basis_.position(basis_.slot(vertices[i]), identity, w) + pose.translation;
+    out[i] = cam.project(y).cast<float>();
+  }
+  return out;
+}
+
+double FaceFitter::landmark_error(const Landmarks& observed, const FrameParameters& params,
+                                  const Eigen::VectorXd& identity, double focal) const {
+  return landmark_nme(project(params, identity, focal), observed);
+}
+
+void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
+                                  FrameParameters& params) const {
+  // Depth from the eye-corner distance (8.9 cm on the mean face; the eyes sit
+  // about 9 cm in front of the model origin), position from the landmark centre.
+  const double eye_px = std::max(1.0f, outer_eye_distance(observed));
+  const double depth = focal * 8.9 / eye_px + 9.0;
+  Vec2d centre = Vec2d::Zero();
+  for (const Vec2f& p : observed) centre += p.cast<double>() / 68.0;
+  const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
+  const Vec2d eyes = (observed[45] - observed[36]).cast<double>();
+  const double roll = std::atan2(eyes.y(), eyes.x()) * 180.0 / 3.14159265358979323846;
+
+  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, nullptr);
+  double best_cost = std::numeric_limits<double>::infinity();
+  FrameParameters best(num_expressions_);
+  for (double yaw : {0.0, -30.0, 30.0}) {
+    FrameParameters trial(num_expressions_);
+    HeadPose pose;
+    pose.rotation = axis_angle_from_rotation(rotation_from_yaw_pitch_roll_deg(yaw, 0.0, roll));
+    pose.translation = Vec3d((centre.x() - pp.x()) * depth / focal, (centre.y() - pp.y()) * depth / focal + 1.0, depth);
+    trial.set_pose(pose);
+    for (int round = 0; round < 2; ++round) {
+      energy.set_correspondences(pose_correspondences(model_, basis_, identity, trial.expression(),
+                                                      trial.pose().model_to_camera_rotation(),
+                                                      trial.pose().translation));
+      solve_pose(energy, trial, 15);
+    }
+    const double c = energy.cost(trial);
+    if (c < best_cost && trial.values[frame_block::kTranslation + 2] > 0) {
+      best_cost = c;
+      best = trial;
+    }
+  }
+  params = best;
+}
+
+FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
+                                     const FrameParameters* previous, FrameParameters& params) const {
+  const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
+  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous);
+  FrameFitReport report;
+  for (int round = 0; round < options_.bcd_iterations; ++round) {
+    // Jaw correspondences follow the current pose (landmark marching).
+    report.correspondences = pose_correspondences(model_, basis_, identity, params.expression(),
+                                                  params.pose().model_to_camera_rotation(), params.pose().translation);
+    energy.set_correspondences(report.correspondences);
+    solve_pose(energy, params, options_.max_solver_iterations);
+    solve_expression(energy, params, 5);
+    solve_joint(energy, params, options_.max_solver_iterations);
+  }
+  report.landmark_error = landmark_error(observed, params, identity, focal);
+  return report;
+}
+
+void FaceFitter::fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
+                              Eigen::VectorXd& identity, double& focal) const {
+  const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
+  std::vector<std::unique_ptr<FrameEnergy>> energies;
+  for (const Landmarks& lm : observed) {
+    energies.push_back(std::make_unique<FrameEnergy>(basis_, options_.weights, lm, pp, identity, focal, nullptr));
+  }
+  IdentitySolverOptions o;
+  o.focal_free = !options_.focal_known;
+  o.focal_guess = focal_guess();
+  o.sigma_log_focal = options_.still ? options_.weights.sigma_log_focal_still : options_.weights.sigma_log_focal;
+  o.max_iterations = 40;
+  o.refresh = [&](const std::vector<FrameParameters>& f, const Eigen::VectorXd& id, double) {
+    for (size_t i = 0; i < f.size(); ++i) {
+      energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(),
+                                                            f[i].pose().model_to_camera_rotation(),
+                                                            f[i].pose().translation));
+    }
+  };
+  solve_identity_joint(energies, frames, identity, focal, o);
+}
+
+}  // namespace facecap

@@ -1,0 +1,66 @@
+#pragma once
+// The coarse fit of §4.1: the energy E = E_lan + E_prior + E_s (eq. 4.3-4.6)
+// minimised by trust-region (Levenberg-Marquardt) steps.
+//  - fit_frame: one frame's pose and expression with identity and focal
+//    fixed: block coordinate descent (pose, then expression, frame_solver.hpp)
+//    followed by a joint step, jaw correspondences re-chosen from the current
+//    pose between rounds; temporal terms to the previous frame.
+//  - fit_identity: identity and focal jointly over several frames, each
+//    frame's pose and expression free (identity_solver.hpp).
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "facecap/detect/landmarks.hpp"
+#include "facecap/fit/fit_options.hpp"
+#include "facecap/fit/frame_block.hpp"
+#include "facecap/fit/landmark_basis.hpp"
+
+namespace facecap {
+
+struct FrameFitReport {
+  double landmark_error = 0;  // NME of the fitted landmarks against the observed ones
+  std::array<int, 68> correspondences{};
+  bool converged = true;
+};
+
+class FaceFitter {
+ public:
+  FaceFitter(const FaceModel& model, const CoarseFitOptions& options, int width, int height);
+
+
+  const CoarseFitOptions& options() const { return options_; }
+  int num_expressions() const { return num_expressions_; }
+  int identity_modes() const { return static_cast<int>(basis_.identity.cols()); }
+  double focal_guess() const;
+
+  // A starting pose for a frame with no history: translation from the face's
+  // size and position, rotation from the best of a few yaw guesses.
+  void initialize_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
+                        FrameParameters& params) const;
+
+  // Fits pose and expression of one frame (params: in = start, out = fit).
+  FrameFitReport fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
+                           const FrameParameters* previous, FrameParameters& params) const;
+
+  // Fits identity and focal jointly with every frame's pose and expression.
+  void fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
+                    Eigen::VectorXd& identity, double& focal) const;
+
+  // Projected 68 model landmarks for a fit (jaw on the silhouette).
+  Landmarks project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
+                    std::array<int, 68>* correspondences = nullptr) const;
+
+  double landmark_error(const Landmarks& observed, const FrameParameters& params, const Eigen::VectorXd& identity,
+                        double focal) const;
+
+ private:
+  const FaceModel& model_;
+  CoarseFitOptions options_;
+  int width_, height_;
+  int num_expressions_;
+  LandmarkBasis basis_;
+};
+
+}  // namespace facecap

@@ -1,0 +1,36 @@
+#include "facecap/fit/fit_options.hpp"
+
+#include "facecap/core/error.hpp"
+
+namespace facecap {
+
+namespace {
+void positive(double v, const char* name) {
+  if (!(v > 0)) throw Error(std::string("fit option ") + name + " must be positive");
+}
+}  // namespace
+
+void FitWeights::check() const {
+  positive(sigma_landmark, "sigma_landmark");
+  positive(jaw_sigma_factor, "jaw_sigma_factor");
+  positive(sigma_expression, "sigma_expression");
+  positive(sigma_temporal_expression, "sigma_temporal_expression");
+  positive(sigma_temporal_rotation_deg, "sigma_temporal_rotation_deg");
+  positive(sigma_temporal_translation_cm, "sigma_temporal_translation_cm");
+  positive(sigma_log_focal, "sigma_log_focal");
+  positive(sigma_log_focal_still, "sigma_log_focal_still");
+  positive(huber_scale, "huber_scale");
+}
+
+void CoarseFitOptions::check() const {
+  weights.check();
+  if (identity_modes < 1 || identity_modes > 100) throw Error("--identity-modes must be between 1 and 100");
+  if (init_frames < 1) throw Error("--init-frames must be at least 1");
+  if (bcd_iterations < 1) throw Error("fit option bcd_iterations must be at least 1");
+  if (max_solver_iterations < 1) throw Error("fit option max_solver_iterations must be at least 1");
+  if (focal_guess < 0) throw Error("--focal must be positive");
+  if (focal_known && focal_guess <= 0) throw Error("a known focal length needs --focal");
+  if (!(lost_landmark_error > 0)) throw Error("fit option lost_landmark_error must be positive");
+}
+
+}  // namespace facecap

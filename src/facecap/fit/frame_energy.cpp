@@ -1,0 +1,142 @@
+#include "facecap/fit/frame_energy.hpp"
+
+#include <cmath>
+
+namespace facecap {
+
+namespace {
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+}
+
+void set_landmark_observations(const Landmarks& observed, const FitWeights& w, const Eigen::Vector2d& principal_point,
+                               std::array<LandmarkTerm, 68>& terms) {
+  const double scale = std::max(1.0, double(outer_eye_distance(observed))) / 100.0;
+  for (int i = 0; i < 68; ++i) {
+    LandmarkTerm& t = terms[i];
+    t.observed = observed[i].cast<double>();
+    t.principal_point = principal_point;
+    t.inv_sigma = 1.0 / (w.sigma_landmark * scale * (i <= 16 ? w.jaw_sigma_factor : 1.0));
+  }
+}
+
+void set_landmark_correspondences(const LandmarkBasis& basis, const std::array<int, 68>& vertices,
+                                  std::array<LandmarkTerm, 68>& terms) {
+  for (int i = 0; i < 68; ++i) {
+    const int s = basis.slot(vertices[i]);
+    LandmarkTerm& t = terms[i];
+    t.neutral = basis.neutral.col(s);
+    t.identity_rows = basis.identity.middleRows(3 * s, 3);
+    t.expression_rows = basis.expression.middleRows(3 * s, 3);
+  }
+}
+
+FrameEnergy::FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, const Landmarks& observed,
+                         const Eigen::Vector2d& principal_point, const Eigen::VectorXd& identity, double focal,
+                         const FrameParameters* previous)
+    : basis_(basis),
+      weights_(weights),
+      identity_(identity),
+      focal_(focal),
+      num_expressions_(static_cast<int>(basis.expression.cols())) {
+  set_landmark_observations(observed, weights, principal_point, terms_);
+  for (int i = 0; i < 68; ++i) {
+    costs_.push_back(std::make_unique<LandmarkCost>(&terms_[i], static_cast<int>(identity.size()), num_expressions_));
+  }
+  auto add_prior = [&](int index, double mean, double sigma) {
+    prior_index_.push_back(index);
+    prior_mean_.push_back(mean);
+    prior_inv_sigma_.push_back(1.0 / sigma);
+  };
+  for (int k = 0; k < num_expressions_; ++k) add_prior(frame_block::kExpression + k, 0.0, weights.sigma_expression);
+  if (previous != nullptr) {
+    for (int k = 0; k < 3; ++k) {
+      add_prior(frame_block::kRotation + k, previous->values[frame_block::kRotation + k],
+                weights.sigma_temporal_rotation_deg * kDegToRad);
+      add_prior(frame_block::kTranslation + k, previous->values[frame_block::kTranslation + k],
+                weights.sigma_temporal_translation_cm);
+    }
+    for (int k = 0; k < num_expressions_; ++k) {
+      add_prior(frame_block::kExpression + k, previous->values[frame_block::kExpression + k],
+                weights.sigma_temporal_expression);
+    }
+  }
+  rows_ = 2 * 68 + static_cast<int>(prior_index_.size());
+}
+
+void FrameEnergy::set_correspondences(const std::array<int, 68>& vertices) {
+  set_landmark_correspondences(basis_, vertices, terms_);
+}
+
+double FrameEnergy::landmark_block(int i, const FrameParameters& x, double* residual, double* jacobian_pose,
+                                   double* jacobian_expression, double* jacobian_identity,
+                                   double* jacobian_focal) const {
+  const double focal = focal_;
+  const double* params[4] = {x.values.data(), x.values.data() + frame_block::kExpression, identity_.data(), &focal};
+  double* jacobians[4] = {jacobian_pose, jacobian_expression, jacobian_identity, jacobian_focal};
+  if (!costs_[i]->Evaluate(params, residual, jacobian_pose ? jacobians : nullptr)) {
+    residual[0] = residual[1] = 1e6;  // behind the camera
+  }
+  return residual[0] * residual[0] + residual[1] * residual[1];
+}
+
+double FrameEnergy::cost(const FrameParameters& x) const {
+  const double k2 = weights_.huber_scale * weights_.huber_scale;
+  double total = 0.0;
+  double res[2];
+  for (int i = 0; i < 68; ++i) {
+    const double s = landmark_block(i, x, res, nullptr, nullptr);
+    total += s <= k2 ? s : 2.0 * weights_.huber_scale * std::sqrt(s) - k2;  // Huber rho(s)
+  }
+  for (size_t p = 0; p < prior_index_.size(); ++p) {
+    const double r = (x.values[int(prior_index_[p])] - prior_mean_[p]) * prior_inv_sigma_[p];
+    total += r * r;
+  }
+  return 0.5 * total + weights_.expression_l1 * x.expression().sum();
+}
+
+double FrameEnergy::linearize(const FrameParameters& x, Eigen::VectorXd& r, Eigen::MatrixXd& jacobian,
+                              Eigen::MatrixXd* shared) const {
+  const int cols = block_size();
+  const int ni = static_cast<int>(identity_.size());
+  r.resize(rows_);
+  jacobian.setZero(rows_, cols);
+  if (shared != nullptr) shared->setZero(rows_, ni + 1);
+  Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor> ja(2, ni);
+  Eigen::Vector2d jf;
+  const double k = weights_.huber_scale;
+  double total = 0.0;
+  double res[2];
+  Eigen::Matrix<double, 2, 6, Eigen::RowMajor> jp;
+  Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor> jw(2, num_expressions_);
+  for (int i = 0; i < 68; ++i) {
+    const double s = landmark_block(i, x, res, jp.data(), jw.data(), shared ? ja.data() : nullptr,
+                                    shared ? jf.data() : nullptr);
+    // Huber as iteratively reweighted least squares: rows scaled by sqrt(rho'(s)).
+    double scale = 1.0;
+    if (s > k * k) {
+      scale = std::sqrt(k / std::sqrt(s));
+      total += 2.0 * k * std::sqrt(s) - k * k;
+    } else {
+      total += s;
+    }
+    for (int c = 0; c < 2; ++c) {
+      r[2 * i + c] = scale * res[c];
+      jacobian.block(2 * i + c, 0, 1, 6) = scale * jp.row(c);
+      jacobian.block(2 * i + c, frame_block::kExpression, 1, num_expressions_) = scale * jw.row(c);
+      if (shared != nullptr) {
+        shared->block(2 * i + c, 0, 1, ni) = scale * ja.row(c);
+        (*shared)(2 * i + c, ni) = scale * jf[c];
+      }
+    }
+  }
+  for (size_t p = 0; p < prior_index_.size(); ++p) {
+    const int row = 136 + static_cast<int>(p);
+    const int index = static_cast<int>(prior_index_[p]);
+    r[row] = (x.values[index] - prior_mean_[p]) * prior_inv_sigma_[p];
+    jacobian(row, index) = prior_inv_sigma_[p];
+    total += r[row] * r[row];
+  }
+  return 0.5 * total + weights_.expression_l1 * x.expression().sum();
+}
+
+}  // namespace facecap

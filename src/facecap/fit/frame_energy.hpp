@@ -1,0 +1,70 @@
+#pragma once
+// One frame's coarse-fit energy (eq. 4.3) as stacked residuals: the 68
+// landmark terms (eq. 4.4, Huber-robust), the expression prior (eq. 4.5) and,
+// when a previous frame is given, the temporal terms (eq. 4.6), with identity
+// and focal fixed. linearize() returns the residuals and their Jacobian with
+// respect to the frame block (pose 6 + weights), robust weights applied
+// (iteratively reweighted least squares), for the Gauss-Newton steps of
+// frame_solver.hpp.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "facecap/detect/landmarks.hpp"
+#include "facecap/fit/fit_options.hpp"
+#include "facecap/fit/frame_block.hpp"
+#include "facecap/fit/landmark_basis.hpp"
+#include "facecap/fit/landmark_cost.hpp"
+
+namespace facecap {
+
+class FrameEnergy {
+ public:
+  FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, const Landmarks& observed,
+              const Eigen::Vector2d& principal_point, const Eigen::VectorXd& identity, double focal,
+              const FrameParameters* previous);
+
+  void set_correspondences(const std::array<int, 68>& vertices);
+  int num_residuals() const { return rows_; }
+  int block_size() const { return frame_block::size(num_expressions_); }
+  double expression_l1() const { return weights_.expression_l1; }
+
+  // Total cost 1/2 sum rho(||r_i||^2) (as Ceres defines it) + l1 * sum(w).
+  double cost(const FrameParameters& x) const;
+  // Cost, weighted residuals r and Jacobian J (rows x block_size). With
+  // `shared` non-null, also the Jacobian of the same rows with respect to the
+  // identity weights and the focal length (rows x (identity + 1)).
+  double linearize(const FrameParameters& x, Eigen::VectorXd& r, Eigen::MatrixXd& jacobian,
+                   Eigen::MatrixXd* shared = nullptr) const;
+  // Changes the identity and focal the energy is evaluated with.
+  void set_shared(const Eigen::VectorXd& identity, double focal) {
+    identity_ = identity;
+    focal_ = focal;
+  }
+
+  // Exposed for the identity solve, which adds the same landmark terms to Ceres.
+  const std::array<LandmarkTerm, 68>& terms() const { return terms_; }
+
+ private:
+  double landmark_block(int i, const FrameParameters& x, double* residual, double* jacobian_pose,
+                        double* jacobian_expression, double* jacobian_identity = nullptr,
+                        double* jacobian_focal = nullptr) const;
+
+  const LandmarkBasis& basis_;
+  const FitWeights& weights_;
+  Eigen::VectorXd identity_;
+  double focal_;
+  int num_expressions_;
+  std::array<LandmarkTerm, 68> terms_;
+  std::vector<std::unique_ptr<LandmarkCost>> costs_;
+  std::vector<double> prior_index_, prior_mean_, prior_inv_sigma_;  // diagonal Gaussian rows
+  int rows_ = 0;
+};
+
+// The sigma of each landmark in pixels (jaw looser), from the observation's size.
+void set_landmark_observations(const Landmarks& observed, const FitWeights& weights,
+                               const Eigen::Vector2d& principal_point, std::array<LandmarkTerm, 68>& terms);
+void set_landmark_correspondences(const LandmarkBasis& basis, const std::array<int, 68>& vertices,
+                                  std::array<LandmarkTerm, 68>& terms);
+
+}  // namespace facecap

@@ -1,0 +1,169 @@
+#include "facecap/fit/identity_solver.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "facecap/core/parallel.hpp"
+
+namespace facecap {
+
+namespace {
+
+// One frame's linearisation restricted to its free variables.
+struct FrameSystem {
+  std::vector<int> free;  // indices into the frame block
+  Eigen::MatrixXd a;      // J_F^T J_F
+  Eigen::MatrixXd b;      // J_F^T K
+  Eigen::VectorXd g;      // J_F^T r (+ l1 on weights)
+  Eigen::MatrixXd ktk;    // K^T K
+  Eigen::VectorXd ktr;    // K^T r
+  double cost = 0;
+};
+
+double shared_prior_cost(const Eigen::VectorXd& identity, double focal, const IdentitySolverOptions& o) {
+  double c = 0.5 * identity.squaredNorm();  // a ~ N(0, 1)
+  const double rf = (std::log(focal) - std::log(o.focal_guess)) / o.sigma_log_focal;
+  return c + 0.5 * rf * rf;
+}
+
+double total_cost(const std::vector<std::unique_ptr<FrameEnergy>>& energies, const std::vector<FrameParameters>& frames,
+                  const Eigen::VectorXd& identity, double focal, const IdentitySolverOptions& o) {
+  const int n = static_cast<int>(frames.size());
+  std::vector<double> costs(n, 0.0);
+  parallel_for(n, [&](int b, int e) {
+    for (int i = b; i < e; ++i) {
+      energies[i]->set_shared(identity, focal);
+      costs[i] = energies[i]->cost(frames[i]);
+    }
+  }, 1);
+  double total = shared_prior_cost(identity, focal, o);
+  for (double c : costs) total += c;
+  return total;
+}
+
+}  // namespace
+
+IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<FrameEnergy>>& energies,
+                                         std::vector<FrameParameters>& frames, Eigen::VectorXd& identity,
+                                         double& focal, const IdentitySolverOptions& o) {
+  IdentitySolveReport rep;
+  const int n = static_cast<int>(frames.size());
+  const int ni = static_cast<int>(identity.size());
+  const int ny = ni + (o.focal_free ? 1 : 0);
+  const int block = frames.empty() ? 0 : static_cast<int>(frames[0].values.size());
+  const int first_weight = frame_block::kExpression;
+  double lambda = 1e-3;
+  if (o.refresh) o.refresh(frames, identity, focal);
+  double cost = total_cost(energies, frames, identity, focal, o);
+  rep.initial_cost = cost;
+  std::vector<FrameSystem> sys(n);
+
+  for (rep.iterations = 0; rep.iterations < o.max_iterations; ++rep.iterations) {
+    if (o.refresh && rep.iterations > 0 && rep.iterations % o.refresh_every == 0) {
+      o.refresh(frames, identity, focal);
+      cost = total_cost(energies, frames, identity, focal, o);
+    }
+    // Linearise every frame (in parallel).
+    parallel_for(n, [&](int b, int e) {
+      Eigen::VectorXd r;
+      Eigen::MatrixXd j, k;
+      for (int i = b; i < e; ++i) {
+        FrameSystem& s = sys[i];
+        energies[i]->set_shared(identity, focal);
+        s.cost = energies[i]->linearize(frames[i], r, j, &k);
+        if (!o.focal_free) k.conservativeResize(Eigen::NoChange, ni);
+        Eigen::VectorXd grad = j.transpose() * r;
+        grad.tail(block - first_weight).array() += energies[i]->expression_l1();
+        // Active set: weights at a bound that the gradient pushes outward stay put.
+        s.free.clear();
+        for (int c = 0; c < block; ++c) {
+          if (c >= first_weight) {
+            const double w = frames[i].values[c];
+            if ((w <= 1e-12 && grad[c] > 0) || (w >= 1.0 - 1e-12 && grad[c] < 0)) continue;
+          }
+          s.free.push_back(c);
+        }
+        const int nf = static_cast<int>(s.free.size());
+        Eigen::MatrixXd jf(j.rows(), nf);
+        s.g.resize(nf);
+        for (int c = 0; c < nf; ++c) {
+          jf.col(c) = j.col(s.free[c]);
+          s.g[c] = grad[s.free[c]];
+        }
+        s.a.noalias() = jf.transpose() * jf;
+        s.b.noalias() = jf.transpose() * k;
+        s.ktk.noalias() = k.transpose() * k;
+        s.ktr.noalias() = k.transpose() * r;
+      }
+    }, 1);
+    Eigen::MatrixXd u = Eigen::MatrixXd::Zero(ny, ny);
+    Eigen::VectorXd gy = Eigen::VectorXd::Zero(ny);
+    for (const FrameSystem& s : sys) {
+      u += s.ktk;
+      gy += s.ktr;
+    }
+    u.topLeftCorner(ni, ni).diagonal().array() += 1.0;  // identity prior
+    gy.head(ni) += identity;
+    if (o.focal_free) {
+      const double jf = 1.0 / (focal * o.sigma_log_focal);
+      const double rf = (std::log(focal) - std::log(o.focal_guess)) / o.sigma_log_focal;
+      u(ni, ni) += jf * jf;
+      gy[ni] += jf * rf;
+    }
+
+    bool accepted = false;
+    for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
+      // Schur complement on the shared unknowns.
+      Eigen::MatrixXd schur = u;
+      schur.diagonal() += lambda * u.diagonal().cwiseMax(1e-9);
+      Eigen::VectorXd rhs = gy;
+      std::vector<Eigen::LDLT<Eigen::MatrixXd>> factors(n);
+      std::vector<Eigen::MatrixXd> ainv_b(n);
+      std::vector<Eigen::VectorXd> ainv_g(n);
+      for (int i = 0; i < n; ++i) {
+        Eigen::MatrixXd a = sys[i].a;
+        a.diagonal() += lambda * sys[i].a.diagonal().cwiseMax(1e-9);
+        factors[i].compute(a);
+        ainv_b[i] = factors[i].solve(sys[i].b);
+        ainv_g[i] = factors[i].solve(sys[i].g);
+        schur.noalias() -= sys[i].b.transpose() * ainv_b[i];
+        rhs.noalias() -= sys[i].b.transpose() * ainv_g[i];
+      }
+      const Eigen::VectorXd dy = -schur.ldlt().solve(rhs);
+      std::vector<FrameParameters> trial = frames;
+      for (int i = 0; i < n; ++i) {
+        const Eigen::VectorXd dx = -(ainv_g[i] + ainv_b[i] * dy);
+        for (size_t c = 0; c < sys[i].free.size(); ++c) {
+          const int col = sys[i].free[c];
+          double v = trial[i].values[col] + dx[static_cast<Eigen::Index>(c)];
+          if (col >= first_weight) v = std::clamp(v, 0.0, 1.0);  // projection onto the box
+          trial[i].values[col] = v;
+        }
+      }
+      const Eigen::VectorXd trial_identity = identity + dy.head(ni);
+      const double trial_focal = o.focal_free ? std::max(0.2 * o.focal_guess, focal + dy[ni]) : focal;
+      const double trial_cost = total_cost(energies, trial, trial_identity, trial_focal, o);
+      if (trial_cost < cost) {
+        accepted = true;
+        const double decrease = cost - trial_cost;
+        frames = std::move(trial);
+        identity = trial_identity;
+        focal = trial_focal;
+        cost = trial_cost;
+        lambda = std::max(1e-8, lambda / 3.0);
+        if (decrease < 1e-7 * (1.0 + cost)) {
+          ++rep.iterations;
+          rep.final_cost = cost;
+          return rep;
+        }
+      } else {
+        lambda *= 4.0;
+      }
+    }
+    if (!accepted) break;
+  }
+  rep.final_cost = cost;
+  return rep;
+}
+
+}  // namespace facecap

@@ -1,0 +1,53 @@
+#pragma once
+// Capture of an input, frame by frame: decode, landmarks (detection and box
+// tracking), coarse fit. Frames reach the sink in order, each with its status;
+// the first ones arrive together once the identity and focal length are solved.
+#include <functional>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/detect/face_tracker.hpp"
+#include "facecap/fit/coarse_tracker.hpp"
+#include "facecap/io/input.hpp"
+
+namespace facecap {
+
+struct CaptureOptions {
+  CoarseFitOptions fit;
+  FaceTrackerOptions tracker;
+  int max_frames = 0;        // 0: the whole input
+  bool keep_images = false;  // hand each frame's image to the sink
+  bool quiet = false;        // no progress bar
+};
+
+struct CapturedFrame {
+  int index = 0;
+  double time = 0.0;
+  TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
+  CoarseFit fit;
+  cv::Mat image;  // when CaptureOptions::keep_images
+};
+
+// Milliseconds spent per stage, summed over frames.
+struct StageTimings {
+  double decode_ms = 0;
+  double landmarks_ms = 0;
+  double fit_ms = 0;
+  double total_s = 0;  // wall time of the whole run
+  int frames = 0;
+};
+
+struct CaptureSummary {
+  int frames = 0;
+  int lost = 0;
+  int redetected = 0;
+  IdentityEstimate identity;
+  StageTimings timings;
+  InputInfo input;
+};
+
+using FrameSink = std::function<void(const CapturedFrame&)>;
+
+CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink);
+
+}  // namespace facecap

@@ -1,0 +1,151 @@
+#include "facecap/pipeline/track_eval.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <random>
+
+#include "facecap/core/progress.hpp"
+#include "facecap/core/rigid_alignment.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/synth/synth_renderer.hpp"
+#include "facecap/synth/synthesize.hpp"
+
+namespace facecap {
+
+namespace {
+
+// Fits a synthetic performance; returns fits in frame order.
+std::vector<CoarseFit> fit_performance(const FaceModel& model, const SynthPerformance& perf, const TrackEvalOptions& o,
+                                       IdentityEstimate& identity, double& fit_ms) {
+  std::vector<CoarseFit> fits;
+  if (o.landmarks == LandmarkSource::kTruth) {
+    const SynthRenderer renderer(model, perf);
+    CoarseTracker tracker(model, o.capture.fit, perf.options.width, perf.options.height);
+    std::mt19937_64 rng(perf.options.seed * 31 + 7);
+    std::normal_distribution<float> noise(0.0f, float(o.landmark_noise_px));
+    const auto start = std::chrono::steady_clock::now();
+    for (const SynthFrame& f : perf.frames) {
+      Landmarks lm = renderer.landmarks(f);
+      for (Vec2f& p : lm) p += Vec2f(noise(rng), noise(rng));
+      for (CoarseFit& fit : tracker.push(f.index, f.time, lm)) fits.push_back(std::move(fit));
+    }
+    for (CoarseFit& fit : tracker.finish()) fits.push_back(std::move(fit));
+    fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    identity = tracker.identity();
+    return fits;
+  }
+  // dlib: render the video and run the whole capture pipeline on it.
+  TempDir dir("facecap-eval");
+  const SynthJobResult job = synthesize(model, perf.options, dir.path(), true);
+  auto source = open_input(job.video.string());
+  CaptureOptions capture = o.capture;
+  capture.quiet = true;
+  const CaptureSummary summary = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
+    fits.push_back(f.fit);
+    fits.back().valid = f.status != TrackStatus::kLost;
+  });
+  identity = summary.identity;
+  fit_ms = summary.timings.fit_ms;
+  return fits;
+}
+
+Positions fitted_shape(const FaceModel& model, const IdentityEstimate& id, const Eigen::VectorXf& w) {
+  return model.evaluate(id.identity.cast<float>(), w, regions::kFace);
+}
+
+}  // namespace
+
+TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options) {
+  TrackEvalResult r;
+  SynthOptions so = options.synth;
+  so.frames = options.frames;
+  so.seed = options.seed;
+  const SynthPerformance perf = make_performance(model, so);
+  IdentityEstimate id;
+  double fit_ms = 0;
+  const std::vector<CoarseFit> fits = fit_performance(model, perf, options, id, fit_ms);
+
+  r.focal = id.focal;
+  r.focal_true = perf.camera.focal;
+  r.focal_error_rel = std::abs(id.focal - perf.camera.focal) / perf.camera.focal;
+  r.identity_error = (id.identity - perf.identity.head(id.identity.size()).cast<double>()).norm();
+  int valid = 0;
+  for (const CoarseFit& fit : fits) {
+    ++r.frames;
+    if (!fit.valid) {
+      ++r.lost_frames;
+      continue;
+    }
+    ++valid;
+    const SynthFrame& truth = perf.frames[fit.index];
+    const Positions true_shape = model.evaluate(perf.identity, truth.expression, regions::kFace);
+    const Positions fitted = fitted_shape(model, id, fit.expression);
+    r.vertex_error_mm += 10.0 * aligned_mean_distance(fitted, true_shape);
+    r.vertex_error_similarity_mm += 10.0 * aligned_mean_distance(fitted, true_shape, true);
+    r.rotation_error_deg += rotation_angle_deg(fit.pose.rotation_matrix(), truth.pose.rotation_matrix());
+    r.translation_error_cm += (fit.pose.translation - truth.pose.translation).norm();
+    r.weights_mae += (fit.expression - truth.expression).cwiseAbs().mean();
+  }
+  if (valid > 0) {
+    r.vertex_error_mm /= valid;
+    r.vertex_error_similarity_mm /= valid;
+    r.rotation_error_deg /= valid;
+    r.translation_error_cm /= valid;
+    r.weights_mae /= valid;
+  }
+  r.fit_ms_per_frame = r.frames > 0 ? fit_ms / r.frames : 0.0;
+
+  if (options.still_frames > 1) {
+    SynthOptions still = so;
+    still.frames = options.still_frames;
+    still.still = true;
+    const SynthPerformance still_perf = make_performance(model, still);
+    TrackEvalOptions so2 = options;
+    so2.still_frames = 0;
+    IdentityEstimate still_id;
+    double ms = 0;
+    const std::vector<CoarseFit> still_fits = fit_performance(model, still_perf, so2, still_id, ms);
+    double shape_sq = 0, camera_sq = 0;
+    long count = 0;
+    std::optional<Positions> previous_shape, previous_camera;
+    for (const CoarseFit& fit : still_fits) {
+      if (!fit.valid) {
+        previous_shape.reset();
+        continue;
+      }
+      const Positions shape = fitted_shape(model, still_id, fit.expression);
+      const Positions cam = to_camera(shape, fit.pose);
+      if (previous_shape) {
+        shape_sq += (shape - *previous_shape).colwise().squaredNorm().sum();
+        camera_sq += (cam - *previous_camera).colwise().squaredNorm().sum();
+        count += cam.cols();
+      }
+      previous_shape = shape;
+      previous_camera = cam;
+    }
+    r.jitter_mm = count > 0 ? 10.0 * std::sqrt(shape_sq / count) : 0.0;
+    r.jitter_camera_mm = count > 0 ? 10.0 * std::sqrt(camera_sq / count) : 0.0;
+  }
+  return r;
+}
+
+VideoEvalResult evaluate_track_video(const FaceModel& model, const std::string& path, const CaptureOptions& options) {
+  VideoEvalResult r;
+  auto source = open_input(path);
+  std::vector<double> nme;
+  r.summary = run_capture(model, *source, options, [&](const CapturedFrame& f) {
+    if (f.status != TrackStatus::kLost) nme.push_back(f.fit.landmark_error);
+  });
+  r.frames = r.summary.frames;
+  r.lost_frames = r.summary.lost;
+  r.focal = r.summary.identity.focal;
+  if (!nme.empty()) {
+    std::sort(nme.begin(), nme.end());
+    r.landmark_nme = nme[nme.size() / 2];
+    r.landmark_nme_p90 = nme[std::min(nme.size() - 1, nme.size() * 9 / 10)];
+    for (double v : nme) r.landmark_nme_mean += v / nme.size();
+  }
+  return r;
+}
+
+}  // namespace facecap

@@ -1,0 +1,59 @@
+#pragma once
+// `facecap eval track`: the coarse tracker measured against ground truth.
+//  - synthetic: a `facecap synth` performance is fitted from its true 2D
+//    landmarks plus Gaussian noise, or from dlib's landmarks on the rendered
+//    video; shape, rotation, focal and weight errors against the truth, and
+//    frame-to-frame jitter on a still-head sequence.
+//  - video: real footage; how well the fitted model explains the detected
+//    landmarks (no 3D truth exists), and lost frames.
+#include <cstdint>
+#include <string>
+
+#include "facecap/pipeline/capture_session.hpp"
+#include "facecap/synth/performance.hpp"
+
+namespace facecap {
+
+enum class LandmarkSource { kTruth, kDlib };
+
+struct TrackEvalOptions {
+  int frames = 90;
+  uint64_t seed = 1;
+  LandmarkSource landmarks = LandmarkSource::kTruth;
+  double landmark_noise_px = 1.0;  // Gaussian, per coordinate (truth landmarks only)
+  int still_frames = 30;           // still-head sequence for the jitter measurement (0: skip)
+  SynthOptions synth;              // size, yaw range, ...; frames and seed are set from above
+  CaptureOptions capture;
+};
+
+struct TrackEvalResult {
+  int frames = 0;
+  int lost_frames = 0;
+  double vertex_error_mm = 0;     // face region, model space, after rigid alignment; mean over frames
+  double vertex_error_similarity_mm = 0;  // the same after a similarity alignment (scale removed)
+  double rotation_error_deg = 0;  // mean over frames
+  double translation_error_cm = 0;
+  double focal = 0, focal_true = 0;
+  double focal_error_rel = 0;
+  double weights_mae = 0;         // mean |w - w_true| over frames and the 53 weights
+  double jitter_mm = 0;           // RMS frame-to-frame motion of the face shape (model space), still head
+  double jitter_camera_mm = 0;    // the same in camera space (adds pose jitter, mostly depth)
+  double identity_error = 0;      // ||a - a_true|| over the fitted modes
+  double fit_ms_per_frame = 0;
+};
+
+TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options);
+
+struct VideoEvalResult {
+  int frames = 0;
+  int lost_frames = 0;
+  double landmark_nme = 0;  // median over tracked frames of the fit's NME against the detected landmarks
+  double landmark_nme_mean = 0;
+  double landmark_nme_p90 = 0;
+  double focal = 0;
+  CaptureSummary summary;
+};
+
+VideoEvalResult evaluate_track_video(const FaceModel& model, const std::string& path, const CaptureOptions& options);
+
+}  // namespace facecap
