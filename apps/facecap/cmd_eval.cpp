@@ -96,7 +96,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                   {"landmark_nme_p90", r.landmark_nme_p90},
                   {"focal", r.focal},
                   {"identity_frames", r.summary.identity.frames_used},
-                  {"fps", t.total_s > 0 ? t.frames / t.total_s : 0.0}});
+                  {"fps", t.fps()}});
       return;
     }
     if (a->synthetic <= 0) throw Error("eval track needs --synthetic N or --video PATH");

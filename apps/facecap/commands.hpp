@@ -27,5 +27,7 @@ void register_model(CLI::App& app, GlobalOptions& global);
 void register_synth(CLI::App& app, GlobalOptions& global);
 void register_eval(CLI::App& app, GlobalOptions& global);
 void register_demo(CLI::App& app, GlobalOptions& global);
+void register_track(CLI::App& app, GlobalOptions& global);
+void register_bench(CLI::App& app, GlobalOptions& global);
 
 }  // namespace facecap::cli

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/interrupt.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/core/version.hpp"
 
@@ -18,11 +19,14 @@ int main(int argc, char** argv) {
   app.add_option("--model-dir", global.model_dir,
                  "ICT face model folder (default: $FACECAP_MODEL_DIR or ../shared/models/ict-facekit)");
   app.add_flag("-q,--quiet", global.quiet, "No progress output on stderr");
+  install_interrupt_handler();
   cli::register_probe(app, global);
+  cli::register_track(app, global);
   cli::register_model(app, global);
   cli::register_synth(app, global);
   cli::register_eval(app, global);
   cli::register_demo(app, global);
+  cli::register_bench(app, global);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -37,7 +37,9 @@ int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), 
 TEST(Cli, HelpListsTheSubcommands) {
   const RunResult r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* sub : {"probe", "model", "synth", "eval", "demo"}) EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
+  for (const char* sub : {"probe", "model", "synth", "eval", "demo", "track", "bench"}) {
+    EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
+  }
 }
 
 TEST(Cli, BadInputsExitNonZeroWithOneLine) {
@@ -68,6 +70,23 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_NE(r.out.find("--frames"), std::string::npos) << r.out;
   EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
   EXPECT_NE(run("probe").code, 0);
+}
+
+TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
+  FACECAP_REQUIRE_MODEL(model);
+  TempDir dir;
+  std::ofstream(dir.path() / "text.mp4") << "not a video";
+  RunResult r = run("track " + (dir.path() / "text.mp4").string() + " -o " + (dir.path() / "out").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frames.csv"));
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  r = run("track " + video.string() + " -o /proc/facecap-test");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("/proc/facecap-test"), std::string::npos) << r.out;
+  r = run("track " + video.string() + " -o " + dir.path().string() + " --init-frames 0");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
 }
 
 TEST(Cli, ProbeDescribesAVideoAsJson) {

@@ -27,8 +27,16 @@ cv::Mat to_grey(const cv::Mat& image) {
 
 // ---------------------------------------------------------------- detector
 
+// dlib ships its HOG detector compressed; decoding takes about 0.3 s, so it
+// is decoded once per process and each FaceDetector keeps a copy (the
+// detector's call is not const, so instances cannot share one).
+const dlib::frontal_face_detector& decoded_frontal_face_detector() {
+  static const dlib::frontal_face_detector detector = dlib::get_frontal_face_detector();
+  return detector;
+}
+
 struct FaceDetector::Impl {
-  dlib::frontal_face_detector detector = dlib::get_frontal_face_detector();
+  dlib::frontal_face_detector detector = decoded_frontal_face_detector();
 };
 
 FaceDetector::FaceDetector(FaceDetectorOptions options) : impl_(std::make_unique<Impl>()), options_(options) {}

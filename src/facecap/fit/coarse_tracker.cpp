@@ -1,6 +1,7 @@
 #include "facecap/fit/coarse_tracker.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace facecap {
 
@@ -38,6 +39,7 @@ std::vector<CoarseFit> CoarseTracker::finish() {
 }
 
 void CoarseTracker::initialize() {
+  const auto start = std::chrono::steady_clock::now();
   std::vector<Landmarks> observed;
   for (const Pending& p : pending_)
     if (p.landmarks) observed.push_back(*p.landmarks);
@@ -70,6 +72,7 @@ void CoarseTracker::initialize() {
   identity_.focal = focal;
   identity_.frames_used = static_cast<int>(kept.empty() ? observed.size() : kept.size());
   initialized_ = true;
+  identity_.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 CoarseFit CoarseTracker::track(const Pending& frame) {
@@ -104,7 +107,7 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
   fit.correspondences = report.correspondences;
   fit.pose = params.pose();
   fit.expression = params.expression().cast<float>();
-  fit.fitted = fitter_.project(params, identity_.identity, identity_.focal);
+  fit.fitted = fitter_.project(params, identity_.identity, identity_.focal, *frame.landmarks);
   fit.valid = report.landmark_error <= fitter_.options().lost_landmark_error;
   if (fit.valid) {
     previous_ = params;

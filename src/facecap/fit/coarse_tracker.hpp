@@ -26,7 +26,7 @@ struct CoarseFit {
   double landmark_error = 0.0;   // NME of the projected fit against the observed landmarks
   Landmarks observed{};          // the detector's landmarks
   Landmarks fitted{};            // the model's landmarks projected
-  std::array<int, 68> correspondences{};
+  Correspondences correspondences{};
 };
 
 struct IdentityEstimate {
@@ -34,6 +34,7 @@ struct IdentityEstimate {
   double focal = 0.0;
   int frames_used = 0;
   double focal_guess = 0.0;
+  double solve_ms = 0.0;  // time of the joint identity and focal solve
 };
 
 class CoarseTracker {

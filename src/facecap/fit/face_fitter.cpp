@@ -23,24 +23,25 @@ double FaceFitter::focal_guess() const {
 }
 
 Landmarks FaceFitter::project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
-                              std::array<int, 68>* correspondences) const {
+                              const Landmarks& observed, Correspondences* correspondences) const {
   const HeadPose pose = params.pose();
   const Mat3d rf = pose.model_to_camera_rotation();
   const Eigen::VectorXd w = params.expression();
-  const auto vertices = pose_correspondences(model_, basis_, identity, w, rf, pose.translation);
-  if (correspondences != nullptr) *correspondences = vertices;
-  const PinholeCamera cam{focal, 0.5 * width_, 0.5 * height_};
+  const PinholeCamera cam = camera(focal);
+  const Correspondences c = pose_correspondences(model_, basis_, identity, w, pose, cam, observed, slide_jaw());
+  if (correspondences != nullptr) *correspondences = c;
   Landmarks out;
   for (int i = 0; i < 68; ++i) {
-    const Vec3d y = rf * basis_.position(basis_.slot(vertices[i]), identity, w) + pose.translation;
-    out[i] = cam.project(y).cast<float>();
+    const Vec3d x = (1.0 - c[i].t) * basis_.position(basis_.slot(c[i].a), identity, w) +
+                    c[i].t * basis_.position(basis_.slot(c[i].b), identity, w);
+    out[i] = cam.project(Vec3d(rf * x + pose.translation)).cast<float>();
   }
   return out;
 }
 
 double FaceFitter::landmark_error(const Landmarks& observed, const FrameParameters& params,
                                   const Eigen::VectorXd& identity, double focal) const {
-  return landmark_nme(project(params, identity, focal), observed);
+  return landmark_nme(project(params, identity, focal, observed), observed);
 }
 
 void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
@@ -65,9 +66,9 @@ void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::Vector
     pose.translation = Vec3d((centre.x() - pp.x()) * depth / focal, (centre.y() - pp.y()) * depth / focal + 1.0, depth);
     trial.set_pose(pose);
     for (int round = 0; round < 2; ++round) {
-      energy.set_correspondences(pose_correspondences(model_, basis_, identity, trial.expression(),
-                                                      trial.pose().model_to_camera_rotation(),
-                                                      trial.pose().translation));
+      energy.set_correspondences(
+          pose_correspondences(model_, basis_, identity, trial.expression(), trial.pose(), camera(focal), observed,
+                               slide_jaw()));
       solve_pose(energy, trial, 15);
     }
     const double c = energy.cost(trial);
@@ -86,8 +87,9 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
   FrameFitReport report;
   for (int round = 0; round < options_.bcd_iterations; ++round) {
     // Jaw correspondences follow the current pose (landmark marching).
-    report.correspondences = pose_correspondences(model_, basis_, identity, params.expression(),
-                                                  params.pose().model_to_camera_rotation(), params.pose().translation);
+    report.correspondences =
+        pose_correspondences(model_, basis_, identity, params.expression(), params.pose(), camera(focal), observed,
+                             slide_jaw());
     energy.set_correspondences(report.correspondences);
     solve_pose(energy, params, options_.max_solver_iterations);
     solve_expression(energy, params, 5);
@@ -100,20 +102,21 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
 void FaceFitter::fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
                               Eigen::VectorXd& identity, double& focal) const {
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
+  FitWeights weights = options_.weights;
+  weights.sigma_landmark *= weights.identity_sigma_factor;
   std::vector<std::unique_ptr<FrameEnergy>> energies;
   for (const Landmarks& lm : observed) {
-    energies.push_back(std::make_unique<FrameEnergy>(basis_, options_.weights, lm, pp, identity, focal, nullptr));
+    energies.push_back(std::make_unique<FrameEnergy>(basis_, weights, lm, pp, identity, focal, nullptr));
   }
   IdentitySolverOptions o;
   o.focal_free = !options_.focal_known;
   o.focal_guess = focal_guess();
   o.sigma_log_focal = options_.still ? options_.weights.sigma_log_focal_still : options_.weights.sigma_log_focal;
   o.max_iterations = 40;
-  o.refresh = [&](const std::vector<FrameParameters>& f, const Eigen::VectorXd& id, double) {
+  o.refresh = [&](const std::vector<FrameParameters>& f, const Eigen::VectorXd& id, double current_focal) {
     for (size_t i = 0; i < f.size(); ++i) {
-      energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(),
-                                                            f[i].pose().model_to_camera_rotation(),
-                                                            f[i].pose().translation));
+      energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(), f[i].pose(),
+                                                            camera(current_focal), observed[i], slide_jaw()));
     }
   };
   solve_identity_joint(energies, frames, identity, focal, o);

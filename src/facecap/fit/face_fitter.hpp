@@ -21,7 +21,7 @@ namespace facecap {
 
 struct FrameFitReport {
   double landmark_error = 0;  // NME of the fitted landmarks against the observed ones
-  std::array<int, 68> correspondences{};
+  Correspondences correspondences{};
   bool converged = true;
 };
 
@@ -34,6 +34,8 @@ class FaceFitter {
   int num_expressions() const { return num_expressions_; }
   int identity_modes() const { return static_cast<int>(basis_.identity.cols()); }
   double focal_guess() const;
+  PinholeCamera camera(double focal) const { return {focal, 0.5 * width_, 0.5 * height_}; }
+  bool slide_jaw() const { return options_.jaw == JawCorrespondence::kSlide; }
 
   // A starting pose for a frame with no history: translation from the face's
   // size and position, rotation from the best of a few yaw guesses.
@@ -48,9 +50,10 @@ class FaceFitter {
   void fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
                     Eigen::VectorXd& identity, double& focal) const;
 
-  // Projected 68 model landmarks for a fit (jaw on the silhouette).
+  // The model's 68 landmarks for a fit, projected; the jaw landmarks are the
+  // outline points nearest to the observed ones (jaw_contour.hpp).
   Landmarks project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
-                    std::array<int, 68>* correspondences = nullptr) const;
+                    const Landmarks& observed, Correspondences* correspondences = nullptr) const;
 
   double landmark_error(const Landmarks& observed, const FrameParameters& params, const Eigen::VectorXd& identity,
                         double focal) const;

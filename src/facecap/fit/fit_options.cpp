@@ -13,6 +13,7 @@ void positive(double v, const char* name) {
 void FitWeights::check() const {
   positive(sigma_landmark, "sigma_landmark");
   positive(jaw_sigma_factor, "jaw_sigma_factor");
+  positive(identity_sigma_factor, "identity_sigma_factor");
   positive(sigma_expression, "sigma_expression");
   positive(sigma_temporal_expression, "sigma_temporal_expression");
   positive(sigma_temporal_rotation_deg, "sigma_temporal_rotation_deg");

@@ -24,6 +24,13 @@ namespace facecap {
 struct FitWeights {
   double sigma_landmark = 2.0;         // px per 100 px of inter-ocular distance
   double jaw_sigma_factor = 1.5;       // jaw landmarks (0-16) are less certain: sigma x this
+  // The identity solve sees the same landmark offsets in every frame: where a
+  // detector's convention differs from the model's landmark vertices (dlib's
+  // brows, lips and jaw sit a few per cent of the inter-ocular distance away
+  // from ICT's), those errors do not average out over frames and would bend
+  // the identity (identity norms of 16 instead of about 7 were measured on
+  // real footage). The identity solve therefore uses sigma x this factor.
+  double identity_sigma_factor = 3.0;
   double sigma_expression = 0.6;       // prior on each weight (mean 0)
   double expression_l1 = 0.0;          // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
   double sigma_temporal_expression = 0.1;
@@ -36,6 +43,14 @@ struct FitWeights {
   void check() const;
 };
 
+// How jaw landmarks (iBUG 0-16) find their model point (jaw_contour.hpp).
+enum class JawCorrespondence {
+  kSlide,  // nearest point of the projected outline: for detectors whose spacing
+           // along the jaw differs from the model's (dlib's sits up to 1.5 cm away)
+  kMarch,  // the marched silhouette vertex of each jawline candidate: for
+           // landmarks that follow the model's own definition (synthetic truth)
+};
+
 struct CoarseFitOptions {
   FitWeights weights;
   int identity_modes = 50;           // leading ICT identity modes fitted (DESIGN.md)
@@ -46,6 +61,7 @@ struct CoarseFitOptions {
   bool focal_known = false;          // hold focal_guess fixed (a calibrated camera)
   double lost_landmark_error = 0.1;  // NME of the fit against its landmarks above which a frame counts as lost
   bool still = false;                // a single image: one frame, stronger focal prior
+  JawCorrespondence jaw = JawCorrespondence::kSlide;
 
   void check() const;
 };

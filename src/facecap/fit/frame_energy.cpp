@@ -19,14 +19,17 @@ void set_landmark_observations(const Landmarks& observed, const FitWeights& w, c
   }
 }
 
-void set_landmark_correspondences(const LandmarkBasis& basis, const std::array<int, 68>& vertices,
+void set_landmark_correspondences(const LandmarkBasis& basis, const Correspondences& correspondences,
                                   std::array<LandmarkTerm, 68>& terms) {
   for (int i = 0; i < 68; ++i) {
-    const int s = basis.slot(vertices[i]);
+    const Correspondence& c = correspondences[i];
+    const int sa = basis.slot(c.a), sb = basis.slot(c.b);
+    const double wa = 1.0 - c.t, wb = c.t;
     LandmarkTerm& t = terms[i];
-    t.neutral = basis.neutral.col(s);
-    t.identity_rows = basis.identity.middleRows(3 * s, 3);
-    t.expression_rows = basis.expression.middleRows(3 * s, 3);
+    // The model is linear, so a point between two vertices has the blended rows.
+    t.neutral = wa * basis.neutral.col(sa) + wb * basis.neutral.col(sb);
+    t.identity_rows = wa * basis.identity.middleRows(3 * sa, 3) + wb * basis.identity.middleRows(3 * sb, 3);
+    t.expression_rows = wa * basis.expression.middleRows(3 * sa, 3) + wb * basis.expression.middleRows(3 * sb, 3);
   }
 }
 
@@ -63,8 +66,8 @@ FrameEnergy::FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, 
   rows_ = 2 * 68 + static_cast<int>(prior_index_.size());
 }
 
-void FrameEnergy::set_correspondences(const std::array<int, 68>& vertices) {
-  set_landmark_correspondences(basis_, vertices, terms_);
+void FrameEnergy::set_correspondences(const Correspondences& correspondences) {
+  set_landmark_correspondences(basis_, correspondences, terms_);
 }
 
 double FrameEnergy::landmark_block(int i, const FrameParameters& x, double* residual, double* jacobian_pose,

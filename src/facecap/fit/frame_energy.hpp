@@ -24,7 +24,7 @@ class FrameEnergy {
               const Eigen::Vector2d& principal_point, const Eigen::VectorXd& identity, double focal,
               const FrameParameters* previous);
 
-  void set_correspondences(const std::array<int, 68>& vertices);
+  void set_correspondences(const Correspondences& correspondences);
   int num_residuals() const { return rows_; }
   int block_size() const { return frame_block::size(num_expressions_); }
   double expression_l1() const { return weights_.expression_l1; }
@@ -64,7 +64,7 @@ class FrameEnergy {
 // The sigma of each landmark in pixels (jaw looser), from the observation's size.
 void set_landmark_observations(const Landmarks& observed, const FitWeights& weights,
                                const Eigen::Vector2d& principal_point, std::array<LandmarkTerm, 68>& terms);
-void set_landmark_correspondences(const LandmarkBasis& basis, const std::array<int, 68>& vertices,
+void set_landmark_correspondences(const LandmarkBasis& basis, const Correspondences& correspondences,
                                   std::array<LandmarkTerm, 68>& terms);
 
 }  // namespace facecap

@@ -1,5 +1,8 @@
 #include "facecap/fit/landmark_basis.hpp"
 
+#include <algorithm>
+#include <limits>
+
 
 namespace facecap {
 
@@ -14,6 +17,9 @@ LandmarkBasis gather_landmark_basis(const FaceModel& model, int identity_modes) 
   for (int v : model.landmarks.vertices) add(v);
   for (const auto& line : b.contour.lines)
     for (int v : line) add(v);
+  for (const auto* path : {&b.contour.right_path, &b.contour.left_path})
+    for (const auto& line : *path)
+      for (int v : line) add(v);
   const int n = static_cast<int>(b.vertices.size());
   const int k = std::min(identity_modes, model.num_identity());
   b.neutral.resize(3, n);
@@ -35,15 +41,45 @@ Eigen::Vector3d LandmarkBasis::position(int s, const Eigen::VectorXd& id, const 
   return x;
 }
 
-std::array<int, 68> pose_correspondences(const FaceModel& model, const LandmarkBasis& basis,
-                                         const Eigen::VectorXd& identity, const Eigen::VectorXd& expression,
-                                         const Mat3d& model_to_camera, const Vec3d& translation) {
-  std::array<int, 68> out{};
-  std::copy(model.landmarks.vertices.begin(), model.landmarks.vertices.end(), out.begin());
-  const auto jaw = silhouette_vertices(basis.contour, [&](int v) -> Vec3d {
-    return model_to_camera * basis.position(basis.slot(v), identity, expression) + translation;
-  });
-  std::copy(jaw.begin(), jaw.end(), out.begin());
+Correspondences pose_correspondences(const FaceModel& model, const LandmarkBasis& basis,
+                                     const Eigen::VectorXd& identity, const Eigen::VectorXd& expression,
+                                     const HeadPose& pose, const PinholeCamera& camera, const Landmarks& observed,
+                                     bool slide) {
+  Correspondences out{};
+  for (int i = 0; i < 68; ++i) out[i] = {model.landmarks.vertices[i], model.landmarks.vertices[i], 0.0};
+  const Mat3d rf = pose.model_to_camera_rotation();
+  const CameraPositionFn camera_position = [&](int v) -> Vec3d {
+    return rf * basis.position(basis.slot(v), identity, expression) + pose.translation;
+  };
+  if (!slide) {
+    const auto jaw = silhouette_vertices(basis.contour, camera_position);
+    for (int k = 0; k < 17; ++k) out[k] = {jaw[k], jaw[k], 0.0};
+    return out;
+  }
+  for (const bool right : {true, false}) {
+    const std::vector<int> path = silhouette_path(basis.contour, right, camera_position);
+    std::vector<Vec2d> projected(path.size());
+    for (size_t j = 0; j < path.size(); ++j) projected[j] = camera.project(camera_position(path[j]));
+    const int last_segment = static_cast<int>(path.size()) - 2;
+    for (int k = 0; k < 8; ++k) {
+      const int landmark = right ? k : 9 + k;
+      // Short-list candidate k sits at extended index 2k + 1 (ear to chin on
+      // the right); the left path runs the other way.
+      const int nominal = right ? 2 * k + 1 : 15 - 2 * k;
+      const Vec2d q = observed[landmark].cast<double>();
+      double best = std::numeric_limits<double>::infinity();
+      for (int j = std::max(0, nominal - 4); j <= std::min(last_segment, nominal + 3); ++j) {
+        const Vec2d d = projected[j + 1] - projected[j];
+        const double len2 = d.squaredNorm();
+        const double t = len2 > 1e-12 ? std::clamp((q - projected[j]).dot(d) / len2, 0.0, 1.0) : 0.0;
+        const double dist = (projected[j] + t * d - q).squaredNorm();
+        if (dist < best) {
+          best = dist;
+          out[landmark] = {path[j], path[j + 1], t};
+        }
+      }
+    }
+  }
   return out;
 }
 

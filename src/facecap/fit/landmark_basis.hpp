@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "facecap/core/camera.hpp"
+#include "facecap/detect/landmarks.hpp"
 #include "facecap/model/face_model.hpp"
 #include "facecap/model/jaw_contour.hpp"
 
@@ -28,10 +30,23 @@ struct LandmarkBasis {
 
 LandmarkBasis gather_landmark_basis(const FaceModel& model, int identity_modes);
 
-// The 68 correspondence vertices for a pose (jaw on the silhouette), as
-// jaw_contour.hpp defines them, computed from the gathered rows.
-std::array<int, 68> pose_correspondences(const FaceModel& model, const LandmarkBasis& basis,
-                                         const Eigen::VectorXd& identity, const Eigen::VectorXd& expression,
-                                         const Mat3d& model_to_camera, const Vec3d& translation);
+// The model point a landmark corresponds to: vertex a, or the point
+// (1 - t) a + t b on a segment of the jaw outline.
+struct Correspondence {
+  int a = 0;
+  int b = 0;
+  double t = 0.0;
+};
+using Correspondences = std::array<Correspondence, 68>;
+
+// Correspondences for a pose and shape: the landmark map's vertices, and for
+// the jaw landmarks (0-7, 9-16) either (slide) the nearest point of the
+// projected outline of their side to the observed landmark, searched near the
+// landmark's place along the jaw so that the order is kept, or (march) the
+// silhouette vertex of their jawline candidate (jaw_contour.hpp).
+Correspondences pose_correspondences(const FaceModel& model, const LandmarkBasis& basis,
+                                     const Eigen::VectorXd& identity, const Eigen::VectorXd& expression,
+                                     const HeadPose& pose, const PinholeCamera& camera, const Landmarks& observed,
+                                     bool slide = true);
 
 }  // namespace facecap

@@ -6,60 +6,89 @@
 
 namespace facecap {
 
-JawContour build_jaw_contour(const FaceModel& model) {
+namespace {
+
+// Face vertices at the height of `candidate`, from it toward the middle of
+// the face (as far in as `inner_x`), outermost first.
+std::vector<int> march_line(const Eigen::Map<const Positions>& neutral, int candidate, float inner_x) {
   const Region& face = regions::kFace;
+  const Vec3f c = neutral.col(candidate);
+  const float side = c.x() < 0 ? -1.0f : 1.0f;
+  std::vector<std::pair<float, int>> line;
+  for (int v = face.first_vertex; v <= face.last_vertex; ++v) {
+    const Vec3f p = neutral.col(v);
+    if (p.x() * side <= 0) continue;
+    if (std::abs(p.y() - c.y()) > 0.22f) continue;
+    if (std::abs(p.x()) > std::abs(c.x()) + 0.05f || std::abs(p.x()) < inner_x) continue;
+    if (p.z() < c.z() - 0.05f) continue;  // stay on the front surface
+    line.emplace_back(-std::abs(p.x()), v);
+  }
+  std::sort(line.begin(), line.end());
+  std::vector<int> out{candidate};
+  for (const auto& [key, v] : line) {
+    if (v != candidate) out.push_back(v);
+  }
+  return out;
+}
+
+}  // namespace
+
+JawContour build_jaw_contour(const FaceModel& model) {
   Eigen::Map<const Positions> neutral(model.neutral.data(), 3, model.num_vertices);
   JawContour contour;
   const LandmarkMap& lm = model.landmarks;
+  contour.chin = lm.vertices[8];
   for (int k = 0; k < 17; ++k) {
     if (k == 8) {
-      contour.lines[k] = {lm.vertices[8]};
+      contour.lines[k] = {contour.chin};
       continue;
     }
     const int candidate = k < 8 ? lm.jaw_right[k] : lm.jaw_left[k - 9];
-    const Vec3f c = neutral.col(candidate);
-    const float side = c.x() < 0 ? -1.0f : 1.0f;
-    // Where the line ends toward the middle: the landmark map's own vertex for
-    // this landmark lies on the front of the cheek; go a little beyond it.
-    const Vec3f front = neutral.col(lm.vertices[k]);
-    const float inner_x = std::abs(front.x()) * 0.55f;
-    std::vector<std::pair<float, int>> line;
-    for (int v = face.first_vertex; v <= face.last_vertex; ++v) {
-      const Vec3f p = neutral.col(v);
-      if (p.x() * side <= 0) continue;
-      if (std::abs(p.y() - c.y()) > 0.22f) continue;
-      if (std::abs(p.x()) > std::abs(c.x()) + 0.05f || std::abs(p.x()) < inner_x) continue;
-      if (p.z() < c.z() - 0.05f) continue;  // stay on the front surface
-      line.emplace_back(-std::abs(p.x()), v);
-    }
-    std::sort(line.begin(), line.end());
-    contour.lines[k].push_back(candidate);
-    for (const auto& [key, v] : line) {
-      if (v != candidate) contour.lines[k].push_back(v);
-    }
+    // The landmark map's own vertex for this landmark lies on the front of
+    // the cheek; the line runs a little beyond it.
+    contour.lines[k] = march_line(neutral, candidate, std::abs(neutral(0, lm.vertices[k])) * 0.55f);
+  }
+  // Extended lists: the right one runs ear to chin; the left one chin to ear.
+  for (int v : lm.jaw_right_extended) contour.right_path.push_back(march_line(neutral, v, std::abs(neutral(0, v)) * 0.55f));
+  for (auto it = lm.jaw_left_extended.rbegin(); it != lm.jaw_left_extended.rend(); ++it) {
+    contour.left_path.push_back(march_line(neutral, *it, std::abs(neutral(0, *it)) * 0.55f));
   }
   return contour;
 }
 
-std::array<int, 17> silhouette_vertices(const JawContour& contour,
-                                        const std::function<Vec3d(int vertex)>& camera_position) {
-  std::array<int, 17> out{};
-  for (int k = 0; k < 17; ++k) {
-    const auto& line = contour.lines[k];
-    const double outward = k < 8 ? -1.0 : 1.0;  // subject's right side appears at image left
-    double best = -std::numeric_limits<double>::infinity();
-    int best_v = line.front();
-    for (int v : line) {
-      const Vec3d p = camera_position(v);
-      // x/z orders points by image column for any focal length.
-      const double x = outward * p.x() / p.z();
-      if (x > best) {
-        best = x;
-        best_v = v;
-      }
+namespace {
+
+// The line vertex that projects furthest outward (x/z orders points by image
+// column for any focal length).
+int outermost(const std::vector<int>& line, bool right_side, const CameraPositionFn& camera_position) {
+  const double outward = right_side ? -1.0 : 1.0;  // subject's right side appears at image left
+  double best = -std::numeric_limits<double>::infinity();
+  int best_v = line.front();
+  for (int v : line) {
+    const Vec3d p = camera_position(v);
+    const double x = outward * p.x() / p.z();
+    if (x > best) {
+      best = x;
+      best_v = v;
     }
-    out[k] = best_v;
   }
+  return best_v;
+}
+
+}  // namespace
+
+std::array<int, 17> silhouette_vertices(const JawContour& contour, const CameraPositionFn& camera_position) {
+  std::array<int, 17> out{};
+  for (int k = 0; k < 17; ++k) out[k] = outermost(contour.lines[k], k < 8, camera_position);
+  return out;
+}
+
+std::vector<int> silhouette_path(const JawContour& contour, bool right_side, const CameraPositionFn& camera_position) {
+  const auto& lines = right_side ? contour.right_path : contour.left_path;
+  std::vector<int> out;
+  out.reserve(lines.size() + 1);
+  for (const auto& line : lines) out.push_back(outermost(line, right_side, camera_position));
+  out.push_back(contour.chin);
   return out;
 }
 

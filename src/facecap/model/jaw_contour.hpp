@@ -2,14 +2,22 @@
 // Pose-dependent correspondences for the 17 jaw landmarks (iBUG 0-16).
 //
 // A detector marks the jaw on the visible outline of the face, and which
-// surface point forms that outline depends on the head pose. Each jaw
-// landmark k (except the chin, 8) owns a "march line": the face vertices at
-// the height of its jawline candidate (FACTS.md), running from the candidate
-// on the frontal silhouette toward the middle of the face. For a given pose,
-// the landmark corresponds to the vertex of its line that projects furthest
-// outward (image left for the subject's right side, image right for the left):
-// on the side turning away from the camera the outline moves inward along the
-// line, as eos and 3DDFA's landmark marching do.
+// surface point forms that outline depends on the head pose. Each jawline
+// candidate of FACTS.md owns a "march line": the face vertices at its
+// height, from the candidate on the frontal silhouette toward the middle of
+// the face. For a pose, the silhouette vertex of a line is the one that
+// projects furthest outward (image left for the subject's right side, image
+// right for the left): on the side turning away from the camera the outline
+// moves inward along the line, as in 3DDFA's landmark marching.
+//
+// Two uses:
+//  - silhouette_vertices(): one vertex per jaw landmark from the short lists
+//    (the synthetic ground truth's definition of where a jaw landmark is);
+//  - silhouette_path(): the outline as a polyline of the extended lists'
+//    silhouette vertices, ear to chin, along which a detected jaw landmark
+//    slides to its nearest point (as eos does for its contour), so that a
+//    detector's spacing along the jaw does not matter, only its distance
+//    across the outline.
 #include <array>
 #include <functional>
 #include <vector>
@@ -20,27 +28,35 @@
 namespace facecap {
 
 struct JawContour {
-  // lines[k]: candidate vertices of jaw landmark k (k = 0..16), global
-  // vertex indices into the face region; lines[8] holds the chin vertex only.
+  // lines[k]: march line of jaw landmark k (k = 0..16) from the short lists;
+  // lines[8] holds the chin vertex only.
   std::array<std::vector<int>, 17> lines;
+  // March lines of the extended lists, ear to chin, for each side.
+  std::vector<std::vector<int>> right_path;
+  std::vector<std::vector<int>> left_path;
+  int chin = -1;
 };
 
 // Builds the march lines from the model's neutral shape.
 JawContour build_jaw_contour(const FaceModel& model);
 
-// For each jaw landmark, the line vertex on the silhouette: the one whose
-// camera-space position (given by `camera_position(vertex)`) projects
-// furthest outward. Returns 17 vertex indices.
-std::array<int, 17> silhouette_vertices(const JawContour& contour,
-                                        const std::function<Vec3d(int vertex)>& camera_position);
+// camera_position(vertex): the vertex in camera space for the current pose and shape.
+using CameraPositionFn = std::function<Vec3d(int vertex)>;
+
+// For each jaw landmark, the short-list line vertex on the silhouette.
+std::array<int, 17> silhouette_vertices(const JawContour& contour, const CameraPositionFn& camera_position);
 
 // The same for model-space face-region positions (column = global vertex
 // index) under the rotation `model_to_camera` (R * F of camera.hpp) and translation.
 std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positions& face_positions,
                                         const Mat3d& model_to_camera, const Vec3d& translation);
 
+// The outline of one side (right: iBUG 0-7, left: 9-16) as silhouette
+// vertices from the ear down to the chin (the chin vertex last).
+std::vector<int> silhouette_path(const JawContour& contour, bool right_side, const CameraPositionFn& camera_position);
+
 // The 68 correspondence vertices for a pose: the landmark map with the jaw
-// landmarks replaced by their silhouette vertices.
+// landmarks replaced by their silhouette vertices (short lists).
 std::array<int, 68> landmark_vertices_for_pose(const FaceModel& model, const JawContour& contour,
                                                const Positions& face_positions, const Mat3d& model_to_camera,
                                                const Vec3d& translation);

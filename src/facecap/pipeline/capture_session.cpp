@@ -2,6 +2,10 @@
 
 #include <chrono>
 #include <map>
+#include <opencv2/imgproc.hpp>
+#include <thread>
+
+#include "facecap/core/bounded_queue.hpp"
 
 #include "facecap/core/interrupt.hpp"
 #include "facecap/core/progress.hpp"
@@ -27,6 +31,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
   const LandmarkDetector landmark_detector;
   FaceTracker face_tracker(landmark_detector, options.tracker);
   CoarseTracker tracker(model, options.fit, summary.input.width, summary.input.height);
+  summary.timings.setup_ms = ms_since(start);
 
   struct Waiting {
     TrackStatus status;
@@ -42,6 +47,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.fit = fit;
       out.status = fit.valid ? it->second.status : TrackStatus::kLost;
       out.image = it->second.image;
+      out.identity = &tracker.identity();
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;
@@ -55,26 +61,58 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
                         : summary.input.frames;
   Progress progress("capture", total, options.quiet);
   StageTimings& t = summary.timings;
-  Frame frame;
-  for (;;) {
-    throw_if_interrupted();
-    if (options.max_frames > 0 && t.frames >= options.max_frames) break;
-    auto t0 = std::chrono::steady_clock::now();
-    if (!source.read(frame)) break;
-    t.decode_ms += ms_since(t0);
 
-    t0 = std::chrono::steady_clock::now();
+  // Decoding (and the grey conversion the landmarks need) runs on its own
+  // thread, a few frames ahead of the landmark and fit stages.
+  struct Decoded {
+    Frame frame;
+    cv::Mat grey;
+    double decode_ms = 0;
+  };
+  BoundedQueue<Decoded> decoded(4);
+  std::exception_ptr decode_error;
+  std::jthread decoder([&] {
+    try {
+      for (int n = 0; options.max_frames <= 0 || n < options.max_frames; ++n) {
+        Decoded d;
+        const auto t0 = std::chrono::steady_clock::now();
+        if (!source.read(d.frame)) break;
+        if (!d.frame.image.empty()) cv::cvtColor(d.frame.image, d.grey, cv::COLOR_BGR2GRAY);
+        d.decode_ms = ms_since(t0);
+        if (!decoded.push(std::move(d))) break;
+      }
+    } catch (...) {
+      decode_error = std::current_exception();
+    }
+    decoded.close();
+  });
+  struct CloseOnExit {
+    BoundedQueue<Decoded>& q;
+    ~CloseOnExit() { q.close(); }  // unblocks the decoder if a stage throws
+  } close_on_exit{decoded};
+
+  while (std::optional<Decoded> d = decoded.pop()) {
+    throw_if_interrupted();
+    const Frame& frame = d->frame;
+    t.decode_ms += d->decode_ms;
+
     TrackedFace face;
-    if (!frame.image.empty()) face = face_tracker.next(frame.image);
-    t.landmarks_ms += ms_since(t0);
+    if (!d->grey.empty()) face = face_tracker.next(d->grey);
+    t.detect_ms += face.detector_ms;
+    t.landmarks_ms += face.landmarks_ms;
 
     waiting[frame.index] = {face.status, options.keep_images ? frame.image : cv::Mat()};
     std::optional<Landmarks> landmarks;
     if (face.status != TrackStatus::kLost) landmarks = face.landmarks;
 
-    t0 = std::chrono::steady_clock::now();
+    const bool was_initialized = tracker.initialized();
+    auto t0 = std::chrono::steady_clock::now();
     const std::vector<CoarseFit> fits = tracker.push(frame.index, frame.time, landmarks);
     t.fit_ms += ms_since(t0);
+    if (!was_initialized && tracker.initialized()) {
+      t.identity_ms = tracker.identity().solve_ms;
+      t.fit_ms -= t.identity_ms;
+    }
     // A fit that rejects the landmarks means the box tracker followed
     // something that is not the face: detect afresh on the next frame.
     for (const CoarseFit& fit : fits) {
@@ -84,9 +122,16 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     ++t.frames;
     progress.update(t.frames);
   }
+  decoder.join();
+  if (decode_error) std::rethrow_exception(decode_error);
+  const bool was_initialized = tracker.initialized();
   const auto t0 = std::chrono::steady_clock::now();
   deliver(tracker.finish());
   t.fit_ms += ms_since(t0);
+  if (!was_initialized && tracker.initialized()) {
+    t.identity_ms = tracker.identity().solve_ms;
+    t.fit_ms -= t.identity_ms;
+  }
   progress.finish();
   summary.identity = tracker.identity();
   t.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

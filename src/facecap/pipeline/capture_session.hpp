@@ -25,16 +25,22 @@ struct CapturedFrame {
   double time = 0.0;
   TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
   CoarseFit fit;
+  const IdentityEstimate* identity = nullptr;  // the identity and focal the fit used
   cv::Mat image;  // when CaptureOptions::keep_images
 };
 
 // Milliseconds spent per stage, summed over frames.
 struct StageTimings {
-  double decode_ms = 0;
-  double landmarks_ms = 0;
-  double fit_ms = 0;
-  double total_s = 0;  // wall time of the whole run
+  double setup_ms = 0;      // loading the landmark and detector models
+  double decode_ms = 0;     // on the decode thread, concurrent with the rest
+  double detect_ms = 0;     // HOG face detector (start, losses, periodic checks)
+  double landmarks_ms = 0;  // 68-point shape predictor
+  double fit_ms = 0;        // per-frame coarse fit
+  double identity_ms = 0;   // the one-off identity and focal solve
+  double total_s = 0;       // wall time of the whole run
   int frames = 0;
+  // Frames per second after setup: frames / (total - setup).
+  double fps() const { return total_s * 1000 > setup_ms ? frames / (total_s - setup_ms / 1000) : 0.0; }
 };
 
 struct CaptureSummary {

@@ -20,7 +20,14 @@ std::vector<CoarseFit> fit_performance(const FaceModel& model, const SynthPerfor
   std::vector<CoarseFit> fits;
   if (o.landmarks == LandmarkSource::kTruth) {
     const SynthRenderer renderer(model, perf);
-    CoarseTracker tracker(model, o.capture.fit, perf.options.width, perf.options.height);
+    // The truth follows the model's own landmark definition: the jaw
+    // landmarks are the marched silhouette vertices (a dlib run slides along
+    // the outline instead), and there is no detector-convention offset for
+    // the identity solve to allow for.
+    CoarseFitOptions fit = o.capture.fit;
+    fit.jaw = JawCorrespondence::kMarch;
+    fit.weights.identity_sigma_factor = 1.0;
+    CoarseTracker tracker(model, fit, perf.options.width, perf.options.height);
     std::mt19937_64 rng(perf.options.seed * 31 + 7);
     std::normal_distribution<float> noise(0.0f, float(o.landmark_noise_px));
     const auto start = std::chrono::steady_clock::now();

@@ -1,0 +1,51 @@
+#include <cstdio>
+
+#include "commands.hpp"
+#include "facecap/pipeline/track_job.hpp"
+
+namespace facecap::cli {
+
+void register_track(CLI::App& app, GlobalOptions& global) {
+  auto* cmd = app.add_subcommand(
+      "track",
+      "Capture head pose, focal length, identity and 53 expression weights per frame: DIR/frames.csv, "
+      "DIR/frames.jsonl, DIR/identity.json, and optionally meshes and an overlay video");
+  struct Args {
+    std::string input, out, mesh_space = "model";
+    TrackOptions options;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("INPUT", a->input, "Video file, image, folder of images, or cam:N")->required();
+  cmd->add_option("-o,--output", a->out, "Output folder")->required();
+  cmd->add_flag("--meshes", a->options.meshes, "Write one OBJ per tracked frame (face region, with UVs) to DIR/meshes");
+  cmd->add_option("--mesh-space", a->mesh_space, "Coordinates of the meshes: model (y up) or camera (OpenCV)")
+      ->check(CLI::IsMember({"model", "camera"}))
+      ->capture_default_str();
+  cmd->add_flag("--overlay", a->options.overlay, "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio");
+  cmd->add_option("--focal", a->options.capture.fit.focal_guess,
+                  "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
+  cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
+  cmd->add_option("--init-frames", a->options.capture.fit.init_frames,
+                  "Frames with a face used to solve identity and focal length")
+      ->capture_default_str();
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  cmd->callback([a, &global] {
+    a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
+    a->options.capture.fit.check();
+    a->options.capture.quiet = global.quiet;
+    const FaceModel model = load_model(global);
+    const TrackSummary s = run_track(model, a->input, a->out, a->options);
+    const StageTimings& t = s.capture.timings;
+    const double n = std::max(1, t.frames);
+    std::fprintf(stderr,
+                 "frames %d, lost %d, redetected %d | per frame: decode %.2f ms (own thread), detect %.2f ms, "
+                 "landmarks %.2f ms, fit %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
+                 "identity and focal (%.1f px) from %d frames\n",
+                 s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
+                 t.landmarks_ms / n, t.fit_ms / n, t.identity_ms, t.setup_ms, t.fps(), s.capture.identity.focal,
+                 s.capture.identity.frames_used);
+    std::printf("%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
+  });
+}
+
+}  // namespace facecap::cli

@@ -1,0 +1,37 @@
+#pragma once
+// `facecap track INPUT -o DIR`: coarse capture of an input with per-frame
+// results in files that spreadsheets, animation tools and scripts read:
+//   DIR/frames.csv     one row per frame: index, time, status, pose, focal,
+//                      the 53 weights under their ARKit names
+//   DIR/frames.jsonl   the same per frame, plus the observed and fitted landmarks
+//   DIR/identity.json  identity weights, focal length, image size, conventions
+//   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with UVs
+//   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
+// Every file is written under a temporary name and renamed when complete.
+#include <filesystem>
+#include <string>
+
+#include "facecap/pipeline/capture_session.hpp"
+
+namespace facecap {
+
+enum class MeshSpace { kModel, kCamera };
+
+struct TrackOptions {
+  CaptureOptions capture;
+  bool meshes = false;
+  MeshSpace mesh_space = MeshSpace::kModel;
+  bool overlay = false;
+  FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
+};
+
+struct TrackSummary {
+  CaptureSummary capture;
+  std::filesystem::path output_dir;
+  int meshes_written = 0;
+};
+
+TrackSummary run_track(const FaceModel& model, const std::string& input, const std::filesystem::path& output_dir,
+                       const TrackOptions& options);
+
+}  // namespace facecap

@@ -1,0 +1,62 @@
+#include "facecap/fit/coarse_tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "facecap/synth/synth_renderer.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+TEST(CoarseTracker, RejectsLandmarksNoFaceCanExplainAndRecovers) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 40;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  CoarseFitOptions o;
+  o.init_frames = 10;
+  CoarseTracker tracker(*model, o, so.width, so.height);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(100, 400);
+  std::vector<CoarseFit> fits;
+  for (const SynthFrame& f : perf.frames) {
+    std::optional<Landmarks> lm = renderer.landmarks(f);
+    if (f.index == 20) {
+      for (Vec2f& p : *lm) p = Vec2f(u(rng), u(rng));  // a detector failure: scattered points
+    }
+    if (f.index == 25) lm.reset();  // no face
+    for (CoarseFit& fit : tracker.push(f.index, f.time, lm)) fits.push_back(std::move(fit));
+  }
+  for (CoarseFit& fit : tracker.finish()) fits.push_back(std::move(fit));
+  ASSERT_EQ(fits.size(), 40u);
+  for (const CoarseFit& fit : fits) {
+    EXPECT_EQ(fit.index, &fit - fits.data());  // in order
+    if (fit.index == 20 || fit.index == 25) {
+      EXPECT_FALSE(fit.valid) << "frame " << fit.index;
+    } else {
+      EXPECT_TRUE(fit.valid) << "frame " << fit.index;
+      EXPECT_TRUE(fit.expression.allFinite());
+      EXPECT_LT(fit.landmark_error, 0.02) << "frame " << fit.index;
+    }
+  }
+  EXPECT_TRUE(tracker.initialized());
+  EXPECT_EQ(tracker.identity().frames_used, 10);
+}
+
+TEST(CoarseTracker, ShortInputsAreSolvedAtTheEnd) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 5;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  CoarseTracker tracker(*model, CoarseFitOptions{}, so.width, so.height);  // wants 30 frames
+  for (const SynthFrame& f : perf.frames) EXPECT_TRUE(tracker.push(f.index, f.time, renderer.landmarks(f)).empty());
+  const std::vector<CoarseFit> fits = tracker.finish();
+  ASSERT_EQ(fits.size(), 5u);
+  for (const CoarseFit& fit : fits) EXPECT_TRUE(fit.valid);
+  EXPECT_EQ(tracker.identity().frames_used, 5);
+}
+
+}  // namespace facecap

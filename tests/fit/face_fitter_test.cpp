@@ -1,0 +1,62 @@
+#include "facecap/fit/face_fitter.hpp"
+
+#include <gtest/gtest.h>
+
+#include "facecap/synth/synth_renderer.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+// With the true identity and focal, noise-free landmarks and a weak
+// expression prior (so that the optimum is the truth), one frame's pose and
+// expression come back from a cold start (initialize_frame + fit_frame).
+TEST(FaceFitter, RecoversPoseAndExpressionFromPerfectLandmarks) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 12;
+  so.seed = 4;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  CoarseFitOptions o;
+  o.jaw = JawCorrespondence::kMarch;  // the truth's own jaw definition
+  o.focal_known = true;
+  o.focal_guess = perf.camera.focal;
+  o.weights.sigma_expression = 5.0;
+  const FaceFitter fitter(*model, o, so.width, so.height);
+  const Eigen::VectorXd identity = perf.identity.head(fitter.identity_modes()).cast<double>();
+  for (const SynthFrame& f : perf.frames) {
+    const Landmarks lm = renderer.landmarks(f);
+    FrameParameters params(fitter.num_expressions());
+    fitter.initialize_frame(lm, identity, perf.camera.focal, params);
+    const FrameFitReport report = fitter.fit_frame(lm, identity, perf.camera.focal, nullptr, params);
+    EXPECT_LT(rotation_angle_deg(params.pose().rotation_matrix(), f.pose.rotation_matrix()), 0.1) << "frame " << f.index;
+    EXPECT_LT((params.expression().cast<float>() - f.expression).cwiseAbs().mean(), 0.01f) << "frame " << f.index;
+    EXPECT_LT(report.landmark_error, 0.001) << "frame " << f.index;
+    EXPECT_GE(params.expression().minCoeff(), 0.0);
+    EXPECT_LE(params.expression().maxCoeff(), 1.0);
+  }
+}
+
+TEST(FaceFitter, JawSlidesAlongTheOutlineOnlyAcrossIt) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 1;
+  so.max_yaw_deg = 0;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  CoarseFitOptions o;
+  o.focal_known = true;
+  o.focal_guess = perf.camera.focal;
+  const FaceFitter fitter(*model, o, so.width, so.height);
+  const Eigen::VectorXd identity = perf.identity.head(fitter.identity_modes()).cast<double>();
+  FrameParameters truth(fitter.num_expressions());
+  truth.set_pose(perf.frames[0].pose);
+  truth.expression() = perf.frames[0].expression.cast<double>();
+  // Move a jaw landmark along the jaw (toward the next one): sliding absorbs it.
+  Landmarks lm = renderer.landmarks(perf.frames[0]);
+  lm[3] += 0.4f * (lm[4] - lm[3]);
+  const Landmarks fitted = fitter.project(truth, identity, perf.camera.focal, lm);
+  EXPECT_LT((fitted[3] - lm[3]).norm(), 1.5f);
+}
+
+}  // namespace facecap

@@ -1,0 +1,104 @@
+#include "facecap/pipeline/track_job.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> lines(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+int count_fields(const std::string& line) { return static_cast<int>(std::count(line.begin(), line.end(), ',')) + 1; }
+
+}  // namespace
+
+TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = 36;
+  o.meshes = true;
+  o.overlay = true;
+  const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
+  EXPECT_EQ(s.capture.frames, 36);
+
+  const auto csv = lines(dir.path() / "frames.csv");
+  ASSERT_EQ(csv.size(), 37u);
+  EXPECT_EQ(count_fields(csv[0]), 14 + 53);
+  EXPECT_NE(csv[0].find(",jawOpen,"), std::string::npos);
+  for (size_t i = 1; i < csv.size(); ++i) {
+    EXPECT_EQ(count_fields(csv[i]), 14 + 53) << "row " << i;
+    EXPECT_EQ(csv[i].find("nan"), std::string::npos) << "row " << i;
+  }
+  const auto jsonl = lines(dir.path() / "frames.jsonl");
+  ASSERT_EQ(jsonl.size(), 36u);
+  const auto row = nlohmann::json::parse(jsonl[10]);
+  EXPECT_EQ(row["frame"], 10);
+  EXPECT_EQ(row["weights"].size(), 53u);
+  EXPECT_EQ(row["landmarks"].size(), 68u);
+
+  std::ifstream id_in(dir.path() / "identity.json");
+  const auto id = nlohmann::json::parse(id_in);
+  EXPECT_EQ(id["identity_weights"].size(), 50u);
+  EXPECT_GT(id["focal_px"].get<double>(), 100.0);
+
+  int meshes = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / "meshes")) ++meshes;
+  EXPECT_EQ(meshes, 36 - s.capture.lost);
+  const auto obj = lines(dir.path() / "meshes" / "frame_000000.obj");
+  EXPECT_GT(std::count_if(obj.begin(), obj.end(), [](const std::string& l) { return l.rfind("vt ", 0) == 0; }), 1000);
+  EXPECT_EQ(open_input((dir.path() / "overlay.mp4").string())->info().frames, 36);
+}
+
+TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  // An image folder: 31 face frames, a blank frame, then faces again.
+  TempDir frames;
+  auto source = open_input(video.string());
+  Frame f;
+  for (int i = 0; i < 36 && source->read(f); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "f%03d.png", i);
+    cv::Mat img = f.image;
+    if (i == 31) img = cv::Mat(img.size(), img.type(), cv::Scalar(60, 60, 60));
+    cv::imwrite((frames.path() / name).string(), img);
+  }
+  TempDir out;
+  TrackOptions o;
+  o.capture.quiet = true;
+  run_track(*model, frames.path().string(), out.path(), o);
+  const auto csv = lines(out.path() / "frames.csv");
+  ASSERT_EQ(csv.size(), 37u);
+  EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
+  EXPECT_EQ(csv[32].find("nan"), std::string::npos);
+  EXPECT_EQ(csv[34].find("lost"), std::string::npos) << csv[34];  // back
+}
+
+TEST(TrackJob, BadInputWritesNothing) {
+  FACECAP_REQUIRE_MODEL(model);
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  EXPECT_THROW(run_track(*model, (dir.path() / "missing.mp4").string(), out, TrackOptions{}), Error);
+  EXPECT_FALSE(fs::exists(out / "frames.csv"));
+}
+
+}  // namespace facecap
