@@ -2,6 +2,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
 #include "facecap/pipeline/synth_landmark_eval.hpp"
+#include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/track_eval.hpp"
 
 namespace facecap::cli {
@@ -127,6 +128,58 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   });
 }
 
+void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
+  auto* cmd = eval.add_subcommand("refine",
+                                  "Shading-refinement accuracy as JSON: on synthetic renders with wrinkles "
+                                  "(--synthetic N) against their truth, or the photometric error on real footage "
+                                  "(--video PATH)");
+  struct Args {
+    int synthetic = 0;
+    std::string video;
+    std::string size = "1280x720";
+    RefineEvalOptions options;
+    CaptureOptions capture;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--synthetic", a->synthetic, "Render and refine N synthetic frames");
+  cmd->add_option("--video", a->video, "Track and refine real footage");
+  cmd->add_option("--seed", a->options.seed, "Seed of the synthetic performance")->capture_default_str();
+  cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
+  cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video");
+  cmd->add_option("--albedo-frames", a->options.refine.albedo.frames, "Frames before the albedo is fixed")
+      ->capture_default_str();
+  cmd->callback([a, &global] {
+    const FaceModel model = load_model(global);
+    if (!a->video.empty()) {
+      a->capture.quiet = global.quiet;
+      const RefineVideoResult r = evaluate_refine_video(model, a->video, a->capture, a->options.refine);
+      print_json({{"video", a->video},
+                  {"frames", r.frames},
+                  {"photometric_coarse", r.photometric_coarse},
+                  {"photometric_refined", r.photometric_refined},
+                  {"reduction", r.photometric_coarse > 0 ? 1.0 - r.photometric_refined / r.photometric_coarse : 0.0},
+                  {"refine_ms_per_frame", r.refine_ms_per_frame}});
+      return;
+    }
+    if (a->synthetic <= 0) throw Error("eval refine needs --synthetic N or --video PATH");
+    a->options.frames = a->synthetic;
+    parse_size(a->size, a->options.width, a->options.height);
+    a->options.quiet = global.quiet;
+    const RefineEvalResult r = evaluate_refine_synthetic(model, a->options);
+    print_json({{"frames", r.frames},
+                {"seed", a->options.seed},
+                {"levels", r.levels},
+                {"finest_vertices", r.finest_vertices},
+                {"lighting_error_rel", r.lighting_error_rel},
+                {"albedo_corr", r.albedo_corr},
+                {"normal_error_deg", r.normal_error_deg},
+                {"normal_error_coarse_deg", r.normal_error_coarse_deg},
+                {"vertex_error_mm", r.vertex_error_mm},
+                {"vertex_error_coarse_mm", r.vertex_error_coarse_mm},
+                {"refine_ms_per_frame", r.refine_ms_per_frame}});
+  });
+}
+
 }  // namespace
 
 void register_eval(CLI::App& app, GlobalOptions& global) {
@@ -134,6 +187,7 @@ void register_eval(CLI::App& app, GlobalOptions& global) {
   eval->require_subcommand(1);
   register_eval_landmarks(*eval, global);
   register_eval_track(*eval, global);
+  register_eval_refine(*eval, global);
 }
 
 }  // namespace facecap::cli

@@ -21,7 +21,11 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--mesh-space", a->mesh_space, "Coordinates of the meshes: model (y up) or camera (OpenCV)")
       ->check(CLI::IsMember({"model", "camera"}))
       ->capture_default_str();
-  cmd->add_flag("--overlay", a->options.overlay, "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio");
+  cmd->add_flag("--overlay", a->options.overlay,
+                "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio (with --refine also "
+                "DIR/shaded.mp4 and DIR/heatmap.mp4)");
+  cmd->add_flag("--refine", a->options.refine,
+                "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
   cmd->add_option("--focal", a->options.capture.fit.focal_guess,
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
@@ -44,6 +48,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                  s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
                  t.landmarks_ms / n, t.fit_ms / n, t.identity_ms, t.setup_ms, t.fps(), s.capture.identity.focal,
                  s.capture.identity.frames_used);
+    if (a->options.refine) {
+      std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
+                   s.refine_ms / std::max(1, s.refined_frames));
+    }
     std::printf("%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
   });
 }

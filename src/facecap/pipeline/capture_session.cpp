@@ -47,7 +47,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.fit = fit;
       out.status = fit.valid ? it->second.status : TrackStatus::kLost;
       out.image = it->second.image;
-      out.identity = &tracker.identity();
+      out.identity = tracker.identity();
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;

@@ -25,7 +25,7 @@ struct CapturedFrame {
   double time = 0.0;
   TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
   CoarseFit fit;
-  const IdentityEstimate* identity = nullptr;  // the identity and focal the fit used
+  IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
   cv::Mat image;  // when CaptureOptions::keep_images
 };
 

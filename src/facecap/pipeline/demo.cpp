@@ -51,7 +51,7 @@ nlohmann::json run_demo(const FaceModel& model, const DemoOptions& options) {
     }
     const SynthFrame& t = truth.frames[f.index];
     rotation.push_back(rotation_angle_deg(f.fit.pose.rotation_matrix(), t.pose.rotation_matrix()));
-    const Positions fitted = model.evaluate(f.identity->identity.cast<float>(), f.fit.expression, regions::kFace);
+    const Positions fitted = model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace);
     const Positions true_shape = model.evaluate(truth.identity, t.expression, regions::kFace);
     vertex.push_back(10.0 * aligned_mean_distance(fitted, true_shape));
     vertex_similarity.push_back(10.0 * aligned_mean_distance(fitted, true_shape, true));

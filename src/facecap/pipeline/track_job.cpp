@@ -4,13 +4,19 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/video_writer.hpp"
+#include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/render/overlay.hpp"
+#include "facecap/render/photometric.hpp"
+#include "facecap/render/shading.hpp"
+#include "facecap/render/uv_bake.hpp"
 
 namespace facecap {
 
@@ -49,46 +55,47 @@ nlohmann::json landmarks_json(const Landmarks& lm) {
   return a;
 }
 
-}  // namespace
+// Camera-space points back to the model frame: X = F R^T (Y - t).
+Positions to_model(const Positions& camera_points, const HeadPose& pose) {
+  const Mat3f rf = pose.model_to_camera_rotation().cast<float>();
+  return rf.transpose() * (camera_points.colwise() - pose.translation.cast<float>());
+}
 
-TrackSummary run_track(const FaceModel& model, const std::string& input, const fs::path& dir,
-                       const TrackOptions& options) {
-  auto source = open_input(input);  // validates the input before anything is written
-  ensure_writable_dir(dir);
-  const InputInfo info = source->info();
-  TrackSummary summary;
-  summary.output_dir = dir;
-
-  StagedText csv(dir / "frames.csv");
-  StagedText jsonl(dir / "frames.jsonl");
-  {
-    std::ofstream& o = csv.stream();
+// Everything the track job writes, frame by frame, in frame order.
+class FrameWriter {
+ public:
+  FrameWriter(const FaceModel& model, const InputInfo& info, const std::string& input, const fs::path& dir,
+              const TrackOptions& options)
+      : model_(model), info_(info), dir_(dir), options_(options), csv_(dir / "frames.csv"), jsonl_(dir / "frames.jsonl") {
+    face_polygons_.assign(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
+    face_mesh_ = model.region_mesh(regions::kFace);
+    std::ofstream& o = csv_.stream();
     o << "frame,time,status,rx,ry,rz,tx,ty,tz,focal,yaw_deg,pitch_deg,roll_deg,landmark_error";
     for (const std::string& name : model.expression_names) o << ',' << name;
+    if (options.refine)
+      for (int k = 0; k < 9; ++k) o << ",l" << k;
     o << '\n';
-  }
-  if (options.meshes) fs::create_directories(dir / "meshes");
-  std::unique_ptr<VideoWriter> overlay;
-  if (options.overlay) {
-    VideoWriterOptions vo;
-    vo.width = info.width;
-    vo.height = info.height;
-    vo.fps = info.fps > 0 ? info.fps : 25.0;
-    if (info.audio) vo.audio_source = fs::path(input);
-    vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
-    overlay = std::make_unique<VideoWriter>(dir / "overlay.mp4", vo);
+    if (options.meshes) fs::create_directories(dir / "meshes");
+    if (options.overlay) {
+      VideoWriterOptions vo;
+      vo.width = info.width;
+      vo.height = info.height;
+      vo.fps = info.fps > 0 ? info.fps : 25.0;
+      if (info.audio) vo.audio_source = fs::path(input);
+      vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
+      overlay_ = std::make_unique<VideoWriter>(dir / "overlay.mp4", vo);
+      if (options.refine) {
+        vo.metadata["comment"] = "facecap refined geometry (shaded) of " + fs::path(input).filename().string();
+        shaded_ = std::make_unique<VideoWriter>(dir / "shaded.mp4", vo);
+        vo.metadata["comment"] = "facecap photometric error heat map of " + fs::path(input).filename().string();
+        heatmap_ = std::make_unique<VideoWriter>(dir / "heatmap.mp4", vo);
+      }
+    }
   }
 
-  // Face-region topology and UVs for meshes and the wireframe.
-  std::vector<Polygon> face_polygons(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
-  const PinholeCamera cam_at_centre{1.0, 0.5 * info.width, 0.5 * info.height};
-
-  CaptureOptions capture = options.capture;
-  capture.keep_images = options.overlay;
-  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
-    if (options.on_frame) options.on_frame(f);
+  void write(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& camera) {
     const bool ok = f.status != TrackStatus::kLost;
-    std::ofstream& o = csv.stream();
+    std::ofstream& o = csv_.stream();
     o << f.index << ',' << number(f.time) << ',' << to_string(f.status);
     nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}};
     if (ok) {
@@ -100,7 +107,7 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
       o << ',' << number(f.fit.landmark_error);
       for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) o << ',' << number(f.fit.expression[k]);
       nlohmann::json weights;
-      for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) weights[model.expression_names[k]] = f.fit.expression[k];
+      for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) weights[model_.expression_names[k]] = f.fit.expression[k];
       row["rotation"] = {f.fit.pose.rotation.x(), f.fit.pose.rotation.y(), f.fit.pose.rotation.z()};
       row["translation"] = {f.fit.pose.translation.x(), f.fit.pose.translation.y(), f.fit.pose.translation.z()};
       row["yaw_pitch_roll_deg"] = {ypr.x(), ypr.y(), ypr.z()};
@@ -109,64 +116,188 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
       row["weights"] = weights;
       row["landmarks"] = landmarks_json(f.fit.observed);
       row["fitted_landmarks"] = landmarks_json(f.fit.fitted);
+      if (ref != nullptr) {
+        for (int k = 0; k < 9; ++k) o << ',' << number(ref->lighting[k]);
+        row["lighting"] = std::vector<double>(ref->lighting.data(), ref->lighting.data() + 9);
+      } else if (options_.refine) {
+        o << std::string(9, ',');
+      }
     } else {
       // Lost frames: empty fields, never made-up numbers.
-      for (int k = 0; k < 11 + model.num_expressions(); ++k) o << ',';
+      for (int k = 0; k < 11 + model_.num_expressions() + (options_.refine ? 9 : 0); ++k) o << ',';
     }
     o << '\n';
-    jsonl.stream() << row.dump() << '\n';
+    jsonl_.stream() << row.dump() << '\n';
+    if (ok) write_mesh(f, ref, coarse);
+    write_videos(f, ref, coarse, camera);
+  }
 
-    if (!ok && !overlay) return;
-    Positions shape;
-    if (ok) shape = model.evaluate(f.identity->identity.cast<float>(), f.fit.expression, regions::kFace);
-    if (ok && options.meshes) {
-      const Positions out = options.mesh_space == MeshSpace::kCamera ? to_camera(shape, f.fit.pose) : shape;
-      char name[64];
-      std::snprintf(name, sizeof(name), "frame_%06d.obj", f.index);
-      write_obj(dir / "meshes" / name,
-                {&out, &face_polygons, &model.uvs,
-                 "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
-                     (options.mesh_space == MeshSpace::kCamera ? "\ncamera space (x right, y down, z forward), cm"
-                                                               : "\nICT model space (y up, z out of the face), cm")});
-      ++summary.meshes_written;
+  void finish(const IdentityEstimate& id, const Refiner* refiner) {
+    nlohmann::json j;
+    j["format"] = "facecap-identity";
+    j["version"] = 1;
+    j["model"] = "ICT Face Model Light (ICT-FaceKit, MIT)";
+    j["identity_weights"] = std::vector<double>(id.identity.data(), id.identity.data() + id.identity.size());
+    j["identity_modes"] = id.identity.size();
+    j["focal_px"] = id.focal;
+    j["principal_point_px"] = {0.5 * info_.width, 0.5 * info_.height};
+    j["image_size"] = {info_.width, info_.height};
+    j["frames_used"] = id.frames_used;
+    j["expression_names"] = model_.expression_names;
+    j["conventions"] = {
+        {"units", "centimetres"},
+        {"camera", "x right, y down, z forward (OpenCV); pixel centres at integer coordinates"},
+        {"pose", "X_camera = R(rotation) * diag(1,-1,-1) * X_model + translation; rotation is axis-angle in radians"},
+        {"model", "X_model = neutral + sum identity_i * (identity_i - neutral) + sum w_j * (expression_j - neutral)"},
+        {"lighting", "l^T SH(n), SH(n) = (1, x, y, z, xy, xz, yz, x^2 - y^2, 3 z^2 - 1), n in the viewer frame "
+                     "(x right, y up, z toward the viewer), intensities in [0, 1]"}};
+    write_text_file(dir_ / "identity.json", j.dump(2) + "\n");
+    if (refiner != nullptr && refiner->initialised()) {
+      const cv::Mat tex = bake_uv_texture(face_mesh_, refiner->coarse_albedo());
+      AtomicFile file(dir_ / "albedo.png");
+      if (!cv::imwrite(file.temp_path().string(), tex)) throw Error("cannot write " + (dir_ / "albedo.png").string());
+      file.commit();
     }
-    if (overlay) {
-      cv::Mat canvas = f.image.clone();
-      if (ok) {
-        PinholeCamera cam = cam_at_centre;
-        cam.focal = f.fit.focal;
-        draw_wireframe(canvas, to_camera(shape, f.fit.pose), face_polygons, cam, cv::Scalar(255, 200, 80));
-        draw_landmarks(canvas, f.fit.observed, cv::Scalar(0, 255, 0));
-        draw_landmarks(canvas, f.fit.fitted, cv::Scalar(0, 0, 255), 1);
+    csv_.commit();
+    jsonl_.commit();
+    for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
+      if (w) w->finish();
+  }
+
+  int meshes_written() const { return meshes_; }
+  void set_refiner(const Refiner* r) { refiner_ = r; }
+
+ private:
+  void write_mesh(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
+    if (!options_.meshes) return;
+    char name[64];
+    std::snprintf(name, sizeof(name), "frame_%06d.obj", f.index);
+    const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
+    const std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
+                                (camera_space ? "\ncamera space (x right, y down, z forward), cm"
+                                              : "\nICT model space (y up, z out of the face), cm");
+    if (ref != nullptr && refiner_ != nullptr) {
+      // The refined finest level, with UVs prolonged through the hierarchy.
+      const MeshHierarchy& h = refiner_->hierarchy();
+      const int finest = h.num_levels() - 1;
+      if (!refined_uvs_) {
+        const std::vector<Vec2f> uv = per_vertex_uvs(face_mesh_);
+        Eigen::MatrixXf coarse_uv(2, uv.size());
+        for (size_t i = 0; i < uv.size(); ++i) coarse_uv.col(i) = uv[i];
+        const Eigen::MatrixXf fine = h.prolong_from_coarse(coarse_uv, finest);
+        refined_uvs_ = std::vector<Vec2f>(fine.cols());
+        for (Eigen::Index i = 0; i < fine.cols(); ++i) (*refined_uvs_)[i] = fine.col(i);
+        for (const Triangle& t : h.level(finest).triangles) {
+          Polygon p;
+          for (int k = 0; k < 3; ++k) p.v[k] = p.uv[k] = t[k];
+          refined_polygons_.push_back(p);
+        }
       }
-      draw_caption(canvas, "frame " + std::to_string(f.index) + "  " + to_string(f.status));
-      overlay->write(canvas);
+      const Positions out = camera_space ? ref->positions : to_model(ref->positions, f.fit.pose);
+      write_obj(dir_ / "meshes" / name, {&out, &refined_polygons_, &*refined_uvs_, comment + "\nrefined (finest level)"});
+    } else {
+      const Positions out = camera_space ? coarse : to_model(coarse, f.fit.pose);
+      write_obj(dir_ / "meshes" / name, {&out, &face_polygons_, &model_.uvs, comment});
     }
-  });
-  if (summary.capture.frames == 0) throw Error("no frames could be read from " + input);
+    ++meshes_;
+  }
 
-  // identity.json
-  const IdentityEstimate& id = summary.capture.identity;
-  nlohmann::json j;
-  j["format"] = "facecap-identity";
-  j["version"] = 1;
-  j["model"] = "ICT Face Model Light (ICT-FaceKit, MIT)";
-  j["identity_weights"] = std::vector<double>(id.identity.data(), id.identity.data() + id.identity.size());
-  j["identity_modes"] = id.identity.size();
-  j["focal_px"] = id.focal;
-  j["principal_point_px"] = {0.5 * info.width, 0.5 * info.height};
-  j["image_size"] = {info.width, info.height};
-  j["frames_used"] = id.frames_used;
-  j["expression_names"] = model.expression_names;
-  j["conventions"] = {
-      {"units", "centimetres"},
-      {"camera", "x right, y down, z forward (OpenCV); pixel centres at integer coordinates"},
-      {"pose", "X_camera = R(rotation) * diag(1,-1,-1) * X_model + translation; rotation is axis-angle in radians"},
-      {"model", "X_model = neutral + sum identity_i * (identity_i - neutral) + sum w_j * (expression_j - neutral)"}};
-  write_text_file(dir / "identity.json", j.dump(2) + "\n");
-  csv.commit();
-  jsonl.commit();
-  if (overlay) overlay->finish();
+  void write_videos(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& cam) {
+    if (!overlay_) return;
+    const bool ok = f.status != TrackStatus::kLost;
+    cv::Mat canvas = f.image.clone();
+    if (ok) {
+      draw_wireframe(canvas, coarse, face_polygons_, cam, cv::Scalar(255, 200, 80));
+      draw_landmarks(canvas, f.fit.observed, cv::Scalar(0, 255, 0));
+      draw_landmarks(canvas, f.fit.fitted, cv::Scalar(0, 0, 255), 1);
+    }
+    draw_caption(canvas, "frame " + std::to_string(f.index) + "  " + to_string(f.status));
+    overlay_->write(canvas);
+    if (!shaded_) return;
+    cv::Mat shaded = f.image * 0.3;
+    cv::Mat heat = f.image * 0.4;
+    if (ok && ref != nullptr && refiner_ != nullptr) {
+      const std::vector<Triangle>& tris = refiner_->hierarchy().level(ref->levels - 1).triangles;
+      RasterBuffers buffers;
+      buffers.resize(f.image.cols, f.image.rows);
+      rasterize(ref->positions, tris, cam, buffers);
+      cv::Mat render(f.image.rows, f.image.cols, CV_32FC3, cv::Scalar::all(0));
+      const Positions grey = Positions::Constant(3, ref->positions.cols(), 0.75f);
+      shade_lambertian(buffers, tris, grey, ref->normals, ref->lighting, render);
+      cv::Mat render8;
+      render.convertTo(render8, CV_8UC3, 255.0);
+      cv::Mat mask(f.image.rows, f.image.cols, CV_8U, cv::Scalar(0));
+      for (int y = 0; y < buffers.height; ++y)
+        for (int x = 0; x < buffers.width; ++x) mask.at<uchar>(y, x) = buffers.covered(x, y) ? 255 : 0;
+      render8.copyTo(shaded, mask);
+      heat = photometric_error(f.image, ref->positions, masked_triangles(tris, ref->data_mask), ref->normals,
+                               ref->albedo, ref->lighting, cam, true)
+                 .heat_map;
+    }
+    draw_caption(shaded, "frame " + std::to_string(f.index) + "  refined geometry");
+    draw_caption(heat, "frame " + std::to_string(f.index) + "  photometric error (red = 40 levels)");
+    shaded_->write(shaded);
+    heatmap_->write(heat);
+  }
+
+  const FaceModel& model_;
+  InputInfo info_;
+  fs::path dir_;
+  const TrackOptions& options_;
+  StagedText csv_;
+  StagedText jsonl_;
+  std::unique_ptr<VideoWriter> overlay_, shaded_, heatmap_;
+  std::vector<Polygon> face_polygons_;
+  TriangleMesh face_mesh_;
+  const Refiner* refiner_ = nullptr;
+  std::optional<std::vector<Vec2f>> refined_uvs_;
+  std::vector<Polygon> refined_polygons_;
+  int meshes_ = 0;
+};
+
+}  // namespace
+
+TrackSummary run_track(const FaceModel& model, const std::string& input, const fs::path& dir,
+                       const TrackOptions& options) {
+  auto source = open_input(input);  // validates the input before anything is written
+  ensure_writable_dir(dir);
+  const InputInfo info = source->info();
+  TrackSummary summary;
+  summary.output_dir = dir;
+  FrameWriter writer(model, info, input, dir, options);
+
+  CaptureOptions capture = options.capture;
+  capture.keep_images = options.overlay || options.refine;
+  std::unique_ptr<RefineStage> stage;
+  if (options.refine) {
+    stage = std::make_unique<RefineStage>(model, options.refine_options, [&](const RefinedFrame& r) {
+      if (options.on_frame) options.on_frame(r.frame);
+      writer.write(r.frame, r.refinement ? &*r.refinement : nullptr, r.coarse, r.camera);
+    });
+    writer.set_refiner(&stage->refiner());
+  }
+  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
+    if (stage) {
+      stage->push(f);  // refined on the stage's thread, concurrently with the next frames' tracking
+      return;
+    }
+    if (options.on_frame) options.on_frame(f);
+    Positions coarse;
+    PinholeCamera cam;
+    if (f.status != TrackStatus::kLost) {
+      coarse = to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
+      cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
+    }
+    writer.write(f, nullptr, coarse, cam);
+  });
+  if (stage) {
+    stage->finish();
+    summary.refined_frames = stage->refined_frames();
+    summary.refine_ms = stage->refine_ms();
+  }
+  if (summary.capture.frames == 0) throw Error("no frames could be read from " + input);
+  writer.finish(summary.capture.identity, stage ? &stage->refiner() : nullptr);
+  summary.meshes_written = writer.meshes_written();
   return summary;
 }
 

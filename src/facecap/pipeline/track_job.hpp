@@ -7,11 +7,17 @@
 //   DIR/identity.json  identity weights, focal length, image size, conventions
 //   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with UVs
 //   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
+// With --refine (shading-based refinement, §4.2-4.3) also:
+//   lighting columns l0..l8 per frame, DIR/albedo.png (ICT UV layout),
+//   refined finest-level meshes with --meshes, and with --overlay
+//   DIR/shaded.mp4 (the refined geometry shaded) and DIR/heatmap.mp4 (the
+//   photometric error, paper Fig. 4.11).
 // Every file is written under a temporary name and renamed when complete.
 #include <filesystem>
 #include <string>
 
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/refine/refiner.hpp"
 
 namespace facecap {
 
@@ -22,6 +28,8 @@ struct TrackOptions {
   bool meshes = false;
   MeshSpace mesh_space = MeshSpace::kModel;
   bool overlay = false;
+  bool refine = false;
+  RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
 };
 
@@ -29,6 +37,8 @@ struct TrackSummary {
   CaptureSummary capture;
   std::filesystem::path output_dir;
   int meshes_written = 0;
+  int refined_frames = 0;
+  double refine_ms = 0;  // total, on the refinement thread
 };
 
 TrackSummary run_track(const FaceModel& model, const std::string& input, const std::filesystem::path& output_dir,

@@ -1,0 +1,176 @@
+#include "facecap/pipeline/refine_eval.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "facecap/core/progress.hpp"
+#include "facecap/render/photometric.hpp"
+#include "facecap/synth/synth_renderer.hpp"
+
+namespace facecap {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
+  const double k = l.squaredNorm() > 0 ? l.dot(truth) / l.squaredNorm() : 1.0;
+  return (k * l - truth).norm() / truth.norm();
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double cov = 0, va = 0, vb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    cov += (a[i] - ma) * (b[i] - mb);
+    va += (a[i] - ma) * (a[i] - ma);
+    vb += (b[i] - mb) * (b[i] - mb);
+  }
+  return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+}
+
+struct SurfaceImage {
+  RasterBuffers buffers;
+  cv::Mat normals;
+};
+
+SurfaceImage render_surface(const Positions& points, const std::vector<Triangle>& triangles, const PinholeCamera& cam,
+                            int w, int h) {
+  SurfaceImage s;
+  s.buffers.resize(w, h);
+  rasterize(points, triangles, cam, s.buffers);
+  s.normals = face_normal_image(s.buffers, triangles, points);
+  return s;
+}
+
+}  // namespace
+
+std::vector<bool> face_skin_mask() {
+  std::vector<bool> mask(regions::kFace.num_vertices(), false);
+  for (int v = regions::kNarrowFace.first_vertex; v <= regions::kNarrowFace.last_vertex; ++v) mask[v] = true;
+  return mask;
+}
+
+Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options) {
+  const std::vector<Polygon> polygons(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
+  return Refiner(polygons, regions::kFace.num_vertices(), options, face_skin_mask());
+}
+
+RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineEvalOptions& o) {
+  SynthOptions so;
+  so.frames = o.frames;
+  so.seed = o.seed;
+  so.width = o.width;
+  so.height = o.height;
+  so.detail = true;
+  const SynthPerformance perf = make_performance(model, so);
+  const SynthRenderer renderer(model, perf);
+  const TriangleMesh face = model.region_mesh(regions::kFace);
+  Refiner refiner = make_face_refiner(model, o.refine);
+  std::mt19937_64 rng(o.seed + 99);
+
+  RefineEvalResult r;
+  double refine_ms = 0;
+  double normal_sum = 0, normal_coarse_sum = 0, depth_sum = 0, depth_coarse_sum = 0;
+  long pixels = 0;
+  std::vector<bool> seen(face.num_vertices, false);
+  Progress progress("refine eval", o.frames, o.quiet);
+  for (const SynthFrame& f : perf.frames) {
+    const cv::Mat image = renderer.render(f, rng);
+    const Positions coarse = to_camera(model.evaluate(perf.identity, f.expression, regions::kFace), f.pose);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Refinement ref = refiner.refine(image, coarse, perf.camera);
+    refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.lighting_error_rel += scaled_lighting_error(ref.lighting, f.lighting);
+    for (int v = 0; v < face.num_vertices; ++v) seen[v] = seen[v] || ref.visible[v];
+
+    // The three surfaces, per pixel.
+    const SurfaceImage truth =
+        render_surface(renderer.detailed_face(f), renderer.detail_mesh()->triangles, perf.camera, o.width, o.height);
+    const SurfaceImage refined = render_surface(ref.positions, refiner.hierarchy().level(ref.levels - 1).triangles,
+                                                perf.camera, o.width, o.height);
+    const SurfaceImage base = render_surface(coarse, face.triangles, perf.camera, o.width, o.height);
+    for (int y = 0; y < o.height; ++y) {
+      for (int x = 0; x < o.width; ++x) {
+        const size_t i = size_t(y) * o.width + x;
+        if (!truth.buffers.covered(x, y) || !refined.buffers.covered(x, y) || !base.buffers.covered(x, y)) continue;
+        const cv::Vec3f nt = truth.normals.at<cv::Vec3f>(y, x), nr = refined.normals.at<cv::Vec3f>(y, x),
+                        nc = base.normals.at<cv::Vec3f>(y, x);
+        auto angle = [](const cv::Vec3f& a, const cv::Vec3f& b) {
+          const double c = a.dot(b) / std::max(1e-12, double(cv::norm(a) * cv::norm(b)));
+          return std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg;
+        };
+        normal_sum += angle(nr, nt);
+        normal_coarse_sum += angle(nc, nt);
+        depth_sum += 10.0 * std::abs(refined.buffers.depth[i] - truth.buffers.depth[i]);
+        depth_coarse_sum += 10.0 * std::abs(base.buffers.depth[i] - truth.buffers.depth[i]);
+        ++pixels;
+      }
+    }
+    ++r.frames;
+    r.levels = ref.levels;
+    r.finest_vertices = static_cast<int>(ref.positions.cols());
+    progress.update(r.frames);
+  }
+  progress.finish();
+  r.lighting_error_rel /= std::max(1, r.frames);
+  r.refine_ms_per_frame = refine_ms / std::max(1, r.frames);
+  if (pixels > 0) {
+    r.normal_error_deg = normal_sum / pixels;
+    r.normal_error_coarse_deg = normal_coarse_sum / pixels;
+    r.vertex_error_mm = depth_sum / pixels;
+    r.vertex_error_coarse_mm = depth_coarse_sum / pixels;
+  }
+  std::vector<double> est, tru;
+  const Positions& albedo = refiner.coarse_albedo();
+  for (int v = 0; v < face.num_vertices; ++v) {
+    if (!seen[v]) continue;
+    for (int c = 0; c < 3; ++c) {
+      est.push_back(albedo(c, v));
+      tru.push_back(renderer.appearance().vertex_albedo(c, v));
+    }
+  }
+  r.albedo_corr = pearson(est, tru);
+  return r;
+}
+
+RefineVideoResult evaluate_refine_video(const FaceModel& model, const std::string& path, const CaptureOptions& capture,
+                                        const RefineOptions& refine) {
+  auto source = open_input(path);
+  const InputInfo info = source->info();
+  const TriangleMesh face = model.region_mesh(regions::kFace);
+  const std::vector<Triangle> skin = masked_triangles(face.triangles, face_skin_mask());
+  Refiner refiner = make_face_refiner(model, refine);
+  RefineVideoResult r;
+  double refine_ms = 0;
+  CaptureOptions c = capture;
+  c.keep_images = true;
+  run_capture(model, *source, c, [&](const CapturedFrame& f) {
+    if (f.status == TrackStatus::kLost) return;
+    const PinholeCamera cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
+    const Positions coarse =
+        to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Refinement ref = refiner.refine(f.image, coarse, cam);
+    refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const PhotometricError coarse_error = photometric_error(
+        f.image, coarse, skin, vertex_normals(coarse, face.triangles), refiner.coarse_albedo(), ref.lighting, cam);
+    const PhotometricError refined_error = photometric_error(
+        f.image, ref.positions, masked_triangles(refiner.hierarchy().level(ref.levels - 1).triangles, ref.data_mask),
+        ref.normals, ref.albedo, ref.lighting, cam);
+    r.photometric_coarse += coarse_error.mean_abs;
+    r.photometric_refined += refined_error.mean_abs;
+    ++r.frames;
+  });
+  if (r.frames > 0) {
+    r.photometric_coarse /= r.frames;
+    r.photometric_refined /= r.frames;
+    r.refine_ms_per_frame = refine_ms / r.frames;
+  }
+  return r;
+}
+
+}  // namespace facecap

@@ -1,0 +1,60 @@
+#pragma once
+// `facecap eval refine`: the shading-based refinement measured.
+//  - synthetic: `facecap synth --detail` renders (known albedo, SH lighting
+//    and wrinkle displacements) refined from their true coarse geometry (or
+//    the tracked one): lighting error up to the albedo scale, albedo
+//    correlation, and normal and depth errors of the refined and the coarse
+//    surface against the true detailed surface, per pixel.
+//  - video: real footage tracked and refined: photometric error of the coarse
+//    and the refined mesh rendered with the recovered albedo and lighting.
+#include <cstdint>
+#include <string>
+
+#include "facecap/pipeline/capture_session.hpp"
+#include "facecap/refine/refiner.hpp"
+
+namespace facecap {
+
+struct RefineEvalOptions {
+  int frames = 16;
+  uint64_t seed = 1;
+  int width = 1280;
+  int height = 720;
+  RefineOptions refine;
+  bool quiet = false;
+};
+
+struct RefineEvalResult {
+  int frames = 0;
+  int levels = 0;
+  int finest_vertices = 0;
+  // ||k l - l_true|| / ||l_true|| with the best scale k: albedo times
+  // lighting is only determined up to a common factor.
+  double lighting_error_rel = 0;
+  double albedo_corr = 0;           // Pearson, RGB of the vertices seen
+  double normal_error_deg = 0;      // refined finest level vs the true detailed surface: geometric (triangle) normals per pixel
+  double normal_error_coarse_deg = 0;
+  double vertex_error_mm = 0;       // |depth - true depth| per pixel
+  double vertex_error_coarse_mm = 0;
+  double refine_ms_per_frame = 0;
+};
+
+// The refinement's data mask on the face region: the narrow face area of
+// FACTS.md (skin; the face region also covers neck, hairline and ears).
+std::vector<bool> face_skin_mask();
+// A refiner for the model's face region with that mask.
+Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options);
+
+RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineEvalOptions& options);
+
+struct RefineVideoResult {
+  int frames = 0;
+  double photometric_coarse = 0;   // mean absolute difference, 0-255, over skin pixels (narrow face area), mean over frames
+  double photometric_refined = 0;
+  double refine_ms_per_frame = 0;
+};
+
+RefineVideoResult evaluate_refine_video(const FaceModel& model, const std::string& path, const CaptureOptions& capture,
+                                        const RefineOptions& refine);
+
+}  // namespace facecap

@@ -1,0 +1,52 @@
+#pragma once
+// The refinement stage of capture (§4.4.1: coarse tracking and refinement
+// run concurrently on consecutive frames): a worker thread that takes
+// tracked frames from a bounded queue, refines them, and hands each result,
+// in frame order, to a consumer (the track job's writers).
+#include <functional>
+#include <memory>
+#include <thread>
+
+#include "facecap/core/bounded_queue.hpp"
+#include "facecap/pipeline/capture_session.hpp"
+#include "facecap/refine/refiner.hpp"
+
+namespace facecap {
+
+struct RefinedFrame {
+  CapturedFrame frame;
+  std::optional<Refinement> refinement;  // empty for lost frames
+  PinholeCamera camera;
+  Positions coarse;                      // camera-space coarse face (tracked frames)
+};
+
+class RefineStage {
+ public:
+  using Consumer = std::function<void(const RefinedFrame&)>;
+  // The consumer runs on the stage's thread.
+  RefineStage(const FaceModel& model, const RefineOptions& options, Consumer consumer, int queue_size = 3);
+  ~RefineStage();
+
+  // Queues a frame (blocks while the queue is full). Rethrows a failure of the worker.
+  void push(const CapturedFrame& frame);
+  // Waits for the queue to drain; rethrows a failure of the worker.
+  void finish();
+
+  const Refiner& refiner() const { return refiner_; }
+  double refine_ms() const { return refine_ms_; }
+  int refined_frames() const { return refined_; }
+
+ private:
+  void run();
+
+  const FaceModel& model_;
+  Refiner refiner_;
+  Consumer consumer_;
+  BoundedQueue<CapturedFrame> queue_;
+  std::exception_ptr error_;
+  double refine_ms_ = 0;
+  int refined_ = 0;
+  std::jthread worker_;
+};
+
+}  // namespace facecap

@@ -1,0 +1,162 @@
+#include "facecap/refine/refiner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace facecap {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+Refiner::Refiner(std::vector<Polygon> polygons, int num_vertices, RefineOptions options, std::vector<bool> data_mask)
+    : polygons_(std::move(polygons)), num_vertices_(num_vertices), data_mask_(std::move(data_mask)), options_(options) {
+  if (data_mask_.empty()) data_mask_.assign(num_vertices_, true);
+}
+
+std::vector<Triangle> masked_triangles(const std::vector<Triangle>& triangles, const std::vector<bool>& mask) {
+  std::vector<Triangle> out;
+  for (const Triangle& t : triangles)
+    if (mask[t[0]] && mask[t[1]] && mask[t[2]]) out.push_back(t);
+  return out;
+}
+
+namespace {
+// Vertices outside the mask are not observations.
+void apply_mask(VertexSamples& s, const std::vector<bool>& mask) {
+  s.visible_count = 0;
+  for (size_t i = 0; i < s.visible.size(); ++i) {
+    s.visible[i] = s.visible[i] && mask[i];
+    s.visible_count += s.visible[i];
+  }
+}
+}  // namespace
+
+const Positions& Refiner::coarse_albedo() const {
+  static const Positions empty;
+  return albedo_ ? albedo_->albedo() : empty;
+}
+
+Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera) {
+  if (!initialised()) {
+    hierarchy_ = MeshHierarchy::build(polygons_, num_vertices_, coarse, camera, options_.hierarchy);
+    albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo);
+    previous_.assign(hierarchy_.num_levels(), Eigen::VectorXf());
+    raster_.assign(hierarchy_.num_levels(), RasterBuffers());
+  }
+  const int levels = hierarchy_.num_levels();
+  Refinement out;
+  out.levels = levels;
+  out.timings.level_ms.assign(levels, 0.0);
+
+  // Mesh level l pairs with the image 2^(levels - 1 - l) times smaller.
+  auto t0 = std::chrono::steady_clock::now();
+  const std::vector<cv::Mat> pyramid = image_pyramid(image, levels);
+  auto image_for = [&](int l) -> const cv::Mat& { return pyramid[levels - 1 - l]; };
+  auto camera_for = [&](int l) { return scaled_camera(camera, double(1 << (levels - 1 - l))); };
+  out.timings.pyramid_ms = ms_since(t0);
+
+  // Lighting on the coarsest level with last frame's displacements (M_d = M + d N).
+  t0 = std::chrono::steady_clock::now();
+  const MeshLevel& level0 = hierarchy_.level(0);
+  const Positions normals0 = level_normals(level0, coarse);
+  Positions md = coarse;
+  if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, normals0, previous_[0]);
+  const Positions md_normals = level_normals(level0, md);
+  VertexSamples samples0 = sample_vertices(image_for(0), md, md_normals, masked_triangles(level0.triangles, data_mask_),
+                                          camera_for(0), raster_[0]);
+  apply_mask(samples0, data_mask_);
+  if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
+  const ShCoeffs lighting = estimate_lighting(samples0, md_normals, albedo_->albedo(), lighting_, options_.lighting);
+  out.timings.lighting_ms = ms_since(t0);
+
+  // Albedo during the first frames: lighting and albedo alternately over all
+  // the albedo frames so far (a bilinear problem; one pass per frame would
+  // bake the first frame's lighting error into the albedo).
+  t0 = std::chrono::steady_clock::now();
+  ShCoeffs frame_lighting = lighting;
+  const bool albedo_frame = !albedo_->fixed() && frame_count_ % std::max(1, options_.albedo.interval) == 0;
+  ++frame_count_;
+  if (albedo_frame) {
+    albedo_frames_.push_back({samples0, md_normals, lighting});
+    for (int round = 0; round < options_.albedo_rounds; ++round) {
+      albedo_->clear_data();
+      for (AlbedoFrame& f : albedo_frames_) {
+        if (round > 0) f.lighting = estimate_lighting(f.samples, f.normals, albedo_->albedo(), std::nullopt, options_.lighting);
+        albedo_->add_frame(f.samples, f.normals, f.lighting);
+      }
+      albedo_->solve();
+    }
+    frame_lighting = estimate_lighting(samples0, md_normals, albedo_->albedo(), lighting_, options_.lighting);
+    if (albedo_->fixed()) albedo_frames_.clear();
+  }
+  out.timings.albedo_ms = ms_since(t0);
+  lighting_ = frame_lighting;
+  out.lighting = frame_lighting;
+  const ShCoeffs& lighting_used = frame_lighting;
+
+  // Displacements, coarse to fine.
+  Eigen::MatrixXf base = coarse;
+  Eigen::MatrixXf albedo = albedo_->albedo();
+  Eigen::VectorXf d;
+  for (int l = 0; l < levels; ++l) {
+    t0 = std::chrono::steady_clock::now();
+    const MeshLevel& level = hierarchy_.level(l);
+    Eigen::VectorXf prolonged;
+    if (l > 0) {
+      base = hierarchy_.prolong(base, l);
+      albedo = hierarchy_.prolong(albedo, l);
+      prolonged = hierarchy_.prolong(Eigen::MatrixXf(d.transpose()), l).transpose();
+    }
+    DisplacementProblem problem;
+    problem.level = &level;
+    problem.base = base;
+    problem.base_normals = level_normals(level, problem.base);
+    problem.albedo = albedo;
+    problem.lighting = lighting_used;
+    const std::vector<bool> mask = hierarchy_.prolong_mask(data_mask_, l);
+    const std::vector<Triangle> skin = masked_triangles(level.triangles, mask);
+    VertexSamples samples =
+        sample_vertices(image_for(l), problem.base, problem.base_normals, skin, camera_for(l), raster_[l]);
+    apply_mask(samples, mask);
+    // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
+    problem.active = samples.visible;
+    for (int grow = 0; grow < 2; ++grow) {
+      std::vector<bool> next = problem.active;
+      for (int i = 0; i < level.num_vertices; ++i) {
+        if (!problem.active[i]) continue;
+        for (int s = level.rings.offsets[i]; s < level.rings.offsets[i + 1]; ++s) next[level.rings.indices[s]] = true;
+      }
+      problem.active = std::move(next);
+    }
+    problem.samples = &samples;
+    problem.prolonged = prolonged;
+    if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];
+    // Start from the coarser level's solution, or at level 0 from last frame's.
+    d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
+    const DisplacementReport rep = solve_displacements(problem, d, options_.displacement);
+    if (std::getenv("FACECAP_REFINE_DEBUG")) {
+      std::fprintf(stderr, "level %d: %d verts, visible %d, cost %.4f -> %.4f in %d steps, |d| max %.4f cm rms %.4f\n", l,
+                   level.num_vertices, samples.visible_count, rep.initial_cost, rep.final_cost, rep.steps,
+                   d.cwiseAbs().maxCoeff(), std::sqrt(d.squaredNorm() / std::max<Eigen::Index>(1, d.size())));
+    }
+    previous_[l] = d;
+    if (l == levels - 1) {
+      out.positions = displaced_positions(problem.base, problem.base_normals, d);
+      out.normals = level_normals(level, out.positions);
+      out.albedo = albedo;
+      out.visible = samples.visible;
+      out.data_mask = mask;
+    }
+    out.timings.level_ms[l] = ms_since(t0);
+  }
+  return out;
+}
+
+}  // namespace facecap

@@ -1,0 +1,91 @@
+#pragma once
+// Shading-based refinement of a tracked face (§4.2-4.3), one frame at a time:
+// the mesh hierarchy is built on the first frame; each frame then estimates
+// the SH lighting on the coarsest level (with the previous frame's
+// displacements, M_d = M + d_{t-1} N), updates the albedo during the first
+// frames (then holds it), and solves the displacements level by level from
+// coarse to fine, each level starting from the prolonged coarser solution.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/refine/albedo.hpp"
+#include "facecap/refine/displacement_solver.hpp"
+#include "facecap/refine/lighting.hpp"
+#include "facecap/refine/mesh_hierarchy.hpp"
+
+namespace facecap {
+
+struct RefineOptions {
+  int albedo_rounds = 4;  // lighting/albedo alternations over the albedo frames at each new one
+  HierarchyOptions hierarchy;
+  LightingOptions lighting;
+  AlbedoOptions albedo;
+  DisplacementOptions displacement;
+};
+
+// Milliseconds per part of one frame's refinement.
+struct RefineTimings {
+  double pyramid_ms = 0;
+  double lighting_ms = 0;
+  double albedo_ms = 0;
+  std::vector<double> level_ms;  // displacement solve per level
+};
+
+struct Refinement {
+  ShCoeffs lighting;
+  Positions positions;  // refined finest level, camera space (cm)
+  Positions normals;    // of the refined finest level
+  Positions albedo;     // finest level, RGB
+  std::vector<bool> visible;  // finest level vertices seen in this frame (and in the data mask)
+  std::vector<bool> data_mask;  // finest level vertices the estimators used
+  int levels = 0;
+  RefineTimings timings;
+};
+
+// The triangles whose three vertices are all in `mask`.
+std::vector<Triangle> masked_triangles(const std::vector<Triangle>& triangles, const std::vector<bool>& mask);
+
+class Refiner {
+ public:
+  // polygons / num_vertices: the coarse mesh (the face region). data_mask:
+  // the coarse vertices whose colours the estimators may use (the skin: not
+  // the neck and shirt, hairline or ears the face region also covers); empty
+  // = all.
+  Refiner(std::vector<Polygon> polygons, int num_vertices, RefineOptions options = {},
+          std::vector<bool> data_mask = {});
+
+  // Refines one frame: `coarse` are the coarse mesh's camera-space positions
+  // (the tracked face), `image` the BGR 8-bit frame, `camera` its intrinsics.
+  Refinement refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera);
+
+  bool initialised() const { return hierarchy_.num_levels() > 0; }
+  const MeshHierarchy& hierarchy() const { return hierarchy_; }
+  // The albedo at the coarsest level (3 x N RGB) and whether it is final.
+  const Positions& coarse_albedo() const;
+  bool albedo_fixed() const { return albedo_ && albedo_->fixed(); }
+
+ private:
+  std::vector<Polygon> polygons_;
+  int num_vertices_;
+  std::vector<bool> data_mask_;
+  RefineOptions options_;
+  MeshHierarchy hierarchy_;
+  std::unique_ptr<AlbedoEstimator> albedo_;
+  std::optional<ShCoeffs> lighting_;
+  std::vector<Eigen::VectorXf> previous_;  // per level, last frame's displacements
+  // The albedo frames' coarsest-level samples and normals, kept until the
+  // albedo is fixed: lighting and albedo are solved alternately over all of them.
+  struct AlbedoFrame {
+    VertexSamples samples;
+    Positions normals;
+    ShCoeffs lighting;
+  };
+  std::vector<AlbedoFrame> albedo_frames_;
+  int frame_count_ = 0;
+  std::vector<RasterBuffers> raster_;  // per level, reused across frames
+};
+
+}  // namespace facecap

@@ -1,0 +1,49 @@
+#include "facecap/refine/vertex_samples.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/image_sampling.hpp"
+#include "facecap/render/rasterizer.hpp"
+
+namespace facecap {
+
+VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Positions& n,
+                              const std::vector<Triangle>& triangles, const PinholeCamera& camera) {
+  RasterBuffers buffers;
+  return sample_vertices(image, p, n, triangles, camera, buffers);
+}
+
+VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Positions& n,
+                              const std::vector<Triangle>& triangles, const PinholeCamera& camera,
+                              RasterBuffers& buffers) {
+  if (buffers.width != image.cols || buffers.height != image.rows) buffers.resize(image.cols, image.rows);
+  rasterize(p, triangles, camera, buffers);
+  VertexSamples s;
+  s.visible = vertex_visibility(p, n, camera, buffers, 0.1f);
+  s.colour = Positions::Zero(3, p.cols());
+  for (Eigen::Index i = 0; i < p.cols(); ++i) {
+    if (!s.visible[i]) continue;
+    const Vec2f q = camera.project(Vec3f(p.col(i)));
+    s.colour.col(i) = sample_bilinear_rgb8(image, q.x(), q.y());
+    ++s.visible_count;
+  }
+  return s;
+}
+
+std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels) {
+  std::vector<cv::Mat> out(std::max(1, levels));
+  out[0] = bgr8;
+  for (int l = 1; l < levels; ++l) {
+    cv::resize(out[l - 1], out[l], cv::Size((out[l - 1].cols + 1) / 2, (out[l - 1].rows + 1) / 2), 0, 0,
+               cv::INTER_AREA);
+  }
+  return out;
+}
+
+PinholeCamera scaled_camera(const PinholeCamera& c, double factor) {
+  // Pixel x at full resolution covers [x - 0.5, x + 0.5]; at 1/factor it is
+  // (x + 0.5) / factor - 0.5.
+  return {c.focal / factor, (c.cx + 0.5) / factor - 0.5, (c.cy + 0.5) / factor - 0.5};
+}
+
+}  // namespace facecap

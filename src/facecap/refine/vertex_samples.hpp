@@ -1,0 +1,38 @@
+#pragma once
+// What the shading estimators read from a frame at a mesh level: each
+// vertex's colour (bilinear, at its projection) and whether it is visible
+// (depth test against the rasterised level, normal facing the camera).
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/core/mesh.hpp"
+#include "facecap/render/rasterizer.hpp"
+
+namespace facecap {
+
+struct VertexSamples {
+  Positions colour;           // 3 x N, RGB in [0, 1]
+  std::vector<bool> visible;  // inside the image, passes the depth test, faces the camera
+  int visible_count = 0;
+};
+
+// `image`: BGR 8-bit at the resolution `camera` describes. Only vertices in
+// `active` (all when empty) are rasterised and sampled.
+VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_points, const Positions& camera_normals,
+                              const std::vector<Triangle>& triangles, const PinholeCamera& camera);
+// The same with caller-owned raster buffers, reused across frames (a 720p
+// buffer is 15 MB: allocating it per frame costs more than rasterising).
+VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_points, const Positions& camera_normals,
+                              const std::vector<Triangle>& triangles, const PinholeCamera& camera,
+                              RasterBuffers& buffers);
+
+// An 8-bit image pyramid: level 0 the frame, each next level half the size.
+// The refinement reads level k - 1 - l for mesh level l of k.
+std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels);
+
+// The camera for an image `factor` times smaller (pixel centres kept consistent).
+PinholeCamera scaled_camera(const PinholeCamera& camera, double factor);
+
+}  // namespace facecap
