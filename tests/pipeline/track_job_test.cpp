@@ -93,6 +93,37 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   EXPECT_EQ(csv[34].find("lost"), std::string::npos) << csv[34];  // back
 }
 
+TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = 32;
+  o.meshes = true;
+  o.overlay = true;
+  o.refine = true;
+  const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
+  EXPECT_EQ(s.refined_frames, 32 - s.capture.lost);
+  const auto csv = lines(dir.path() / "frames.csv");
+  ASSERT_EQ(csv.size(), 33u);
+  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9);
+  EXPECT_NE(csv[0].find(",l8"), std::string::npos);
+  for (size_t i = 1; i < csv.size(); ++i) EXPECT_EQ(csv[i].find("nan"), std::string::npos);
+  const cv::Mat albedo = cv::imread((dir.path() / "albedo.png").string());
+  ASSERT_FALSE(albedo.empty());
+  EXPECT_GT(cv::mean(albedo)[2], 20.0);  // skin, not black
+  for (const char* video_name : {"overlay.mp4", "shaded.mp4", "heatmap.mp4"}) {
+    EXPECT_EQ(open_input((dir.path() / video_name).string())->info().frames, 32) << video_name;
+  }
+  // The meshes are the refined finest level (at 400x300 the face is small
+  // enough that the hierarchy has a single level: epsilon rule).
+  const auto obj = lines(dir.path() / "meshes" / "frame_000031.obj");
+  EXPECT_NE(std::find(obj.begin(), obj.end(), "# refined (finest level)"), obj.end());
+  EXPECT_GE(std::count_if(obj.begin(), obj.end(), [](const std::string& l) { return l.rfind("v ", 0) == 0; }),
+            regions::kFace.num_vertices());
+}
+
 TEST(TrackJob, BadInputWritesNothing) {
   FACECAP_REQUIRE_MODEL(model);
   TempDir dir;

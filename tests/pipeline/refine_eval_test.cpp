@@ -1,0 +1,42 @@
+// The shading refinement on synthetic truth and on real footage. The issue's
+// bars that are not met (see the note on issue 4) are not asserted here;
+// these guard what the refinement does achieve.
+#include "facecap/pipeline/refine_eval.hpp"
+
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+
+namespace facecap {
+
+TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
+  FACECAP_REQUIRE_MODEL(model);
+  RefineEvalOptions o;
+  o.frames = 8;
+  o.seed = 1;
+  o.quiet = true;
+  const RefineEvalResult r = evaluate_refine_synthetic(*model, o);
+  EXPECT_EQ(r.frames, 8);
+  EXPECT_GE(r.levels, 2);
+  EXPECT_GE(r.albedo_corr, 0.9);
+  EXPECT_TRUE(std::isfinite(r.lighting_error_rel));
+  EXPECT_LT(r.lighting_error_rel, 0.5);
+  // Refined depth stays within a fraction of a millimetre of the truth.
+  EXPECT_LT(r.vertex_error_mm, 0.2);
+  EXPECT_TRUE(std::isfinite(r.normal_error_deg));
+}
+
+TEST(RefineEval, RealFootageRefinedMeshExplainsTheImageBetter) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  CaptureOptions c;
+  c.quiet = true;
+  c.max_frames = 40;
+  const RefineVideoResult r = evaluate_refine_video(*model, video.string(), c, RefineOptions{});
+  EXPECT_EQ(r.frames, 40);
+  EXPECT_TRUE(std::isfinite(r.photometric_refined));
+  EXPECT_LT(r.photometric_refined, r.photometric_coarse);
+  EXPECT_LT(r.photometric_coarse, 10.0);  // the recovered albedo and lighting explain the skin
+}
+
+}  // namespace facecap
