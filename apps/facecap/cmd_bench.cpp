@@ -1,7 +1,11 @@
 #include <thread>
 
 #include "commands.hpp"
+#include <chrono>
+#include <memory>
+
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/refine_stage.hpp"
 
 namespace facecap::cli {
 
@@ -31,16 +35,55 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
   struct Args {
     std::string input;
     CaptureOptions capture;
+    bool refine = false;
   };
   auto a = std::make_shared<Args>();
   track->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
   track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)");
+  track->add_flag("--refine", a->refine,
+                  "Also the shading refinement, on its own thread (lighting, albedo, each level's displacement solve)");
   track->callback([a, &global] {
     const FaceModel model = load_model(global);
     auto source = open_input(a->input);
     a->capture.quiet = true;
-    const CaptureSummary s = run_capture(model, *source, a->capture, [](const CapturedFrame&) {});
+    a->capture.keep_images = a->refine;
+    // Refinement timings, summed on the stage's thread.
+    double lighting = 0, albedo = 0, pyramid = 0;
+    std::vector<double> levels;
+    int refined = 0;
+    std::unique_ptr<RefineStage> stage;
+    if (a->refine) {
+      stage = std::make_unique<RefineStage>(model, RefineOptions{}, [&](const RefinedFrame& r) {
+        if (!r.refinement) return;
+        const RefineTimings& t = r.refinement->timings;
+        lighting += t.lighting_ms;
+        albedo += t.albedo_ms;
+        pyramid += t.pyramid_ms;
+        levels.resize(std::max(levels.size(), t.level_ms.size()), 0.0);
+        for (size_t l = 0; l < t.level_ms.size(); ++l) levels[l] += t.level_ms[l];
+        ++refined;
+      });
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const CaptureSummary s = run_capture(model, *source, a->capture, [&](const CapturedFrame& f) {
+      if (stage) stage->push(f);
+    });
+    if (stage) stage->finish();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json j = timings_json(s.timings);
+    if (stage) {
+      const double n = std::max(1, refined);
+      nlohmann::json per_level = nlohmann::json::array();
+      for (double v : levels) per_level.push_back(v / n);
+      j["refine"] = {{"frames", refined},
+                     {"pyramid_ms_per_frame", pyramid / n},
+                     {"lighting_ms_per_frame", lighting / n},
+                     {"albedo_ms_per_frame", albedo / n},
+                     {"albedo_note", "the albedo is solved during the first frames only (every 3rd of the first 30)"},
+                     {"displacement_ms_per_level", per_level},
+                     {"total_ms_per_frame", stage->refine_ms() / n}};
+      j["fps_with_refine"] = (wall - s.timings.setup_ms / 1000) > 0 ? s.frames / (wall - s.timings.setup_ms / 1000) : 0.0;
+    }
     j["input"] = a->input;
     j["width"] = s.input.width;
     j["height"] = s.input.height;

@@ -1,117 +1,51 @@
 #include "facecap/fit/frame_solver.hpp"
 
-#include <Eigen/Cholesky>
 #include <limits>
 
 #include "facecap/core/box_qp.hpp"
 
 namespace facecap {
 
-BlockSolveReport solve_pose(const FrameEnergy& energy, FrameParameters& x, int max_iterations) {
-  BlockSolveReport rep;
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j;
-  double lambda = 1e-3;
-  double cost = energy.linearize(x, r, j);
-  rep.initial_cost = cost;
-  for (rep.iterations = 0; rep.iterations < max_iterations; ++rep.iterations) {
-    const Eigen::Matrix<double, Eigen::Dynamic, 6> jp = j.leftCols<6>();
-    const Eigen::Matrix<double, 6, 6> h = jp.transpose() * jp;
-    const Eigen::Matrix<double, 6, 1> g = jp.transpose() * r;
-    bool accepted = false;
-    for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
-      Eigen::Matrix<double, 6, 6> damped = h;
-      damped.diagonal() += lambda * h.diagonal().cwiseMax(1e-9);
-      const Eigen::Matrix<double, 6, 1> step = damped.ldlt().solve(-g);
-      FrameParameters trial = x;
-      for (int k = 0; k < 6; ++k) trial.values[k] += step[k];
-      const double trial_cost = energy.cost(trial);
-      if (trial_cost < cost) {
-        accepted = true;
-        const double decrease = cost - trial_cost;
-        x = trial;
-        lambda = std::max(1e-7, lambda / 3.0);
-        cost = energy.linearize(x, r, j);
-        if (decrease < 1e-7 * (1.0 + cost)) {
-          rep.final_cost = cost;
-          return rep;
-        }
-      } else {
-        lambda *= 4.0;
-      }
-    }
-    if (!accepted) break;
-  }
-  rep.final_cost = cost;
-  return rep;
-}
+namespace {
 
-BlockSolveReport solve_expression(const FrameEnergy& energy, FrameParameters& x, int max_iterations) {
+// Levenberg-Marquardt over the frame block's columns [first, last): each
+// damped Gauss-Newton step is solved exactly as a QP whose bounds keep the
+// expression weights in [0, 1] (pose columns are unbounded), and accepted only
+// when it lowers the energy.
+BlockSolveReport levenberg_marquardt(const FrameEnergy& energy, FrameParameters& x, int first, int last,
+                                     int max_iterations) {
   BlockSolveReport rep;
-  const int n = x.num_expressions();
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j;
-  double cost = energy.linearize(x, r, j);
-  rep.initial_cost = cost;
-  for (rep.iterations = 0; rep.iterations < max_iterations; ++rep.iterations) {
-    const auto jw = j.rightCols(n);
-    const Eigen::MatrixXd h = jw.transpose() * jw;
-    // The L1 sparsity prior is linear on w >= 0: it adds lambda to the gradient.
-    const Eigen::VectorXd g = jw.transpose() * r + Eigen::VectorXd::Constant(n, energy.expression_l1());
-    const Eigen::VectorXd w = x.expression();
-    Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
-    // The Gauss-Newton model restricted to 0 <= w + step <= 1, solved exactly.
-    solve_box_qp(h, g, -w, Eigen::VectorXd::Ones(n) - w, step);
-    double trial_cost = cost;
-    FrameParameters trial = x;
-    for (int halving = 0; halving < 4; ++halving) {
-      trial = x;
-      trial.expression() = w + step;
-      trial_cost = energy.cost(trial);
-      if (trial_cost < cost) break;
-      step *= 0.5;  // a box-feasible direction stays feasible when shortened
-    }
-    if (trial_cost >= cost) break;
-    const double decrease = cost - trial_cost;
-    x = trial;
-    cost = energy.linearize(x, r, j);
-    if (decrease < 1e-6 * (1.0 + cost)) {
-      ++rep.iterations;
-      break;
-    }
-  }
-  rep.final_cost = cost;
-  return rep;
-}
-
-BlockSolveReport solve_joint(const FrameEnergy& energy, FrameParameters& x, int max_iterations) {
-  BlockSolveReport rep;
-  const int n = x.num_expressions();
-  const int size = frame_block::kExpression + n;
+  const int size = last - first;
+  const double inf = std::numeric_limits<double>::infinity();
   Eigen::VectorXd r;
   Eigen::MatrixXd j;
   double cost = energy.linearize(x, r, j);
   rep.initial_cost = cost;
   double lambda = 1e-4;
-  const double inf = std::numeric_limits<double>::infinity();
   for (rep.iterations = 0; rep.iterations < max_iterations; ++rep.iterations) {
-    const Eigen::MatrixXd h = j.transpose() * j;
-    Eigen::VectorXd g = j.transpose() * r;
-    g.tail(n).array() += energy.expression_l1();
-    const Eigen::VectorXd w = x.expression();
+    const auto jb = j.middleCols(first, size);
+    const Eigen::MatrixXd h = jb.transpose() * jb;
+    Eigen::VectorXd g = jb.transpose() * r;
     Eigen::VectorXd lower(size), upper(size);
-    lower.head(frame_block::kExpression).setConstant(-inf);
-    upper.head(frame_block::kExpression).setConstant(inf);
-    lower.tail(n) = -w;
-    upper.tail(n) = Eigen::VectorXd::Ones(n) - w;
+    for (int k = 0; k < size; ++k) {
+      const int col = first + k;
+      if (col >= frame_block::kExpression) {
+        g[k] += energy.expression_l1();  // the L1 prior is linear on w >= 0
+        lower[k] = -x.values[col];
+        upper[k] = 1.0 - x.values[col];
+      } else {
+        lower[k] = -inf;
+        upper[k] = inf;
+      }
+    }
     bool accepted = false;
-    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
+    for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
       Eigen::MatrixXd damped = h;
       damped.diagonal() += lambda * h.diagonal().cwiseMax(1e-6);
       Eigen::VectorXd step = Eigen::VectorXd::Zero(size);
       solve_box_qp(damped, g, lower, upper, step);
       FrameParameters trial = x;
-      for (int k = 0; k < size; ++k) trial.values[k] += step[k];
+      for (int k = 0; k < size; ++k) trial.values[first + k] += step[k];
       const double trial_cost = energy.cost(trial);
       if (trial_cost < cost) {
         accepted = true;
@@ -120,6 +54,7 @@ BlockSolveReport solve_joint(const FrameEnergy& energy, FrameParameters& x, int 
         lambda = std::max(1e-8, lambda / 4.0);
         cost = energy.linearize(x, r, j);
         if (decrease < 1e-7 * (1.0 + cost)) {
+          ++rep.iterations;
           rep.final_cost = cost;
           return rep;
         }
@@ -131,6 +66,20 @@ BlockSolveReport solve_joint(const FrameEnergy& energy, FrameParameters& x, int 
   }
   rep.final_cost = cost;
   return rep;
+}
+
+}  // namespace
+
+BlockSolveReport solve_pose(const FrameEnergy& energy, FrameParameters& x, int max_iterations) {
+  return levenberg_marquardt(energy, x, 0, frame_block::kExpression, max_iterations);
+}
+
+BlockSolveReport solve_expression(const FrameEnergy& energy, FrameParameters& x, int max_iterations) {
+  return levenberg_marquardt(energy, x, frame_block::kExpression, static_cast<int>(x.values.size()), max_iterations);
+}
+
+BlockSolveReport solve_joint(const FrameEnergy& energy, FrameParameters& x, int max_iterations) {
+  return levenberg_marquardt(energy, x, 0, static_cast<int>(x.values.size()), max_iterations);
 }
 
 }  // namespace facecap

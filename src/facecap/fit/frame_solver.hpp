@@ -1,13 +1,12 @@
 #pragma once
-// The two blocks of the per-frame coordinate descent (§4.1, §4.4.1):
-//  - solve_pose: Levenberg-Marquardt on rotation and translation;
-//  - solve_expression: Gauss-Newton on the 53 weights, each linearised step
-//    solved exactly as a box-constrained QP (0 <= w <= 1).
-//  - solve_joint: Levenberg-Marquardt on pose and weights together, each
-//    damped step solved exactly as a QP with the weights' box; block
-//    alternation alone stalls where pose and expression trade off (a turned
-//    head against an asymmetric expression), the joint step does not.
-// All accept a step only when it lowers the frame energy.
+// The blocks of the per-frame coordinate descent (§4.1, §4.4.1), each by
+// Levenberg-Marquardt with every damped step solved exactly as a QP that keeps
+// the weights in [0, 1], accepted only when it lowers the frame energy:
+//  - solve_pose: rotation and translation;
+//  - solve_expression: the 53 weights;
+//  - solve_joint: both together: block alternation alone stalls where pose
+//    and expression trade off (a turned head against an asymmetric
+//    expression), the joint step does not.
 //
 // Measured departure from DESIGN.md's "Ceres trust region": Ceres' projected
 // trust-region steps needed its 20-iteration cap on every expression solve
