@@ -11,8 +11,9 @@
 int main(int argc, char** argv) {
   using namespace facecap;
   CLI::App app{"facecap " + std::string(kFacecapVersion) +
-               ": capture a face from RGB video (pose, focal length, identity, expression)\n"
-               "and render synthetic ground truth. Every subcommand has --help."};
+               ": capture a face from RGB video: head pose, focal length, identity, 53 expression\n"
+               "weights, and with --refine SH lighting, albedo and wrinkle-level geometry.\n"
+               "Every subcommand has --help."};
   app.set_version_flag("--version", std::string(kFacecapVersion));
   app.require_subcommand(1);
   cli::GlobalOptions global;

@@ -1,9 +1,6 @@
 #include "facecap/refine/refiner.hpp"
 
 #include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 namespace facecap {
 
@@ -140,12 +137,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];
     // Start from the coarser level's solution, or at level 0 from last frame's.
     d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
-    const DisplacementReport rep = solve_displacements(problem, d, options_.displacement);
-    if (std::getenv("FACECAP_REFINE_DEBUG")) {
-      std::fprintf(stderr, "level %d: %d verts, visible %d, cost %.4f -> %.4f in %d steps, |d| max %.4f cm rms %.4f\n", l,
-                   level.num_vertices, samples.visible_count, rep.initial_cost, rep.final_cost, rep.steps,
-                   d.cwiseAbs().maxCoeff(), std::sqrt(d.squaredNorm() / std::max<Eigen::Index>(1, d.size())));
-    }
+    solve_displacements(problem, d, options_.displacement);
     previous_[l] = d;
     if (l == levels - 1) {
       out.positions = displaced_positions(problem.base, problem.base_normals, d);
