@@ -15,6 +15,7 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libdlib-dev libdlib-data libceres-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg libavformat-dev libavcodec-dev libavutil-dev zlib1g-dev
+  libtorch-dev
 )
 
 step "Checking Debian packages"

@@ -1,11 +1,13 @@
+#include <chrono>
+#include <memory>
 #include <thread>
 
 #include "commands.hpp"
-#include <chrono>
-#include <memory>
-
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
+#include "facecap/pipeline/transform_job.hpp"
 
 namespace facecap::cli {
 
@@ -27,6 +29,8 @@ nlohmann::json timings_json(const StageTimings& t) {
 }
 
 }  // namespace
+
+void register_bench_transform(CLI::App& bench, GlobalOptions& global);
 
 void register_bench(CLI::App& app, GlobalOptions& global) {
   auto* bench = app.add_subcommand("bench", "Measure speed: per-stage milliseconds and frames per second (JSON)");
@@ -88,6 +92,51 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
     j["width"] = s.input.width;
     j["height"] = s.input.height;
     j["lost_frames"] = s.lost;
+    j["cores"] = std::thread::hardware_concurrency();
+    print_json(j);
+  });
+  register_bench_transform(*bench, global);
+}
+
+void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
+  auto* cmd = bench.add_subcommand(
+      "transform", "Expression transformation of an input into a scratch file: per-stage ms and the edit's fps");
+  struct Args {
+    std::string input, to = "happiness";
+    int max_frames = 150;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("INPUT", a->input, "Video file or image folder")->required();
+  cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
+  cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
+  cmd->callback([a, &global] {
+    const auto to = parse_emotion(a->to);
+    if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
+    const FaceModel model = load_model(global);
+    TransformJobOptions o;
+    o.capture.max_frames = a->max_frames;
+    o.capture.quiet = true;
+    o.transform.schedule = ExpressionSchedule::constant(*to, 1.0);
+    o.description = "benchmark";
+    const TempDir scratch("facecap-bench");
+    const auto start = std::chrono::steady_clock::now();
+    const TransformSummary s = run_transform(model, a->input, scratch.path() / "bench.mp4", o);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double n = std::max(1, s.timings.frames);
+    const double edit_ms = (s.timings.mapping_ms + s.timings.render_ms) / n;
+    nlohmann::json j = timings_json(s.capture.timings);
+    j["transform"] = {{"frames", s.timings.frames},
+                      {"mapping_smoothing_qp_ms_per_frame", s.timings.mapping_ms / n},
+                      {"rerender_composite_ms_per_frame", s.timings.render_ms / n},
+                      {"edit_ms_per_frame", edit_ms},
+                      {"edit_fps", edit_ms > 0 ? 1000.0 / edit_ms : 0.0},
+                      {"lighting_ms_per_frame", s.timings.lighting_ms / n},
+                      {"note", "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
+                               "refinement's SH estimate (albedo over the first 4 frames)"}};
+    j["fps_end_to_end"] = wall > 0 ? s.timings.frames / wall : 0.0;
+    j["input"] = a->input;
+    j["width"] = s.capture.input.width;
+    j["height"] = s.capture.input.height;
     j["cores"] = std::thread::hardware_concurrency();
     print_json(j);
   });

@@ -4,6 +4,7 @@
 #include "facecap/pipeline/synth_landmark_eval.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/track_eval.hpp"
+#include "facecap/pipeline/transform_eval.hpp"
 
 namespace facecap::cli {
 
@@ -180,6 +181,53 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
   });
 }
 
+void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
+  auto* cmd = eval.add_subcommand("transform",
+                                  "Expression-transformation measures as JSON on real footage: lip error, rise of the "
+                                  "target's defining weights, smoothness against the per-frame mapping, audio");
+  struct Args {
+    std::string video, to = "happiness", output, method = "cyclegan";
+    TransformJobOptions options;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--video", a->video, "Footage of a speaking face")->required();
+  cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
+  cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
+      ->check(CLI::IsMember({"cyclegan", "linear"}))
+      ->capture_default_str();
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
+  cmd->add_option("-o,--output", a->output, "Keep the transformed video here (default: a temporary file)");
+  cmd->add_option("--models", a->options.models_dir, "Expression models folder");
+  cmd->callback([a, &global] {
+    const auto to = parse_emotion(a->to);
+    if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
+    const FaceModel model = load_model(global);
+    a->options.capture.quiet = global.quiet;
+    a->options.transform.method = a->method == "linear" ? MappingMethod::kLinear : MappingMethod::kCycleGan;
+    a->options.description = "neutral to " + a->to + " (eval)";
+    const TransformEval r = evaluate_transform(model, a->video, *to, a->options, a->output);
+    const double n = std::max(1, r.timings.frames);
+    print_json({{"video", a->video},
+                {"to", a->to},
+                {"method", a->method},
+                {"frames", r.frames},
+                {"valid_frames", r.valid_frames},
+                {"lip_error_mm", r.lip_error_mm},
+                {"lip_error_max_mm", r.lip_error_max_mm},
+                {"target_rise", r.target_rise},
+                {"smoothness", r.smoothness},
+                {"smoothness_raw", r.smoothness_raw},
+                {"smoothness_mapped", r.smoothness_mapped},
+                {"input_audio", r.input_audio},
+                {"audio_ok", r.input_audio ? nlohmann::json(r.audio_ok) : nlohmann::json(nullptr)},
+                {"audio_seconds_in", r.audio_seconds_in},
+                {"audio_seconds_out", r.audio_seconds_out},
+                {"marked_synthetic", r.marked_synthetic},
+                {"mapping_ms_per_frame", r.timings.mapping_ms / n},
+                {"render_ms_per_frame", r.timings.render_ms / n}});
+  });
+}
+
 }  // namespace
 
 void register_eval(CLI::App& app, GlobalOptions& global) {
@@ -188,6 +236,7 @@ void register_eval(CLI::App& app, GlobalOptions& global) {
   register_eval_landmarks(*eval, global);
   register_eval_track(*eval, global);
   register_eval_refine(*eval, global);
+  register_eval_transform(*eval, global);
 }
 
 }  // namespace facecap::cli

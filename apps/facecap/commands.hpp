@@ -29,5 +29,6 @@ void register_eval(CLI::App& app, GlobalOptions& global);
 void register_demo(CLI::App& app, GlobalOptions& global);
 void register_track(CLI::App& app, GlobalOptions& global);
 void register_bench(CLI::App& app, GlobalOptions& global);
+void register_transform(CLI::App& app, GlobalOptions& global);
 
 }  // namespace facecap::cli

@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "commands.hpp"
+#include "facecap/core/allocator_tuning.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/interrupt.hpp"
 #include "facecap/core/paths.hpp"
@@ -10,6 +11,7 @@
 
 int main(int argc, char** argv) {
   using namespace facecap;
+  keep_large_allocations_resident();
   CLI::App app{"facecap " + std::string(kFacecapVersion) +
                ": capture a face from RGB video: head pose, focal length, identity, 53 expression\n"
                "weights, and with --refine SH lighting, albedo and wrinkle-level geometry.\n"
@@ -23,6 +25,7 @@ int main(int argc, char** argv) {
   install_interrupt_handler();
   cli::register_probe(app, global);
   cli::register_track(app, global);
+  cli::register_transform(app, global);
   cli::register_model(app, global);
   cli::register_synth(app, global);
   cli::register_eval(app, global);

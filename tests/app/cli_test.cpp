@@ -37,7 +37,7 @@ int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), 
 TEST(Cli, HelpListsTheSubcommands) {
   const RunResult r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* sub : {"probe", "model", "synth", "eval", "demo", "track", "bench"}) {
+  for (const char* sub : {"probe", "model", "synth", "eval", "demo", "track", "transform", "bench"}) {
     EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
   }
 }
@@ -87,6 +87,24 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
   r = run("track " + video.string() + " -o " + dir.path().string() + " --init-frames 0");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
+}
+
+TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const std::string out = (dir.path() / "out.mp4").string();
+  for (const std::string& args :
+       {"transform " + video.string() + " --to contempt -o " + out,
+        "transform " + video.string() + " --to anger --intensity 2 -o " + out,
+        "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
+        "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
+        "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+  }
 }
 
 TEST(Cli, ProbeDescribesAVideoAsJson) {

@@ -4,6 +4,7 @@
 // one-line message naming the problem (missing, empty, a folder with no
 // images, not a video, undecodable).
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -22,6 +23,7 @@ struct InputInfo {
   double fps = 0.0;     // 0 for stills
   int frames = -1;      // -1 when unknown (camera)
   bool audio = false;   // has an audio stream
+  double audio_duration = 0;  // seconds of the first audio stream, 0 when unknown or none
   double duration = 0;  // seconds, 0 when unknown
 };
 
@@ -45,6 +47,9 @@ std::unique_ptr<FrameSource> open_input(const std::string& spec);
 // Width, height, frame rate, frame count, audio and duration of a video file
 // (via libavformat); throws facecap::Error when the file is not a readable video.
 InputInfo probe_video_file(const std::filesystem::path& path);
+
+// The container's metadata tags (mp4 udta/ilst), keys as FFmpeg names them.
+std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path);
 
 bool is_image_path(const std::filesystem::path& path);
 

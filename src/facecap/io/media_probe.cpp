@@ -23,16 +23,28 @@ std::string av_message(int code) {
   return buf;
 }
 
-}  // namespace
-
-InputInfo probe_video_file(const std::filesystem::path& path) {
+std::unique_ptr<AVFormatContext, FormatCloser> open_container(const std::filesystem::path& path) {
   av_log_set_level(AV_LOG_QUIET);
   AVFormatContext* raw = nullptr;
   const int open_code = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
   if (open_code < 0) {
     throw Error("cannot read " + path.string() + ": not a video file or corrupt (" + av_message(open_code) + ")");
   }
-  std::unique_ptr<AVFormatContext, FormatCloser> ctx(raw);
+  return std::unique_ptr<AVFormatContext, FormatCloser>(raw);
+}
+
+}  // namespace
+
+std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path) {
+  const auto ctx = open_container(path);
+  std::map<std::string, std::string> tags;
+  const AVDictionaryEntry* e = nullptr;
+  while ((e = av_dict_get(ctx->metadata, "", e, AV_DICT_IGNORE_SUFFIX)) != nullptr) tags[e->key] = e->value;
+  return tags;
+}
+
+InputInfo probe_video_file(const std::filesystem::path& path) {
+  const auto ctx = open_container(path);
   const int info_code = avformat_find_stream_info(ctx.get(), nullptr);
   if (info_code < 0) {
     throw Error("cannot read " + path.string() + ": corrupt or truncated video (" + av_message(info_code) + ")");
@@ -61,7 +73,10 @@ InputInfo probe_video_file(const std::filesystem::path& path) {
         !(s->disposition & AV_DISPOSITION_ATTACHED_PIC)) {
       video = s;
     }
-    if (s->codecpar->codec_type == AVMEDIA_TYPE_AUDIO) info.audio = true;
+    if (s->codecpar->codec_type == AVMEDIA_TYPE_AUDIO && !info.audio) {
+      info.audio = true;
+      if (s->duration != AV_NOPTS_VALUE && s->duration > 0) info.audio_duration = double(s->duration) * av_q2d(s->time_base);
+    }
   }
   if (video == nullptr) throw Error("cannot read " + path.string() + ": it has no video stream");
   info.width = video->codecpar->width;

@@ -6,6 +6,7 @@
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/version.hpp"
+#include "facecap/io/input.hpp"
 
 namespace facecap {
 
@@ -36,6 +37,12 @@ void write_synthetic_sidecar(const std::filesystem::path& media_path, const Synt
   j["notice"] =
       "This media was generated or altered by software. It does not show a real recording of what it depicts.";
   write_text_file(sidecar_path(media_path), j.dump(2) + "\n");
+}
+
+bool carries_synthetic_marks(const std::filesystem::path& media_path) {
+  const auto tags = read_container_tags(media_path);
+  const auto it = tags.find("synthetic");
+  return it != tags.end() && it->second == "true" && std::filesystem::exists(sidecar_path(media_path));
 }
 
 }  // namespace facecap

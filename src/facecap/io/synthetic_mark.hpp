@@ -26,4 +26,7 @@ void write_synthetic_sidecar(const std::filesystem::path& media_path, const Synt
 // The sidecar path for an output file.
 std::filesystem::path sidecar_path(const std::filesystem::path& media_path);
 
+// True when a video carries both marks: the `synthetic=true` tag and its sidecar.
+bool carries_synthetic_marks(const std::filesystem::path& media_path);
+
 }  // namespace facecap

@@ -35,6 +35,7 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
                                 "-r", std::to_string(options_.fps), "-i", "-"};
   const bool audio = options_.audio_source.has_value();
   if (audio) {
+    if (options_.audio_seconds > 0) args.insert(args.end(), {"-t", std::to_string(options_.audio_seconds)});
     args.insert(args.end(), {"-i", options_.audio_source->string(), "-map", "0:v:0", "-map", "1:a:0?", "-c:a", "aac",
                              "-b:a", "160k"});
   }
@@ -148,6 +149,18 @@ void VideoWriter::finish() {
   }
   file_.commit();
   finished_ = true;
+}
+
+VideoWriterOptions output_like(const InputInfo& input, int max_frames) {
+  VideoWriterOptions o;
+  o.width = input.width;
+  o.height = input.height;
+  o.fps = input.fps > 0 ? input.fps : 25.0;
+  if (input.audio) {
+    o.audio_source = std::filesystem::path(input.spec);
+    if (max_frames > 0) o.audio_seconds = max_frames / o.fps;
+  }
+  return o;
 }
 
 }  // namespace facecap

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/io/input.hpp"
 
 namespace facecap {
 
@@ -22,6 +23,8 @@ struct VideoWriterOptions {
   double fps = 30.0;
   // Take the audio track from this file (the input), if it has one.
   std::optional<std::filesystem::path> audio_source;
+  // Seconds of that audio to take from its start (0: all), for runs that stop early.
+  double audio_seconds = 0;
   // Container metadata (mp4 tags), e.g. {"comment", "..."}.
   std::map<std::string, std::string> metadata;
   int crf = 18;                     // x264 quality: lower is better, 18 is visually lossless
@@ -56,5 +59,9 @@ class VideoWriter {
   int frames_ = 0;
   bool finished_ = false;
 };
+
+// An output of the input's size and rate carrying its audio (if any), cut to
+// max_frames' length when a run stops early (0: all of it).
+VideoWriterOptions output_like(const InputInfo& input, int max_frames = 0);
 
 }  // namespace facecap

@@ -77,11 +77,7 @@ class FrameWriter {
     o << '\n';
     if (options.meshes) fs::create_directories(dir / "meshes");
     if (options.overlay) {
-      VideoWriterOptions vo;
-      vo.width = info.width;
-      vo.height = info.height;
-      vo.fps = info.fps > 0 ? info.fps : 25.0;
-      if (info.audio) vo.audio_source = fs::path(input);
+      VideoWriterOptions vo = output_like(info, options.capture.max_frames);
       vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
       overlay_ = std::make_unique<VideoWriter>(dir / "overlay.mp4", vo);
       if (options.refine) {

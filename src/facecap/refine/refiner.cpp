@@ -42,7 +42,9 @@ const Positions& Refiner::coarse_albedo() const {
 
 Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera) {
   if (!initialised()) {
-    hierarchy_ = MeshHierarchy::build(polygons_, num_vertices_, coarse, camera, options_.hierarchy);
+    HierarchyOptions ho = options_.hierarchy;
+    if (!options_.displacements) ho.levels = 1;
+    hierarchy_ = MeshHierarchy::build(polygons_, num_vertices_, coarse, camera, ho);
     albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo);
     previous_.assign(hierarchy_.num_levels(), Eigen::VectorXf());
     raster_.assign(hierarchy_.num_levels(), RasterBuffers());
@@ -137,7 +139,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];
     // Start from the coarser level's solution, or at level 0 from last frame's.
     d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
-    solve_displacements(problem, d, options_.displacement);
+    if (options_.displacements) solve_displacements(problem, d, options_.displacement);
     previous_[l] = d;
     if (l == levels - 1) {
       out.positions = displaced_positions(problem.base, problem.base_normals, d);

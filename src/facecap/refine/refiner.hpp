@@ -19,6 +19,7 @@
 namespace facecap {
 
 struct RefineOptions {
+  bool displacements = true;  // false: lighting and albedo only (the finest level is the coarse mesh)
   int albedo_rounds = 4;  // lighting/albedo alternations over the albedo frames at each new one
   HierarchyOptions hierarchy;
   LightingOptions lighting;

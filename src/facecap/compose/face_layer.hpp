@@ -1,0 +1,24 @@
+#pragma once
+// A layer to composite over a frame: a window of the frame holding new
+// colour where its mask is set and the frame's own colour elsewhere, so that
+// multi-band blending (which spreads each band over its neighbourhood)
+// mixes the new face with the real surroundings, never with black.
+#include <opencv2/core.hpp>
+
+namespace facecap {
+
+struct FaceLayer {
+  cv::Rect box;    // the window in the frame
+  cv::Mat colour;  // BGR 8-bit, box-sized
+  cv::Mat mask;    // 8-bit, box-sized, 255 where the layer replaces the frame
+};
+
+// A window around `content` (grown by `margin`, clipped to the frame) holding
+// the frame's pixels and an empty mask.
+FaceLayer make_layer(const cv::Mat& frame, cv::Rect content, int margin);
+
+// Blends the layer into the frame in place: the mask eroded by `inset`
+// pixels, feathered by `feather` pixels, and a Laplacian pyramid of `levels`.
+void composite_layer(cv::Mat& frame, const FaceLayer& layer, int inset = 2, double feather = 3.0, int levels = 5);
+
+}  // namespace facecap

@@ -1,0 +1,24 @@
+#pragma once
+// Re-renders a face with new geometry (§5.3.3) from the source frame's own
+// appearance: each pixel of the new surface takes the colour of the same
+// surface point in the source frame, scaled by the ratio of the SH shading
+// of the new and the old normal (I_new = I_old * s_new / s_old: the albedo
+// cancels). The paper re-renders from the recovered albedo; at the coarse
+// mesh's resolution that would blur skin texture that the source frame has.
+#include <opencv2/core.hpp>
+
+#include "facecap/compose/face_layer.hpp"
+#include "facecap/core/spherical_harmonics.hpp"
+#include "facecap/render/rasterizer.hpp"
+
+namespace facecap {
+
+// The layer spans the new face's image bounding box grown by `margin` pixels.
+FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const Positions& new_points,
+                       const std::vector<Triangle>& triangles, const ShCoeffs& lighting, const PinholeCamera& camera,
+                       int margin = 32);
+
+// The image bounding box of the points' projections.
+cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera);
+
+}  // namespace facecap

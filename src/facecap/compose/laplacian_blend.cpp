@@ -1,0 +1,70 @@
+#include "facecap/compose/laplacian_blend.hpp"
+
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "facecap/core/parallel.hpp"
+
+namespace facecap {
+
+namespace {
+
+// band = (d - up) * m, per pixel; d, up: CV_32FC3, m: CV_32F.
+void masked_band(const cv::Mat& d, const cv::Mat& up, const cv::Mat& m, cv::Mat& band) {
+  band.create(d.size(), CV_32FC3);
+  for (int y = 0; y < d.rows; ++y) {
+    const float* dp = d.ptr<float>(y);
+    const float* upp = up.ptr<float>(y);
+    const float* mp = m.ptr<float>(y);
+    float* bp = band.ptr<float>(y);
+    for (int x = 0; x < d.cols; ++x) {
+      for (int c = 0; c < 3; ++c) bp[3 * x + c] = (dp[3 * x + c] - upp[3 * x + c]) * mp[x];
+    }
+  }
+}
+
+}  // namespace
+
+cv::Mat laplacian_blend(const cv::Mat& base, const cv::Mat& layer, const cv::Mat& mask, int levels) {
+  // Laplacian pyramids are linear, so blending the layer's and the base's
+  // bands with the mask's Gaussian pyramid equals adding to the base the
+  // blended bands of their difference: one pyramid instead of two.
+  cv::Mat a, d, m;
+  base.convertTo(a, CV_32FC3);
+  layer.convertTo(d, CV_32FC3);
+  d -= a;
+  mask.convertTo(m, CV_32F, 1.0 / 255.0);
+  std::vector<cv::Mat> gd{d}, gm{m};
+  for (int l = 1; l < levels; ++l) {
+    if (gd.back().cols < 8 || gd.back().rows < 8) break;
+    cv::Mat x, z;
+    cv::pyrDown(gd.back(), x);
+    cv::pyrDown(gm.back(), z);
+    gd.push_back(std::move(x));
+    gm.push_back(std::move(z));
+  }
+  const int n = static_cast<int>(gd.size());
+  // The coarsest Gaussian level, masked; then each finer band, masked, added on the way up.
+  cv::Mat result;
+  masked_band(gd[n - 1], cv::Mat::zeros(gd[n - 1].size(), CV_32FC3), gm[n - 1], result);
+  cv::Mat up, band;
+  for (int l = n - 2; l >= 0; --l) {
+    cv::pyrUp(gd[l + 1], up, gd[l].size());
+    masked_band(gd[l], up, gm[l], band);
+    cv::pyrUp(result, up, gd[l].size());
+    result = up + band;
+  }
+  result += a;
+  cv::Mat out;
+  result.convertTo(out, CV_8UC3);
+  return out;
+}
+
+cv::Mat feather_mask(const cv::Mat& mask, int inset, double feather) {
+  cv::Mat m = mask.clone();
+  if (inset > 0) cv::erode(m, m, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * inset + 1, 2 * inset + 1)));
+  if (feather > 0) cv::GaussianBlur(m, m, cv::Size(0, 0), feather);
+  return m;
+}
+
+}  // namespace facecap

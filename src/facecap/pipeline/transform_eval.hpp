@@ -1,0 +1,46 @@
+#pragma once
+// `facecap eval transform --video PATH --to EMOTION`: runs the expression
+// transformation on real footage and measures what chapter 5 promises: the
+// lips stay where the speaker put them, the target emotion's defining weights
+// rise, the window smoothing makes the curves calmer than the per-frame
+// mapping, and the output keeps the input's audio.
+#include <filesystem>
+#include <string>
+
+#include "facecap/pipeline/transform_job.hpp"
+
+namespace facecap {
+
+struct TransformEval {
+  int frames = 0;
+  int valid_frames = 0;
+  double lip_error_mm = 0;       // mean distance of the 4 key lip vertices to the source's
+  double lip_error_max_mm = 0;
+  double target_rise = 0;        // mean rise of the target's defining weights over the source's
+  double smoothness = 0;         // mean |w_t - w_(t-1)| of the result
+  // The same of the output without the smoothing term: the per-frame mapping
+  // with the same lip correction. This is the ablation of the window
+  // smoothing; the lip correction re-imports the speech motion of the
+  // tracked lips into both, so the bare mapping (below) is calmer than either.
+  double smoothness_raw = 0;
+  double smoothness_mapped = 0;  // the bare per-frame mapping, no lip correction
+  bool input_audio = false;
+  bool audio_ok = false;         // output audio as long as the input's (over the frames processed)
+  double audio_seconds_in = 0, audio_seconds_out = 0;
+  bool marked_synthetic = false; // container tag and sidecar present
+  TransformTimings timings;
+};
+
+// Metrics of a finished transformation (no I/O).
+struct TransformMetrics {
+  double lip_error_mm = 0, lip_error_max_mm = 0, target_rise = 0, smoothness = 0, smoothness_raw = 0;
+  double smoothness_mapped = 0;
+  int valid_frames = 0;
+};
+TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames, Emotion target);
+
+// Writes the output to `output` (a temporary file when empty) and measures it.
+TransformEval evaluate_transform(const FaceModel& model, const std::string& video, Emotion target,
+                                 const TransformJobOptions& options, const std::filesystem::path& output = {});
+
+}  // namespace facecap

@@ -1,0 +1,47 @@
+#pragma once
+// `facecap transform INPUT --to EMOTION -o OUT.mp4`: expression
+// transformation of a talking face (chapter 5). Frames are tracked, their
+// weights mapped and lip-corrected (expr/), the face re-rendered with the new
+// expression under the frame's pose and lighting, the source mouth interior
+// warped to the new lips, the source eyes kept, and the layers blended back
+// with a Laplacian pyramid (compose/). The output carries the input's audio
+// and the synthetic-media marks.
+#include <filesystem>
+#include <string>
+
+#include "facecap/expr/expression_transform.hpp"
+#include "facecap/pipeline/capture_session.hpp"
+#include "facecap/refine/refiner.hpp"
+
+namespace facecap {
+
+struct TransformJobOptions {
+  CaptureOptions capture;
+  TransformOptions transform;
+  std::filesystem::path models_dir = default_expression_models_dir();
+  std::filesystem::path plot;          // PNG of weight curves (empty: none)
+  std::string description;             // for the synthetic mark, e.g. "neutral to happiness"
+};
+
+struct TransformTimings {
+  double mapping_ms = 0;  // mapping, smoothing and lip QP
+  double lighting_ms = 0;
+  double render_ms = 0;   // re-shading, mouth warp and blending
+  int frames = 0;
+};
+
+struct TransformSummary {
+  CaptureSummary capture;
+  std::vector<TransformedFrame> frames;  // weights per frame (no images)
+  TransformTimings timings;
+};
+
+TransformSummary run_transform(const FaceModel& model, const std::string& input, const std::filesystem::path& output,
+                               const TransformJobOptions& options);
+
+// The PNG of the paper's Fig. 5.8: tracked, mapped, lip-corrected and
+// smoothed curves of the weights the transformation changed most.
+void write_weight_plot(const std::filesystem::path& path, const std::vector<TransformedFrame>& frames,
+                       const std::vector<std::string>& names, int curves = 4);
+
+}  // namespace facecap

@@ -1,0 +1,93 @@
+#include "facecap/pipeline/transform_eval.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/io/input.hpp"
+#include "facecap/io/synthetic_mark.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+TransformJobOptions short_run(int frames) {
+  TransformJobOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = frames;
+  o.description = "test";
+  return o;
+}
+
+}  // namespace
+
+// The chapter-5 measures on real webcam speech: lips within 1 mm of the
+// speaker's, the smile up by at least 0.3, and the window smoothing calmer
+// than the same output without it.
+TEST(TransformEval, WebcamSpeechToHappiness) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const fs::path out = dir.path() / "happy.mp4";
+  TransformJobOptions o = short_run(60);
+  o.plot = dir.path() / "curves.png";
+  const TransformEval r = evaluate_transform(*model, video.string(), Emotion::kHappiness, o, out);
+  EXPECT_EQ(r.frames, 60);
+  EXPECT_GE(r.valid_frames, 58);
+  EXPECT_LE(r.lip_error_mm, 1.0);
+  EXPECT_GE(r.target_rise, 0.3);
+  EXPECT_LT(r.smoothness, r.smoothness_raw);
+  EXPECT_TRUE(r.marked_synthetic);
+  EXPECT_TRUE(fs::exists(o.plot));
+  EXPECT_FALSE(r.input_audio);  // this clip has no sound; audio_ok is moot
+  // The output is a playable video of the input's size and length.
+  const InputInfo info = probe_video_file(out);
+  EXPECT_EQ(info.width, 400);
+  EXPECT_EQ(info.height, 300);
+  EXPECT_NEAR(info.frames, 60, 1);
+  // The sidecar says what was done.
+  std::ifstream side(out.string() + ".json");
+  const auto j = nlohmann::json::parse(side);
+  EXPECT_EQ(j.at("synthetic"), true);
+  EXPECT_EQ(j.at("edit"), "expression-transform");
+}
+
+TEST(TransformEval, AddressKeepsItsAudio) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  const TransformEval r = evaluate_transform(*model, video.string(), Emotion::kSadness, short_run(45));
+  EXPECT_TRUE(r.input_audio);
+  EXPECT_TRUE(r.audio_ok) << r.audio_seconds_in << " s in, " << r.audio_seconds_out << " s out";
+  EXPECT_LE(r.lip_error_mm, 1.0);
+  EXPECT_GE(r.target_rise, 0.3);
+  EXPECT_TRUE(r.marked_synthetic);
+}
+
+TEST(TransformEval, LinearBaselineAlsoKeepsTheLips) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TransformJobOptions o = short_run(30);
+  o.transform.method = MappingMethod::kLinear;
+  const TransformEval r = evaluate_transform(*model, video.string(), Emotion::kSurprise, o);
+  EXPECT_LE(r.lip_error_mm, 1.0);
+  EXPECT_GT(r.target_rise, 0.1);
+}
+
+TEST(TransformJob, AMissingModelFolderFailsBeforeWritingAnything) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  TransformJobOptions o = short_run(5);
+  o.models_dir = dir.path() / "no-models";
+  o.transform.schedule = ExpressionSchedule::constant(Emotion::kFear, 1.0);
+  EXPECT_THROW(run_transform(*model, video.string(), dir.path() / "out.mp4", o), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "out.mp4"));
+}
+
+}  // namespace facecap
