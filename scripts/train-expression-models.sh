@@ -2,7 +2,9 @@
 # Rebuilds the shipped expression-mapping models (models/expressions/) from
 # what this project has (SAVEE is not available to us):
 #  1. neutral speech: facecap track on the neutral talking clips of ../shared/data;
-#  2. emotions: FACS prototypes laid over that speech (facecap-train expr-dataset);
+#  2. emotions: FACS prototypes laid over that speech (facecap-train expr-dataset),
+#     plus the real frames of emotions_pexels_640x360.mp4 that show one
+#     (crying 0-2 s, before the hands come up: sadness; smiling 10-19.7 s: happiness);
 #  3. CycleGAN neutral <-> each emotion (facecap-train expr-all).
 # Takes a few minutes on 2 cores. Usage: scripts/train-expression-models.sh [DATA_DIR] [OUT_DIR]
 set -euo pipefail
@@ -18,6 +20,10 @@ for clip in talking_webcam_400x300 talking_webcam2_400x300 address_720p_a addres
   build/facecap -q track "$data/$clip.mp4" -o "$work/$clip" > /dev/null
   csvs+=("$work/$clip/frames.csv")
 done
-build/facecap-train expr-dataset --neutral "${csvs[@]}" --per-emotion 3000 --seed 1 -o "$work/expressions.csv"
+[ -f "$data/emotions_pexels_640x360.mp4" ] || { echo "missing $data/emotions_pexels_640x360.mp4" >&2; exit 1; }
+build/facecap -q track "$data/emotions_pexels_640x360.mp4" -o "$work/emotions" > /dev/null
+build/facecap-train expr-dataset --neutral "${csvs[@]}" --per-emotion 3000 --seed 1 \
+  --real "sadness=$work/emotions/frames.csv@0-2" --real "happiness=$work/emotions/frames.csv@10-19.7" \
+  -o "$work/expressions.csv"
 build/facecap-train expr-all "$work/expressions.csv" -o "$out" --iterations 4000
 echo "models written to $out"

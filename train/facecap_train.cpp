@@ -68,6 +68,33 @@ void train_pair(const std::vector<LabeledWeights>& data, Emotion emotion, const 
 
 }  // namespace
 
+struct RealFrames {
+  Emotion emotion;
+  std::string csv;
+  double from = 0, to = 0;
+};
+
+// EMOTION=frames.csv@FROM-TO
+RealFrames parse_real_frames(const std::string& spec) {
+  const auto eq = spec.find('='), at = spec.rfind('@');
+  const auto dash = at == std::string::npos ? std::string::npos : spec.find('-', at);
+  const auto bad = [&] { return Error("--real " + spec + ": expected EMOTION=frames.csv@FROM-TO (seconds)"); };
+  if (eq == std::string::npos || at == std::string::npos || dash == std::string::npos || at < eq) throw bad();
+  RealFrames r;
+  const auto e = parse_emotion(spec.substr(0, eq));
+  if (!e || *e == Emotion::kNeutral) throw bad();
+  r.emotion = *e;
+  r.csv = spec.substr(eq + 1, at - eq - 1);
+  try {
+    r.from = std::stod(spec.substr(at + 1, dash - at - 1));
+    r.to = std::stod(spec.substr(dash + 1));
+  } catch (const std::exception&) {
+    throw bad();
+  }
+  if (!(r.to > r.from)) throw bad();
+  return r;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"facecap-train: expression-mapping training (CycleGAN on blendshape weights, LibTorch)"};
   app.require_subcommand(1);
@@ -83,6 +110,10 @@ int main(int argc, char** argv) {
   uint64_t seed = 1;
   dataset->add_option("--neutral", neutral, "frames.csv files of `facecap track` on neutral talking footage")->required();
   dataset->add_option("--per-emotion", per_emotion, "Samples per emotion")->capture_default_str();
+  std::vector<std::string> real;
+  dataset->add_option("--real", real,
+                      "Tracked real frames of an emotion: EMOTION=frames.csv@FROM-TO (seconds), e.g. "
+                      "happiness=smiles/frames.csv@10-19.7; repeated to make up a third of that domain");
   dataset->add_option("--seed", seed, "Random seed")->capture_default_str();
   dataset->add_option("-o,--output", dataset_out, "Output CSV")->required();
 
@@ -118,6 +149,15 @@ int main(int argc, char** argv) {
       for (Emotion e : all_emotions()) {
         const auto samples = make_emotion_samples(e, speech, names, per_emotion, seed);
         rows.insert(rows.end(), samples.begin(), samples.end());
+      }
+      for (const std::string& spec : real) {
+        const RealFrames r = parse_real_frames(spec);
+        const auto w = read_tracked_weights(r.csv, names, r.from, r.to);
+        if (w.empty()) throw Error("--real " + spec + ": no tracked frames in that time range");
+        const int repeat = std::max(1, per_emotion / 3 / static_cast<int>(w.size()));
+        for (int k = 0; k < repeat; ++k)
+          for (const auto& x : w) rows.push_back({r.emotion, x});
+        std::fprintf(stderr, "%s: %zu real frames x %d\n", to_string(r.emotion), w.size(), repeat);
       }
       write_dataset_csv(dataset_out, rows, names);
       std::fprintf(stderr, "wrote %s: %zu neutral rows, %d per emotion\n", dataset_out.c_str(), speech.size(), per_emotion);

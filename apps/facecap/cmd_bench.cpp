@@ -7,6 +7,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
+#include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 
 namespace facecap::cli {
@@ -31,6 +32,7 @@ nlohmann::json timings_json(const StageTimings& t) {
 }  // namespace
 
 void register_bench_transform(CLI::App& bench, GlobalOptions& global);
+void register_bench_swap(CLI::App& bench, GlobalOptions& global);
 
 void register_bench(CLI::App& app, GlobalOptions& global) {
   auto* bench = app.add_subcommand("bench", "Measure speed: per-stage milliseconds and frames per second (JSON)");
@@ -96,6 +98,50 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
     print_json(j);
   });
   register_bench_transform(*bench, global);
+  register_bench_swap(*bench, global);
+}
+
+void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
+  auto* cmd = bench.add_subcommand("swap", "Face swap into a scratch file: per-stage ms and the swap's fps");
+  struct Args {
+    std::string source, target;
+    int max_frames = 120;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--source", a->source, "Source portrait photo")->required();
+  cmd->add_option("--target", a->target, "Target video")->required();
+  cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
+  cmd->callback([a, &global] {
+    const FaceModel model = load_model(global);
+    SwapJobOptions o;
+    o.capture.max_frames = a->max_frames;
+    o.capture.quiet = true;
+    const TempDir scratch("facecap-bench");
+    const auto start = std::chrono::steady_clock::now();
+    const SwapSummary s = run_swap(model, a->source, a->target, scratch.path() / "bench.mp4", o);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double n = std::max(1, s.timings.swapped);
+    const SwapTimings& t = s.timings.swap;
+    const double steady_ms = (t.render_ms + t.warp_ms + t.blend_ms) / n;
+    const double with_appearance_ms = steady_ms + t.appearance_ms / n;
+    nlohmann::json j = timings_json(s.target.timings);
+    j["swap"] = {{"frames", s.timings.swapped},
+                 {"source_reconstruction_ms", s.timings.source_ms},
+                 {"appearance_ms_per_frame", t.appearance_ms / n},
+                 {"appearance_note", "texture of the target face and harmonisation, first frames only"},
+                 {"render_ms_per_frame", t.render_ms / n},
+                 {"warp_ms_per_frame", t.warp_ms / n},
+                 {"blend_ms_per_frame", t.blend_ms / n},
+                 {"swap_ms_per_frame", steady_ms},
+                 {"swap_fps", steady_ms > 0 ? 1000.0 / steady_ms : 0.0},
+                 {"swap_fps_with_appearance", with_appearance_ms > 0 ? 1000.0 / with_appearance_ms : 0.0},
+                 {"lighting_ms_per_frame", s.timings.lighting_ms / n}};
+    j["fps_end_to_end"] = wall > 0 ? s.target.frames / wall : 0.0;
+    j["width"] = s.target.input.width;
+    j["height"] = s.target.input.height;
+    j["cores"] = std::thread::hardware_concurrency();
+    print_json(j);
+  });
 }
 
 void register_bench_transform(CLI::App& bench, GlobalOptions& global) {

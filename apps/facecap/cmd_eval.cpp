@@ -4,6 +4,7 @@
 #include "facecap/pipeline/synth_landmark_eval.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/track_eval.hpp"
+#include "facecap/pipeline/swap_eval.hpp"
 #include "facecap/pipeline/transform_eval.hpp"
 
 namespace facecap::cli {
@@ -228,6 +229,59 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
   });
 }
 
+void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
+  auto* cmd = eval.add_subcommand(
+      "swap",
+      "Face-swap measures as JSON: --self VIDEO (first frame swapped into the rest: photometric error against the "
+      "video), or --source PHOTO --target VIDEO (identity and expression of the tracked output, seam ratio)");
+  struct Args {
+    std::string self, source, target, output;
+    SwapJobOptions options;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--self", a->self, "Video: its first frame is the source, the rest the target");
+  cmd->add_option("--source", a->source, "Source portrait photo");
+  cmd->add_option("--target", a->target, "Target video");
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
+  cmd->add_option("-o,--output", a->output, "Keep the swapped video here (--source/--target; default: temporary)");
+  cmd->callback([a, &global] {
+    const bool self = !a->self.empty();
+    if (self == (!a->source.empty() || !a->target.empty()))
+      throw Error("give either --self VIDEO, or --source PHOTO and --target VIDEO");
+    if (!self && (a->source.empty() || a->target.empty())) throw Error("--source and --target go together");
+    const FaceModel model = load_model(global);
+    a->options.capture.quiet = global.quiet;
+    if (self) {
+      const SwapSelfEval r = evaluate_swap_self(model, a->self, a->options);
+      const double n = std::max(1, r.timings.swapped);
+      print_json({{"video", a->self},
+                  {"mode", "self"},
+                  {"frames", r.frames},
+                  {"photometric_median", r.photometric_median},
+                  {"photometric_mean", r.photometric_mean},
+                  {"face_pixels_per_frame", r.face_pixels_per_frame},
+                  {"render_ms_per_frame", r.timings.swap.render_ms / n},
+                  {"warp_ms_per_frame", r.timings.swap.warp_ms / n},
+                  {"blend_ms_per_frame", r.timings.swap.blend_ms / n}});
+      return;
+    }
+    const SwapPairEval r = evaluate_swap_pair(model, a->source, a->target, a->options, a->output);
+    print_json({{"source", a->source},
+                {"target", a->target},
+                {"mode", "pair"},
+                {"frames", r.frames},
+                {"faces_in_source", r.faces_in_source},
+                {"identity_distance_output_source", r.identity_distance_output_source},
+                {"identity_distance_output_target", r.identity_distance_output_target},
+                {"identity_distance_source_target", r.identity_distance_source_target},
+                {"identity_closer_to_source", r.identity_distance_output_source < r.identity_distance_output_target},
+                {"expression_correlation", r.expression_correlation},
+                {"expression_weights_compared", r.expression_weights_compared},
+                {"seam_ratio", r.seam_ratio},
+                {"seam_ratio_target", r.seam_ratio_target}});
+  });
+}
+
 }  // namespace
 
 void register_eval(CLI::App& app, GlobalOptions& global) {
@@ -237,6 +291,7 @@ void register_eval(CLI::App& app, GlobalOptions& global) {
   register_eval_track(*eval, global);
   register_eval_refine(*eval, global);
   register_eval_transform(*eval, global);
+  register_eval_swap(*eval, global);
 }
 
 }  // namespace facecap::cli

@@ -30,5 +30,6 @@ void register_demo(CLI::App& app, GlobalOptions& global);
 void register_track(CLI::App& app, GlobalOptions& global);
 void register_bench(CLI::App& app, GlobalOptions& global);
 void register_transform(CLI::App& app, GlobalOptions& global);
+void register_swap(CLI::App& app, GlobalOptions& global);
 
 }  // namespace facecap::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   cli::register_probe(app, global);
   cli::register_track(app, global);
   cli::register_transform(app, global);
+  cli::register_swap(app, global);
   cli::register_model(app, global);
   cli::register_synth(app, global);
   cli::register_eval(app, global);

@@ -37,7 +37,7 @@ int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), 
 TEST(Cli, HelpListsTheSubcommands) {
   const RunResult r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* sub : {"probe", "model", "synth", "eval", "demo", "track", "transform", "bench"}) {
+  for (const char* sub : {"probe", "model", "synth", "eval", "demo", "track", "transform", "swap", "bench"}) {
     EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
   }
 }
@@ -105,6 +105,22 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
     EXPECT_EQ(lines(r.out), 1) << r.out;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
+}
+
+TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  std::ofstream(dir.path() / "text.jpg") << "not an image";
+  const std::string out = (dir.path() / "out.mp4").string();
+  for (const std::string& photo : {(dir.path() / "text.jpg").string(), (dir.path() / "missing.jpg").string()}) {
+    const RunResult r = run("swap --source " + photo + " --target " + video.string() + " -o " + out);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find(photo), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  EXPECT_NE(run("swap --target " + video.string() + " -o " + out).code, 0);  // --source is required
 }
 
 TEST(Cli, ProbeDescribesAVideoAsJson) {

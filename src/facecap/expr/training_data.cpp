@@ -48,7 +48,8 @@ float parse_weight(const std::string& s, const std::filesystem::path& path, int 
 
 }  // namespace
 
-std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& csv, const std::vector<std::string>& names) {
+std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& csv, const std::vector<std::string>& names,
+                                                  double from_seconds, double to_seconds) {
   std::ifstream in(csv);
   if (!in) throw Error("tracking file not found: " + csv.string());
   std::string line;
@@ -56,11 +57,14 @@ std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& c
   const std::vector<std::string> header = split(line);
   const std::vector<int> cols = columns(header, names, csv);
   const std::vector<int> status_col = columns(header, {"status"}, csv);
+  const std::vector<int> time_col = columns(header, {"time"}, csv);
   std::vector<Eigen::VectorXf> out;
   for (int n = 2; std::getline(in, line); ++n) {
     const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size()) throw Error("malformed " + csv.string() + " line " + std::to_string(n));
     if (cells[status_col[0]] == "lost") continue;
+    const double time = parse_weight(cells[time_col[0]], csv, n);
+    if (time < from_seconds || time > to_seconds) continue;
     Eigen::VectorXf w(static_cast<Eigen::Index>(names.size()));
     for (size_t k = 0; k < names.size(); ++k) w[k] = parse_weight(cells[cols[k]], csv, n);
     out.push_back(w);

@@ -1,0 +1,46 @@
+#include <cstdio>
+
+#include "commands.hpp"
+#include "facecap/core/error.hpp"
+#include "facecap/pipeline/swap_job.hpp"
+
+namespace facecap::cli {
+
+void register_swap(CLI::App& app, GlobalOptions& global) {
+  auto* cmd = app.add_subcommand("swap",
+                                 "Put the face from one portrait photo into a video, keeping the video's expression, "
+                                 "pose and lighting; writes a video marked as synthetic");
+  struct Args {
+    std::string source, target, output;
+    SwapJobOptions options;
+    bool no_warp = false;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--source", a->source, "Portrait photo whose face is put in (the largest face is used)")->required();
+  cmd->add_option("--target", a->target, "Video (or image folder, or cam:N) whose face is replaced")->required();
+  cmd->add_option("-o,--output", a->output, "Output video (.mp4); OUT.mp4.json is its synthetic-media sidecar")
+      ->required();
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
+                  "Target frames over which the appearance is harmonised, then held")
+      ->capture_default_str();
+  cmd->add_flag("--no-warp", a->no_warp, "Do not warp the target background to the new face outline");
+  cmd->callback([a, &global] {
+    if (a->options.swap.appearance_frames < 1) throw Error("--appearance-frames must be at least 1");
+    a->options.swap.warp_background = !a->no_warp;
+    a->options.capture.quiet = global.quiet;
+    const FaceModel model = load_model(global);
+    const SwapSummary s = run_swap(model, a->source, a->target, a->output, a->options);
+    const double n = std::max(1, s.timings.swapped);
+    const SwapTimings& t = s.timings.swap;
+    std::fprintf(stderr,
+                 "frames %d, swapped %d, lost %d | source %.0f ms | per frame: lighting %.2f, appearance %.2f "
+                 "(first %d frames), render %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json (synthetic-media "
+                 "marks)\n",
+                 s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
+                 t.appearance_ms / n, a->options.swap.appearance_frames, t.render_ms / n, t.warp_ms / n,
+                 t.blend_ms / n, a->output.c_str(), a->output.c_str());
+  });
+}
+
+}  // namespace facecap::cli

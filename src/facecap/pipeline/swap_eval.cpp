@@ -1,0 +1,169 @@
+#include "facecap/pipeline/swap_eval.hpp"
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Median of values in [0, 255] from a histogram of 0.05-wide bins.
+struct ErrorHistogram {
+  std::vector<double> bins = std::vector<double>(5101, 0.0);
+  double sum = 0, count = 0;
+  void add(float v) {
+    bins[std::min<size_t>(bins.size() - 1, static_cast<size_t>(v / 0.05f))] += 1;
+    sum += v;
+    count += 1;
+  }
+  double mean() const { return count > 0 ? sum / count : 0; }
+  double median() const {
+    double run = 0;
+    for (size_t b = 0; b < bins.size(); ++b) {
+      run += bins[b];
+      if (run >= 0.5 * count) return (b + 0.5) * 0.05;
+    }
+    return 0;
+  }
+};
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = static_cast<double>(a.size());
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+}  // namespace
+
+double seam_ratio(const cv::Mat& image, const cv::Mat& alpha) {
+  if (image.empty() || alpha.empty()) return 0;
+  cv::Mat mask = alpha > 0.01f;
+  cv::Mat grey, gx, gy, magnitude;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  cv::Sobel(grey, gx, CV_32F, 1, 0);
+  cv::Sobel(grey, gy, CV_32F, 0, 1);
+  cv::magnitude(gx, gy, magnitude);
+  auto eroded = [&](int r) {
+    cv::Mat out;
+    cv::erode(mask, out, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
+    return out;
+  };
+  const cv::Mat edge = mask & ~eroded(1);  // the outermost pixels the blend touches
+  const cv::Mat inside = eroded(6) & ~eroded(10);
+  if (cv::countNonZero(edge) == 0 || cv::countNonZero(inside) == 0) return 0;
+  const double on_edge = cv::mean(magnitude, edge)[0], within = cv::mean(magnitude, inside)[0];
+  return within > 1e-6 ? on_edge / within : 0;
+}
+
+SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options) {
+  const TempDir temp("facecap-eval-swap");
+  // The first frame, as the source photo.
+  auto input = open_input(video);
+  Frame first;
+  if (!input->read(first) || first.image.empty()) throw Error("cannot read the first frame of " + video);
+  const fs::path photo = temp.path() / "first_frame.png";
+  if (!cv::imwrite(photo.string(), first.image)) throw Error("cannot write " + photo.string());
+
+  SwapSelfEval r;
+  ErrorHistogram errors;
+  SwapJobOptions o = options;
+  o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& result) {
+    if (target.index == 0 || result.alpha.empty()) return;
+    const cv::Mat truth = target.image(result.window), made = result.image(result.window);
+    for (int y = 0; y < result.window.height; ++y) {
+      const auto* t = truth.ptr<cv::Vec3b>(y);
+      const auto* m = made.ptr<cv::Vec3b>(y);
+      const float* a = result.alpha.ptr<float>(y);
+      for (int x = 0; x < result.window.width; ++x) {
+        if (a[x] <= 0.5f) continue;
+        errors.add((std::abs(t[x][0] - m[x][0]) + std::abs(t[x][1] - m[x][1]) + std::abs(t[x][2] - m[x][2])) / 3.0f);
+      }
+    }
+    ++r.frames;
+  };
+  const SwapSummary s = run_swap(model, photo.string(), video, temp.path() / "self_swap.mp4", o);
+  r.photometric_median = errors.median();
+  r.photometric_mean = errors.mean();
+  r.face_pixels_per_frame = r.frames > 0 ? errors.count / r.frames : 0;
+  r.timings = s.timings;
+  return r;
+}
+
+SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo, const std::string& video,
+                                const SwapJobOptions& options, const fs::path& output) {
+  std::optional<TempDir> temp;
+  fs::path out = output;
+  if (out.empty()) {
+    temp.emplace("facecap-eval-swap");
+    out = temp->path() / "swap.mp4";
+  }
+  SwapPairEval r;
+  std::vector<Eigen::VectorXf> target_weights;
+  double seams = 0, seams_target = 0;
+  int seam_frames = 0;
+  SwapJobOptions o = options;
+  o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& result) {
+    target_weights.push_back(target.status == TrackStatus::kLost ? Eigen::VectorXf() : target.fit.expression);
+    if (result.alpha.empty()) return;
+    seams += seam_ratio(result.image(result.window), result.alpha);
+    seams_target += seam_ratio(target.image(result.window), result.alpha);
+    ++seam_frames;
+  };
+  const SwapSummary s = run_swap(model, photo, video, out, o);
+  r.timings = s.timings;
+  r.faces_in_source = s.source.faces_found;
+  r.seam_ratio = seam_frames > 0 ? seams / seam_frames : 0;
+  r.seam_ratio_target = seam_frames > 0 ? seams_target / seam_frames : 0;
+
+  // Track the output again: whose face is it now, and does it do what the target did?
+  std::vector<Eigen::VectorXf> output_weights;
+  CaptureOptions c = options.capture;
+  c.quiet = true;
+  auto result = open_input(out.string());
+  const CaptureSummary tracked = run_capture(model, *result, c, [&](const CapturedFrame& f) {
+    output_weights.push_back(f.status == TrackStatus::kLost ? Eigen::VectorXf() : f.fit.expression);
+  });
+  const Eigen::VectorXf id_out = tracked.identity.identity.cast<float>();
+  const Eigen::VectorXf id_src = s.source.face.identity;
+  const Eigen::VectorXf id_tgt = s.target.identity.identity.cast<float>();
+  r.identity_distance_output_source = (id_out - id_src).norm();
+  r.identity_distance_output_target = (id_out - id_tgt).norm();
+  r.identity_distance_source_target = (id_src - id_tgt).norm();
+
+  const size_t n = std::min(target_weights.size(), output_weights.size());
+  r.frames = static_cast<int>(n);
+  double correlation = 0;
+  for (int k = 0; k < model.num_expressions(); ++k) {
+    std::vector<double> a, b;
+    for (size_t i = 0; i < n; ++i) {
+      if (target_weights[i].size() == 0 || output_weights[i].size() == 0) continue;
+      a.push_back(target_weights[i][k]);
+      b.push_back(output_weights[i][k]);
+    }
+    if (a.size() < 3) continue;
+    double mean = 0, var = 0;
+    for (double v : a) mean += v / a.size();
+    for (double v : a) var += (v - mean) * (v - mean) / a.size();
+    if (std::sqrt(var) < 0.03) continue;  // a weight the target hardly moves says nothing
+    correlation += pearson(a, b);
+    ++r.expression_weights_compared;
+  }
+  r.expression_correlation = r.expression_weights_compared > 0 ? correlation / r.expression_weights_compared : 0;
+  return r;
+}
+
+}  // namespace facecap

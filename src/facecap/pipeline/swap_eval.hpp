@@ -1,0 +1,52 @@
+#pragma once
+// `facecap eval swap`: what chapter 6 promises, measured.
+//  - Self-swap (--self VIDEO, Fig. 6.7): the first frame is the source photo
+//    and the rest of the video the target, so the truth is the video itself:
+//    photometric error (0-255, mean over RGB) over the pixels the new face
+//    covers (alpha > 0.5), median and mean over all frames but the first.
+//  - Source into target: the output, tracked again, should carry the
+//    source's identity and the target's expression; the blend boundary
+//    should not stand out (seam_ratio: mean gradient magnitude on the outer
+//    edge of the blend over that in a band just inside it).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "facecap/pipeline/swap_job.hpp"
+
+namespace facecap {
+
+struct SwapSelfEval {
+  int frames = 0;            // target frames measured (all but the first)
+  double photometric_median = 0;
+  double photometric_mean = 0;
+  double face_pixels_per_frame = 0;
+  SwapJobTimings timings;
+};
+
+SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options);
+
+struct SwapPairEval {
+  int frames = 0;
+  double identity_distance_output_source = 0;  // |alpha_out - alpha_S|
+  double identity_distance_output_target = 0;  // |alpha_out - alpha_T|
+  double identity_distance_source_target = 0;  // |alpha_S - alpha_T|
+  double expression_correlation = 0;  // mean over the weights the target moves of corr(out, target)
+  int expression_weights_compared = 0;
+  double seam_ratio = 0;  // mean over frames
+  // The same measure on the untouched target frames: the face's outline
+  // often lies on real edges (jaw, hairline), which no blend should remove.
+  double seam_ratio_target = 0;
+  int faces_in_source = 0;
+  SwapJobTimings timings;
+};
+
+SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo, const std::string& video,
+                                const SwapJobOptions& options, const std::filesystem::path& output = {});
+
+// Seam measure of one blended frame: mean gradient magnitude of `image` on
+// the outer edge of `alpha` (> 0.01) over that 6-10 px inside it; 0 when
+// either is empty.
+double seam_ratio(const cv::Mat& image, const cv::Mat& alpha);
+
+}  // namespace facecap

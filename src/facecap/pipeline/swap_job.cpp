@@ -1,0 +1,112 @@
+#include "facecap/pipeline/swap_job.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+
+#include "facecap/core/error.hpp"
+#include "facecap/detect/face_detector.hpp"
+#include "facecap/io/synthetic_mark.hpp"
+#include "facecap/io/video_writer.hpp"
+#include "facecap/model/regions.hpp"
+#include "facecap/pipeline/refine_eval.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+RefineOptions lighting_only() {
+  RefineOptions o;
+  o.displacements = false;
+  o.albedo.frames = 4;  // the lighting's scale only has to be consistent within a video
+  return o;
+}
+
+}  // namespace
+
+SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& photo, bool quiet) {
+  SourceReconstruction r;
+  if (!fs::is_regular_file(photo)) throw Error("source photo not found: " + photo);
+  r.photo = cv::imread(photo, cv::IMREAD_COLOR);
+  if (r.photo.empty()) throw Error("cannot read the source photo " + photo + " (not an image, or corrupt)");
+  r.faces_found = static_cast<int>(FaceDetector().detect(r.photo).size());
+  if (r.faces_found == 0) throw Error("no face found in the source photo " + photo);
+  if (r.faces_found > 1 && !quiet) {
+    std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, photo.c_str());
+  }
+  auto input = open_input(photo);
+  CaptureOptions capture;
+  capture.quiet = true;
+  capture.keep_images = true;
+  std::optional<CapturedFrame> fit;
+  run_capture(model, *input, capture, [&](const CapturedFrame& f) {
+    if (!fit && f.status != TrackStatus::kLost) fit = f;
+  });
+  if (!fit) throw Error("no face could be fitted in the source photo " + photo);
+  SourceFace& s = r.face;
+  s.identity = fit->identity.identity.cast<float>();
+  s.expression = fit->fit.expression;
+  s.camera = PinholeCamera::centered(fit->fit.focal, r.photo.cols, r.photo.rows);
+  s.camera_points = to_camera(model.evaluate(s.identity, s.expression, regions::kFace), fit->fit.pose);
+  Refiner refiner = make_face_refiner(model, lighting_only());
+  s.lighting = refiner.refine(r.photo, s.camera_points, s.camera).lighting;
+  return r;
+}
+
+SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
+                     const fs::path& output, const SwapJobOptions& options) {
+  SwapSummary summary;
+  auto t0 = std::chrono::steady_clock::now();
+  summary.source = reconstruct_source(model, source_photo, options.capture.quiet);
+  summary.timings.source_ms = ms_since(t0);
+  auto input = open_input(target);
+  const InputInfo info = input->info();
+
+  SyntheticMark mark;
+  mark.kind = "face-swap";
+  mark.description = "The face in this video was replaced by facecap with the face from " +
+                     fs::path(source_photo).filename().string() + ".";
+  mark.sources = {source_photo, target};
+  mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
+                     {"warp_background", options.swap.warp_background ? "true" : "false"}};
+  VideoWriterOptions vo = output_like(info, options.capture.max_frames);
+  vo.metadata = synthetic_metadata(mark);
+  VideoWriter writer(output, vo);
+
+  FaceSwapper swapper(model, summary.source.photo, summary.source.face, options.swap);
+  Refiner refiner = make_face_refiner(model, lighting_only());
+  CaptureOptions capture = options.capture;
+  capture.keep_images = true;
+  summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
+    SwappedFrame result;
+    if (f.status == TrackStatus::kLost) {
+      result.image = f.image;
+    } else {
+      TargetFrame t;
+      t.identity = f.identity.identity.cast<float>();
+      t.expression = f.fit.expression;
+      t.pose = f.fit.pose;
+      t.camera = PinholeCamera::centered(f.fit.focal, info.width, info.height);
+      const auto l0 = std::chrono::steady_clock::now();
+      const Positions coarse = to_camera(model.evaluate(t.identity, t.expression, regions::kFace), t.pose);
+      t.lighting = refiner.refine(f.image, coarse, t.camera).lighting;
+      summary.timings.lighting_ms += ms_since(l0);
+      result = swapper.swap(f.image, t, &summary.timings.swap);
+      ++summary.timings.swapped;
+    }
+    writer.write(result.image);
+    if (options.on_frame) options.on_frame(f, result);
+  });
+  if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
+  writer.finish();
+  write_synthetic_sidecar(output, mark);
+  return summary;
+}
+
+}  // namespace facecap

@@ -1,0 +1,49 @@
+#pragma once
+// `facecap swap --source PHOTO --target VIDEO -o OUT.mp4` (chapter 6): the
+// portrait is reconstructed once (identity, expression, SH lighting, its
+// unshaded appearance), the target tracked frame by frame with its lighting,
+// and every frame with a face re-rendered with the source's face (face/
+// swapper). Frames where the target face is lost pass through unchanged.
+// The output carries the target's audio and the synthetic-media marks.
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "facecap/pipeline/capture_session.hpp"
+#include "facecap/swap/face_swapper.hpp"
+
+namespace facecap {
+
+struct SourceReconstruction {
+  cv::Mat photo;
+  SourceFace face;
+  int faces_found = 0;  // faces the detector saw in the photo (the largest is used)
+};
+
+// Throws facecap::Error naming the file when it cannot be read or holds no face.
+SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& photo, bool quiet = false);
+
+struct SwapJobOptions {
+  CaptureOptions capture;
+  SwapOptions swap;
+  // Called with each output frame (and the target frame it came from).
+  std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
+};
+
+struct SwapJobTimings {
+  SwapTimings swap;
+  double lighting_ms = 0;  // the target's SH lighting per frame
+  double source_ms = 0;    // reconstructing the portrait
+  int swapped = 0;         // frames with a face
+};
+
+struct SwapSummary {
+  CaptureSummary target;
+  SourceReconstruction source;
+  SwapJobTimings timings;
+};
+
+SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
+                     const std::filesystem::path& output, const SwapJobOptions& options);
+
+}  // namespace facecap

@@ -1,0 +1,37 @@
+#include "facecap/render/uv_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facecap {
+
+UvTexelMap rasterize_uv(const TriangleMesh& mesh, int size) {
+  UvTexelMap map;
+  map.size = size;
+  map.triangle.assign(size_t(size) * size, -1);
+  map.weights.assign(size_t(size) * size, Vec3f::Zero());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    Vec2f p[3];
+    for (int k = 0; k < 3; ++k) p[k] = uv_to_texel(mesh.uvs[mesh.triangle_uvs[t][k]], size);
+    const float area = (p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[1].y() - p[0].y()) * (p[2].x() - p[0].x());
+    if (std::abs(area) < 1e-8f) continue;
+    const int x0 = std::max(0, int(std::floor(std::min({p[0].x(), p[1].x(), p[2].x()}))));
+    const int x1 = std::min(size - 1, int(std::ceil(std::max({p[0].x(), p[1].x(), p[2].x()}))));
+    const int y0 = std::max(0, int(std::floor(std::min({p[0].y(), p[1].y(), p[2].y()}))));
+    const int y1 = std::min(size - 1, int(std::ceil(std::max({p[0].y(), p[1].y(), p[2].y()}))));
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const float w0 = ((p[1].x() - x) * (p[2].y() - y) - (p[1].y() - y) * (p[2].x() - x)) / area;
+        const float w1 = ((p[2].x() - x) * (p[0].y() - y) - (p[2].y() - y) * (p[0].x() - x)) / area;
+        const float w2 = 1.0f - w0 - w1;
+        if (w0 < -1e-4f || w1 < -1e-4f || w2 < -1e-4f) continue;
+        const int i = map.index(x, y);
+        map.triangle[i] = static_cast<int>(t);
+        map.weights[i] = Vec3f(w0, w1, w2);
+      }
+    }
+  }
+  return map;
+}
+
+}  // namespace facecap

@@ -1,0 +1,32 @@
+#pragma once
+// Which surface point each texel of a UV texture stands for: the triangle
+// covering the texel in the mesh's UV layout (per-corner UVs, v up as in
+// OBJ) and the texel's barycentric weights in it. Built once per mesh; then
+// baking a per-vertex attribute, or sampling an image at the surface points
+// a texture holds, is a lookup per texel.
+#include <vector>
+
+#include "facecap/core/mesh.hpp"
+
+namespace facecap {
+
+struct UvTexelMap {
+  int size = 0;                 // the texture is size x size
+  std::vector<int> triangle;    // per texel (row-major, row 0 = v 1); -1 where no triangle covers it
+  std::vector<Vec3f> weights;   // barycentric weights of the triangle's three corners
+
+  int index(int x, int y) const { return y * size + x; }
+  // The per-vertex attribute (3 x N) at a covered texel.
+  Vec3f interpolate(const std::vector<Triangle>& triangles, const Positions& attribute, int texel) const {
+    const Triangle& t = triangles[triangle[texel]];
+    const Vec3f& w = weights[texel];
+    return w[0] * attribute.col(t[0]) + w[1] * attribute.col(t[1]) + w[2] * attribute.col(t[2]);
+  }
+};
+
+UvTexelMap rasterize_uv(const TriangleMesh& mesh, int size);
+
+// Texel coordinates of a UV (u right, v up).
+inline Vec2f uv_to_texel(const Vec2f& uv, int size) { return {uv.x() * (size - 1), (1.0f - uv.y()) * (size - 1)}; }
+
+}  // namespace facecap

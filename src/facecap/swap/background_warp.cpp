@@ -1,0 +1,88 @@
+#include "facecap/swap/background_warp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace facecap {
+
+std::vector<cv::Point2f> window_border(const cv::Rect& w) {
+  const float x0 = w.x, y0 = w.y, x1 = w.x + w.width - 1, y1 = w.y + w.height - 1;
+  const float xm = 0.5f * (x0 + x1), ym = 0.5f * (y0 + y1);
+  return {{x0, y0}, {xm, y0}, {x1, y0}, {x1, ym}, {x1, y1}, {xm, y1}, {x0, y1}, {x0, ym}};
+}
+
+void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& anchors, const cv::Rect& window) {
+  std::vector<cv::Point2f> points = anchors;
+  const auto border = window_border(window);
+  points.insert(points.end(), border.begin(), border.end());
+  cv::Subdiv2D subdiv(cv::Rect(window.x - 2, window.y - 2, window.width + 4, window.height + 4));
+  std::vector<int> id_of;  // Subdiv2D vertex id -> our point index
+  for (size_t i = 0; i < points.size(); ++i) {
+    cv::Point2f p(std::clamp(points[i].x, float(window.x), float(window.x + window.width - 1)),
+                  std::clamp(points[i].y, float(window.y), float(window.y + window.height - 1)));
+    const int id = subdiv.insert(p);
+    if (id >= static_cast<int>(id_of.size())) id_of.resize(id + 1, -1);
+    id_of[id] = static_cast<int>(i);  // a duplicate point maps to its last index
+  }
+  std::vector<cv::Vec6f> list;
+  subdiv.getTriangleList(list);
+  triangles_.clear();
+  for (const cv::Vec6f& t : list) {
+    cv::Vec3i tri;
+    bool ok = true;
+    for (int k = 0; k < 3 && ok; ++k) {
+      int edge = 0, vertex = 0;
+      const int r = subdiv.locate(cv::Point2f(t[2 * k], t[2 * k + 1]), edge, vertex);
+      ok = r == cv::Subdiv2D::PTLOC_VERTEX && vertex < static_cast<int>(id_of.size()) && id_of[vertex] >= 0;
+      if (ok) tri[k] = id_of[vertex];
+    }
+    if (ok) triangles_.push_back(tri);
+  }
+}
+
+void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
+                          cv::Rect window, cv::Mat& out) {
+  window &= cv::Rect(0, 0, frame.cols, frame.rows);
+  if (triangles_.empty()) triangulate(from, window);
+  std::vector<cv::Point2f> src = from, dst = to;
+  const auto border = window_border(window);
+  src.insert(src.end(), border.begin(), border.end());
+  dst.insert(dst.end(), border.begin(), border.end());
+  // Identity map, then each destination triangle samples its source triangle.
+  map_x_.create(window.size(), CV_32F);
+  map_y_.create(window.size(), CV_32F);
+  for (int y = 0; y < window.height; ++y) {
+    float* mx = map_x_.ptr<float>(y);
+    float* my = map_y_.ptr<float>(y);
+    for (int x = 0; x < window.width; ++x) {
+      mx[x] = float(window.x + x);
+      my[x] = float(window.y + y);
+    }
+  }
+  for (const cv::Vec3i& t : triangles_) {
+    const cv::Point2f d[3] = {dst[t[0]], dst[t[1]], dst[t[2]]};
+    const cv::Point2f s[3] = {src[t[0]], src[t[1]], src[t[2]]};
+    const float area = (d[1].x - d[0].x) * (d[2].y - d[0].y) - (d[1].y - d[0].y) * (d[2].x - d[0].x);
+    if (std::abs(area) < 1e-3f) continue;
+    const int x0 = std::max(window.x, int(std::floor(std::min({d[0].x, d[1].x, d[2].x}))));
+    const int x1 = std::min(window.x + window.width - 1, int(std::ceil(std::max({d[0].x, d[1].x, d[2].x}))));
+    const int y0 = std::max(window.y, int(std::floor(std::min({d[0].y, d[1].y, d[2].y}))));
+    const int y1 = std::min(window.y + window.height - 1, int(std::ceil(std::max({d[0].y, d[1].y, d[2].y}))));
+    for (int y = y0; y <= y1; ++y) {
+      float* mx = map_x_.ptr<float>(y - window.y);
+      float* my = map_y_.ptr<float>(y - window.y);
+      for (int x = x0; x <= x1; ++x) {
+        const float w0 = ((d[1].x - x) * (d[2].y - y) - (d[1].y - y) * (d[2].x - x)) / area;
+        const float w1 = ((d[2].x - x) * (d[0].y - y) - (d[2].y - y) * (d[0].x - x)) / area;
+        const float w2 = 1.0f - w0 - w1;
+        if (w0 < -1e-4f || w1 < -1e-4f || w2 < -1e-4f) continue;
+        mx[x - window.x] = w0 * s[0].x + w1 * s[1].x + w2 * s[2].x;
+        my[x - window.x] = w0 * s[0].y + w1 * s[1].y + w2 * s[2].y;
+      }
+    }
+  }
+  cv::remap(frame, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+}
+
+}  // namespace facecap

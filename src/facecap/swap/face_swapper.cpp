@@ -1,0 +1,294 @@
+#include "facecap/swap/face_swapper.hpp"
+
+#include <chrono>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/compose/face_layer.hpp"
+#include "facecap/compose/face_reshading.hpp"
+#include "facecap/core/parallel.hpp"
+#include "facecap/model/regions.hpp"
+#include "facecap/render/rasterizer.hpp"
+#include "facecap/render/shading.hpp"
+#include "facecap/render/uv_raster.hpp"
+#include "facecap/swap/albedo_adaptation.hpp"
+#include "facecap/swap/background_warp.hpp"
+#include "facecap/swap/face_texture.hpp"
+#include "facecap/swap/noise_matching.hpp"
+
+namespace facecap {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The skin of the face region (the narrow face of FACTS.md) with its UVs.
+TriangleMesh skin_mesh(const FaceModel& model) {
+  const TriangleMesh face = model.region_mesh(regions::kFace);
+  TriangleMesh skin;
+  skin.uvs = face.uvs;
+  skin.num_vertices = face.num_vertices;
+  for (size_t t = 0; t < face.triangles.size(); ++t) {
+    const Triangle& tri = face.triangles[t];
+    if (tri[0] > regions::kNarrowFace.last_vertex || tri[1] > regions::kNarrowFace.last_vertex ||
+        tri[2] > regions::kNarrowFace.last_vertex)
+      continue;
+    skin.triangles.push_back(tri);
+    skin.triangle_uvs.push_back(face.triangle_uvs[t]);
+  }
+  return skin;
+}
+
+// Per-vertex weighted means of a texture (each texel feeds its triangle's
+// corners by its barycentric weights); `seen` receives each vertex's weight.
+Positions vertex_means(const UvTexelMap& map, const std::vector<Triangle>& triangles, const cv::Mat& albedo,
+                       const cv::Mat& weight, int num_vertices, std::vector<float>& seen) {
+  Positions sum = Positions::Zero(3, num_vertices);
+  seen.assign(num_vertices, 0.0f);
+  for (int y = 0; y < map.size; ++y) {
+    const auto* a = albedo.ptr<cv::Vec3f>(y);
+    const float* w = weight.ptr<float>(y);
+    for (int x = 0; x < map.size; ++x) {
+      const int i = map.index(x, y);
+      if (map.triangle[i] < 0 || w[x] <= 0) continue;
+      const Triangle& t = triangles[map.triangle[i]];
+      for (int k = 0; k < 3; ++k) {
+        const float b = map.weights[i][k] * w[x];
+        sum.col(t[k]) += b * Vec3f(a[x][0], a[x][1], a[x][2]);
+        seen[t[k]] += b;
+      }
+    }
+  }
+  for (int v = 0; v < num_vertices; ++v) {
+    if (seen[v] > 0) sum.col(v) /= seen[v];
+  }
+  return sum;
+}
+
+cv::Vec4f sample_bilinear4(const cv::Mat& tex, float x, float y) {
+  x = std::clamp(x, 0.0f, float(tex.cols - 1));
+  y = std::clamp(y, 0.0f, float(tex.rows - 1));
+  const int x0 = std::min(int(x), tex.cols - 2), y0 = std::min(int(y), tex.rows - 2);
+  const float fx = x - x0, fy = y - y0;
+  const cv::Vec4f* r0 = tex.ptr<cv::Vec4f>(y0);
+  const cv::Vec4f* r1 = tex.ptr<cv::Vec4f>(y0 + 1);
+  return (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
+}
+
+std::vector<cv::Point2f> project(const Positions& p, const std::vector<int>& vertices, const PinholeCamera& cam) {
+  std::vector<cv::Point2f> out;
+  out.reserve(vertices.size());
+  for (int v : vertices) {
+    const Vec2f q = cam.project(Vec3f(p.col(v)));
+    out.emplace_back(q.x(), q.y());
+  }
+  return out;
+}
+
+}  // namespace
+
+struct FaceSwapper::Impl {
+  const FaceModel& model;
+  SwapOptions options;
+  SourceFace source;
+  TriangleMesh skin;
+  UvTexelMap map;
+  cv::Mat source_albedo;  // filled, CV_32FC3
+  cv::Mat source_weight;
+  cv::Mat alpha;          // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
+  cv::Mat texture;        // CV_32FC4: harmonised albedo (BGR) and alpha
+  FaceTexture target_sum;
+  FaceTexture target_first;
+  int appearance_seen = 0;
+  std::vector<int> anchors;  // landmark and boundary vertices for the background warp
+  BackgroundWarp warp;
+
+  Impl(const FaceModel& m, const cv::Mat& photo, SourceFace s, SwapOptions o)
+      : model(m), options(o), source(std::move(s)), skin(skin_mesh(m)), map(rasterize_uv(skin, o.texture_size)) {
+    FaceTexture t = unshade_face(photo, source.camera_points, skin.triangles, source.camera, source.lighting, map);
+    drop_non_skin(t);
+    source_albedo = fill_unseen(t.albedo, t.weight);
+    source_weight = t.weight;
+    // Alpha in UV space: distance (texels) to the nearest texel outside the skin.
+    cv::Mat covered(map.size, map.size, CV_8U);
+    for (int i = 0; i < map.size * map.size; ++i) covered.data[i] = map.triangle[i] >= 0 ? 255 : 0;
+    cv::Mat distance;
+    cv::distanceTransform(covered, distance, cv::DIST_L2, 5);
+    alpha = cv::min(distance / options.fade_texels, 1.0f);
+    // smoothstep: no kink where the fade starts
+    alpha = alpha.mul(alpha).mul(3.0f - 2.0f * alpha);
+    const std::vector<bool> boundary = boundary_vertices(skin.triangles, skin.num_vertices);
+    anchors = model.landmarks.vertices;
+    for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
+      if (boundary[v] && (k++ % 3 == 0)) anchors.push_back(v);
+    }
+  }
+
+  // Eq. 6.3-6.5 with the target frames seen so far.
+  void harmonise() {
+    const FaceTexture target = weighted_mean(target_sum);
+    std::vector<float> seen_s, seen_t;
+    const Positions src = vertex_means(map, skin.triangles, source_albedo, cv::Mat(source_weight + 1e-3f), skin.num_vertices, seen_s);
+    const Positions tgt = vertex_means(map, skin.triangles, target.albedo, target.weight, skin.num_vertices, seen_t);
+    std::vector<bool> known(skin.num_vertices);
+    for (int v = 0; v < skin.num_vertices; ++v) known[v] = seen_t[v] > 0.05f;
+    const AlbedoAdaptation adaptation(skin.triangles, skin.num_vertices, known);
+    const Positions h = adaptation.offset(src, tgt);
+    // Noise: the photo's fine residual, histogram-matched to the first target frame's.
+    cv::Mat smooth;
+    cv::GaussianBlur(source_albedo, smooth, cv::Size(0, 0), options.noise_sigma);
+    const cv::Mat residual_s = source_albedo - smooth;
+    const cv::Mat residual_t = fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);
+    const cv::Mat matched =
+        match_histograms(residual_s, source_weight > 0, residual_t, target_first.weight > 0, -0.3f, 0.3f);
+    texture.create(map.size, map.size, CV_32FC4);
+    parallel_for(map.size, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) {
+        const auto* sm = smooth.ptr<cv::Vec3f>(y);
+        const auto* nm = matched.ptr<cv::Vec3f>(y);
+        const float* al = alpha.ptr<float>(y);
+        auto* out = texture.ptr<cv::Vec4f>(y);
+        for (int x = 0; x < map.size; ++x) {
+          const int i = map.index(x, y);
+          Vec3f offset = Vec3f::Zero();
+          if (map.triangle[i] >= 0) offset = map.interpolate(skin.triangles, h, i);
+          cv::Vec4f v;
+          for (int c = 0; c < 3; ++c) v[c] = std::max(0.0f, sm[x][c] + offset[c] + nm[x][c]);
+          v[3] = al[x];
+          out[x] = v;
+        }
+      }
+    }, 32);
+    // Texels outside the skin take their neighbours' colour, so bilinear lookups at the edge stay clean.
+    std::vector<cv::Mat> channels;
+    cv::split(texture, channels);
+    cv::Mat colour, inside;
+    cv::merge(std::vector<cv::Mat>{channels[0], channels[1], channels[2]}, colour);
+    cv::Mat(alpha > 0).convertTo(inside, CV_32F, 1.0 / 255);
+    std::vector<cv::Mat> filled;
+    cv::split(fill_unseen(colour, inside), filled);
+    filled.push_back(channels[3]);
+    cv::merge(filled, texture);
+  }
+};
+
+FaceSwapper::FaceSwapper(const FaceModel& model, const cv::Mat& photo, SourceFace source, SwapOptions options)
+    : impl_(std::make_unique<Impl>(model, photo, std::move(source), options)) {}
+FaceSwapper::~FaceSwapper() = default;
+FaceSwapper::FaceSwapper(FaceSwapper&&) noexcept = default;
+FaceSwapper& FaceSwapper::operator=(FaceSwapper&&) noexcept = default;
+
+cv::Mat FaceSwapper::harmonised_texture() const {
+  if (impl_->texture.empty()) return {};
+  std::vector<cv::Mat> ch;
+  cv::split(impl_->texture, ch);
+  cv::Mat bgr, out;
+  cv::merge(std::vector<cv::Mat>{ch[0], ch[1], ch[2]}, bgr);
+  bgr.convertTo(out, CV_8UC3, 255.0);
+  return out;
+}
+
+SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, SwapTimings* timings) {
+  Impl& m = *impl_;
+  SwapTimings local;
+  SwapTimings& t = timings ? *timings : local;
+  const Positions target_points =
+      to_camera(m.model.evaluate(target.identity, target.expression, regions::kFace), target.pose);
+  // §6.1.1: the source identity performing the target expression, under the target pose (eq. 6.6).
+  const Positions swapped_points =
+      to_camera(m.model.evaluate(m.source.identity, target.expression, regions::kFace), target.pose);
+
+  auto t0 = std::chrono::steady_clock::now();
+  if (m.appearance_seen < m.options.appearance_frames) {
+    FaceTexture tex = unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map);
+    drop_non_skin(tex);
+    if (m.appearance_seen == 0) m.target_first = tex;
+    accumulate(m.target_sum, tex);
+    ++m.appearance_seen;
+    m.harmonise();
+  }
+  t.appearance_ms += ms_since(t0);
+
+  SwappedFrame out;
+  out.image = frame.clone();
+  const cv::Rect bounds = projected_bounds(swapped_points, target.camera) | projected_bounds(target_points, target.camera);
+  const int margin = std::max(16, bounds.width / 5);
+  out.window = cv::Rect(bounds.x - margin, bounds.y - margin, bounds.width + 2 * margin, bounds.height + 2 * margin) &
+               cv::Rect(0, 0, frame.cols, frame.rows);
+  if (out.window.area() == 0) return out;
+
+  // Eq. 6.7: the harmonised albedo under the target's lighting, on the swapped mesh's normals.
+  t0 = std::chrono::steady_clock::now();
+  PinholeCamera window = target.camera;
+  window.cx -= out.window.x;
+  window.cy -= out.window.y;
+  RasterBuffers buffers;
+  buffers.resize(out.window.width, out.window.height);
+  rasterize(swapped_points, m.skin.triangles, window, buffers);
+  const Positions normals = vertex_normals(swapped_points, m.skin.triangles);
+  cv::Mat render(out.window.size(), CV_32FC3, cv::Scalar::all(0));
+  out.alpha = cv::Mat(out.window.size(), CV_32F, cv::Scalar(0));
+  const float texels = float(m.map.size - 1);
+  parallel_for(out.window.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      auto* colour = render.ptr<cv::Vec3f>(y);
+      float* a = out.alpha.ptr<float>(y);
+      for (int x = 0; x < out.window.width; ++x) {
+        const size_t i = size_t(y) * out.window.width + x;
+        const int tri = buffers.triangle[i];
+        if (tri < 0) continue;
+        const Vec2f b = buffers.bary[i];
+        const Triangle& uv = m.skin.triangle_uvs[tri];
+        const Vec2f coord = (1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]];
+        const cv::Vec4f s = sample_bilinear4(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
+        const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
+        const Vec3f n = to_viewer_frame(normal);
+        const float shade = std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
+        colour[x] = cv::Vec3f(s[0] * shade, s[1] * shade, s[2] * shade) * 255.0f;
+        // Fade where the surface turns away too: the silhouette (the side of
+        // the jaw, the cheek under a turned head) is no UV boundary.
+        const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
+        const float facing = std::clamp((-normal.dot(ray) - 0.1f) / 0.3f, 0.0f, 1.0f);
+        a[x] = s[3] * facing * facing * (3 - 2 * facing);
+      }
+    }
+  }, 16);
+  t.render_ms += ms_since(t0);
+
+  // §6.3: the target background warped to the swapped face's outline.
+  t0 = std::chrono::steady_clock::now();
+  cv::Mat background;
+  if (m.options.warp_background) {
+    m.warp.warp(frame, project(target_points, m.anchors, target.camera), project(swapped_points, m.anchors, target.camera),
+                out.window, background);
+  } else {
+    background = frame(out.window).clone();
+  }
+  t.warp_ms += ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  // Multi-band blend (as the expression transformation's, §5.3.3) of the
+  // render over the warped background, with the alpha map as the mask: the
+  // coarse bands cross the outline smoothly, the fine ones keep it sharp.
+  cv::Mat region = out.image(out.window);
+  background.copyTo(region);
+  FaceLayer layer;
+  layer.box = out.window;
+  layer.colour = background.clone();
+  for (int y = 0; y < out.window.height; ++y) {
+    const auto* c = render.ptr<cv::Vec3f>(y);
+    const float* a = out.alpha.ptr<float>(y);
+    auto* o = layer.colour.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < out.window.width; ++x) {
+      if (a[x] > 0) o[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[x][0]), cv::saturate_cast<uchar>(c[x][1]),
+                                     cv::saturate_cast<uchar>(c[x][2]));
+    }
+  }
+  out.alpha.convertTo(layer.mask, CV_8U, 255.0);
+  composite_layer(out.image, layer, 0, 1.0);
+  t.blend_ms += ms_since(t0);
+  return out;
+}
+
+}  // namespace facecap

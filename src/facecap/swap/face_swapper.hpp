@@ -1,0 +1,75 @@
+#pragma once
+// Face swapping (chapter 6): the source portrait's identity with the
+// target's per-frame expression (§6.1.1), the source appearance harmonised
+// with the target's (albedo adaptation, eq. 6.3, and noise matching,
+// eq. 6.4-6.5, both computed over the first target frames and then held),
+// rendered under the target's pose and SH lighting (eq. 6.6-6.7) into the
+// target frame after warping its background to the new face outline, and
+// blended with an alpha map built in UV space that fades toward the
+// boundary of the face (§6.3).
+#include <memory>
+#include <opencv2/core.hpp>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/core/spherical_harmonics.hpp"
+#include "facecap/model/face_model.hpp"
+
+namespace facecap {
+
+struct SwapOptions {
+  int texture_size = 1024;     // UV texture of the face
+  int appearance_frames = 5;   // target frames over which the appearance is harmonised, then held
+  float fade_texels = 40.0f;   // width of the alpha fade at the face boundary, in texels
+  double noise_sigma = 2.0;    // texels: the residual of eq. 6.4 is what a blur of this size removes
+  bool warp_background = true; // §6.3; off: the new face is laid over the unwarped frame
+};
+
+// The source portrait, reconstructed.
+struct SourceFace {
+  Eigen::VectorXf identity;    // alpha^S
+  Eigen::VectorXf expression;  // beta^S
+  Positions camera_points;     // face region in the photo's camera space
+  PinholeCamera camera;
+  ShCoeffs lighting;
+};
+
+// One tracked target frame.
+struct TargetFrame {
+  Eigen::VectorXf identity;    // alpha^T
+  Eigen::VectorXf expression;  // beta^T_t
+  HeadPose pose;
+  PinholeCamera camera;
+  ShCoeffs lighting;
+};
+
+struct SwapTimings {
+  double appearance_ms = 0;  // texture of the target frame and harmonisation (first frames only)
+  double render_ms = 0;      // swapped mesh and its shading
+  double warp_ms = 0;        // background warp
+  double blend_ms = 0;       // alpha blending
+};
+
+struct SwappedFrame {
+  cv::Mat image;
+  cv::Rect window;  // where the frame changed
+  cv::Mat alpha;    // CV_32F, window-sized: the new face's share of each pixel
+};
+
+class FaceSwapper {
+ public:
+  FaceSwapper(const FaceModel& model, const cv::Mat& photo, SourceFace source, SwapOptions options = {});
+  ~FaceSwapper();
+  FaceSwapper(FaceSwapper&&) noexcept;
+  FaceSwapper& operator=(FaceSwapper&&) noexcept;
+
+  SwappedFrame swap(const cv::Mat& frame, const TargetFrame& target, SwapTimings* timings = nullptr);
+
+  // The harmonised albedo texture (BGR 8-bit), once a target frame has been seen.
+  cv::Mat harmonised_texture() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace facecap

@@ -1,0 +1,145 @@
+#include "facecap/swap/face_texture.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/compose/face_reshading.hpp"
+#include "facecap/core/image_sampling.hpp"
+#include "facecap/core/parallel.hpp"
+#include "facecap/render/rasterizer.hpp"
+#include "facecap/render/shading.hpp"
+
+namespace facecap {
+
+FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, const std::vector<Triangle>& triangles,
+                         const PinholeCamera& camera, const ShCoeffs& lighting, const UvTexelMap& map) {
+  // Depth of the visible surface, rasterised into the face's window.
+  const cv::Rect box = projected_bounds(camera_points, camera) & cv::Rect(0, 0, image.cols, image.rows);
+  PinholeCamera window = camera;
+  window.cx -= box.x;
+  window.cy -= box.y;
+  RasterBuffers buffers;
+  buffers.resize(std::max(1, box.width), std::max(1, box.height));
+  rasterize(camera_points, triangles, window, buffers);
+  const Positions normals = vertex_normals(camera_points, triangles);
+
+  FaceTexture out;
+  out.albedo = cv::Mat(map.size, map.size, CV_32FC3, cv::Scalar::all(0));
+  out.weight = cv::Mat(map.size, map.size, CV_32F, cv::Scalar(0));
+  parallel_for(map.size, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      auto* albedo = out.albedo.ptr<cv::Vec3f>(y);
+      auto* weight = out.weight.ptr<float>(y);
+      for (int x = 0; x < map.size; ++x) {
+        const int i = map.index(x, y);
+        if (map.triangle[i] < 0) continue;
+        const Vec3f p = map.interpolate(triangles, camera_points, i);
+        const Vec3f n = map.interpolate(triangles, normals, i).normalized();
+        const float facing = -n.dot(p.normalized());  // cosine between the normal and the view ray
+        if (!(facing > 0.2f)) continue;
+        const Vec2f q = window.project(p);
+        const int px = static_cast<int>(std::lround(q.x())), py = static_cast<int>(std::lround(q.y()));
+        if (px < 0 || py < 0 || px >= buffers.width || py >= buffers.height) continue;
+        if (p.z() > buffers.depth[size_t(py) * buffers.width + px] + 0.3f) continue;  // hidden
+        const Vec2f qi = camera.project(p);
+        const Vec3f rgb = sample_bilinear_rgb8(image, qi.x(), qi.y());
+        const Vec3f nv = to_viewer_frame(n);
+        const float shade = sh_shade(lighting, nv.x(), nv.y(), nv.z());
+        if (!(shade > 0.05f)) continue;
+        albedo[x] = cv::Vec3f(rgb.z() / shade, rgb.y() / shade, rgb.x() / shade);
+        weight[x] = facing;
+      }
+    }
+  }, 32);
+  return out;
+}
+
+int drop_non_skin(FaceTexture& texture, float max_chroma, float max_log_brightness) {
+  // Median chromaticity (b, g share of the sum) and brightness over the seen texels.
+  std::vector<float> cb, cg, lum;
+  for (int y = 0; y < texture.albedo.rows; ++y) {
+    const auto* a = texture.albedo.ptr<cv::Vec3f>(y);
+    const float* w = texture.weight.ptr<float>(y);
+    for (int x = 0; x < texture.albedo.cols; ++x) {
+      const float sum = a[x][0] + a[x][1] + a[x][2];
+      if (w[x] <= 0 || sum <= 1e-4f) continue;
+      cb.push_back(a[x][0] / sum);
+      cg.push_back(a[x][1] / sum);
+      lum.push_back(sum);
+    }
+  }
+  if (cb.empty()) return 0;
+  auto median = [](std::vector<float>& v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  const float mb = median(cb), mg = median(cg), ml = median(lum);
+  int dropped = 0;
+  for (int y = 0; y < texture.albedo.rows; ++y) {
+    const auto* a = texture.albedo.ptr<cv::Vec3f>(y);
+    float* w = texture.weight.ptr<float>(y);
+    for (int x = 0; x < texture.albedo.cols; ++x) {
+      if (w[x] <= 0) continue;
+      const float sum = a[x][0] + a[x][1] + a[x][2];
+      const float chroma = std::hypot(a[x][0] / std::max(sum, 1e-4f) - mb, a[x][1] / std::max(sum, 1e-4f) - mg);
+      if (chroma > max_chroma || std::abs(std::log(std::max(sum, 1e-4f) / ml)) > max_log_brightness) {
+        w[x] = 0;
+        ++dropped;
+      }
+    }
+  }
+  return dropped;
+}
+
+void accumulate(FaceTexture& sum, const FaceTexture& one) {
+  cv::Mat weighted;
+  cv::Mat w3;
+  cv::merge(std::vector<cv::Mat>{one.weight, one.weight, one.weight}, w3);
+  cv::multiply(one.albedo, w3, weighted);
+  if (sum.empty()) {
+    sum.albedo = weighted;
+    sum.weight = one.weight.clone();
+    return;
+  }
+  sum.albedo += weighted;
+  sum.weight += one.weight;
+}
+
+FaceTexture weighted_mean(const FaceTexture& sum) {
+  FaceTexture out;
+  cv::Mat w = cv::max(sum.weight, 1e-6f);
+  cv::Mat w3;
+  cv::merge(std::vector<cv::Mat>{w, w, w}, w3);
+  cv::divide(sum.albedo, w3, out.albedo);
+  out.weight = sum.weight.clone();
+  return out;
+}
+
+cv::Mat fill_unseen(const cv::Mat& albedo, const cv::Mat& weight) {
+  // Push: halve resolution with weighted means until every texel is covered.
+  std::vector<cv::Mat> colour{albedo.clone()}, known{cv::Mat(weight > 0) / 255};
+  known[0].convertTo(known[0], CV_32F);
+  while (colour.back().cols > 2 && cv::countNonZero(known.back()) < static_cast<int>(known.back().total())) {
+    cv::Mat w3, cw, c, k;
+    cv::merge(std::vector<cv::Mat>{known.back(), known.back(), known.back()}, w3);
+    cv::multiply(colour.back(), w3, cw);
+    cv::resize(cw, c, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    cv::resize(known.back(), k, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    cv::Mat kk = cv::max(k, 1e-6f), k3;
+    cv::merge(std::vector<cv::Mat>{kk, kk, kk}, k3);
+    cv::divide(c, k3, c);
+    cv::threshold(k, k, 1e-6, 1.0, cv::THRESH_BINARY);
+    colour.push_back(c);
+    known.push_back(k);
+  }
+  // Pull: each level's holes take the coarser level's colour.
+  for (int l = static_cast<int>(colour.size()) - 2; l >= 0; --l) {
+    cv::Mat up;
+    cv::resize(colour[l + 1], up, colour[l].size(), 0, 0, cv::INTER_LINEAR);
+    up.copyTo(colour[l], known[l] == 0);
+  }
+  return colour[0];
+}
+
+}  // namespace facecap

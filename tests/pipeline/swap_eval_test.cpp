@@ -1,0 +1,106 @@
+#include "facecap/pipeline/swap_eval.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/io/input.hpp"
+#include "facecap/io/synthetic_mark.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+SwapJobOptions short_run(int frames) {
+  SwapJobOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = frames;
+  return o;
+}
+
+}  // namespace
+
+// Fig. 6.7's experiment: the video's first frame swapped into the rest. The
+// issue's bar (median <= 3, mean <= 6) is not met yet (README: 9.3 / 13.9);
+// this guards what we have against getting worse.
+TEST(SwapEval, SelfSwapStaysNearTheVideo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30));
+  EXPECT_EQ(r.frames, 29);
+  EXPECT_GT(r.face_pixels_per_frame, 30000);
+  EXPECT_LT(r.photometric_median, 12.0);
+  EXPECT_LT(r.photometric_mean, 17.0);
+}
+
+TEST(SwapEval, PortraitIntoVideoTakesTheSourceShapeAndTheTargetExpression) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  TempDir dir;
+  const fs::path out = dir.path() / "swap.mp4";
+  const SwapPairEval r = evaluate_swap_pair(*model, photo.string(), video.string(), short_run(45), out);
+  EXPECT_EQ(r.frames, 45);
+  EXPECT_EQ(r.faces_in_source, 1);
+  // Tracked again, the output's identity has left the target's toward the source's.
+  EXPECT_LT(r.identity_distance_output_source, r.identity_distance_source_target);
+  EXPECT_GT(r.identity_distance_output_target, 0.25 * r.identity_distance_source_target);
+  EXPECT_GT(r.expression_correlation, 0.5);
+  EXPECT_GE(r.expression_weights_compared, 10);
+  EXPECT_GT(r.seam_ratio, 0.0);
+  EXPECT_LT(r.seam_ratio, 2.5);  // issue bar 1.5, not met yet (README)
+  // The result keeps the target's size, frames and audio, and says what it is.
+  const InputInfo info = probe_video_file(out);
+  EXPECT_EQ(info.width, 1280);
+  EXPECT_NEAR(info.frames, 45, 1);
+  EXPECT_TRUE(info.audio);
+  EXPECT_NEAR(info.audio_duration, 45 / 29.97, 0.1);
+  EXPECT_TRUE(carries_synthetic_marks(out));
+}
+
+TEST(SwapJob, APhotoWithoutAFaceIsAClearErrorAndWritesNothing) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  cv::Mat wall(480, 640, CV_8UC3, cv::Scalar(90, 120, 140));
+  cv::rectangle(wall, cv::Rect(100, 100, 200, 150), cv::Scalar(30, 30, 30), -1);
+  cv::imwrite((dir.path() / "wall.png").string(), wall);
+  std::ofstream(dir.path() / "broken.jpg") << "not a jpeg";
+  for (const char* name : {"wall.png", "broken.jpg", "missing.jpg"}) {
+    try {
+      run_swap(*model, (dir.path() / name).string(), video.string(), dir.path() / "out.mp4", short_run(3));
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir.path() / "out.mp4")) << name;
+  }
+}
+
+TEST(SwapJob, SeveralFacesInThePhotoUseTheLargest) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+  TempDir dir;
+  cv::Mat a = cv::imread(obama.string()), b = cv::imread(biden.string());
+  cv::resize(b, b, cv::Size(), 0.45 * a.rows / b.rows * 2, 0.45 * a.rows / b.rows * 2);  // a smaller second face
+  b = b(cv::Rect(0, 0, b.cols, std::min(b.rows, a.rows)));
+  cv::Mat pair(a.rows, a.cols + b.cols, CV_8UC3, cv::Scalar(255, 255, 255));
+  a.copyTo(pair(cv::Rect(0, 0, a.cols, a.rows)));
+  b.copyTo(pair(cv::Rect(a.cols, 0, b.cols, b.rows)));
+  cv::imwrite((dir.path() / "two.jpg").string(), pair);
+  const SourceReconstruction r = reconstruct_source(*model, (dir.path() / "two.jpg").string(), true);
+  EXPECT_EQ(r.faces_found, 2);
+  // The face used is Obama's (the larger, on the left): his nose tip projects there.
+  const Vec3f nose = r.face.camera_points.col(model->landmarks.vertices[30]);
+  EXPECT_LT(r.face.camera.project(nose).x(), a.cols);
+}
+
+}  // namespace facecap

@@ -1,0 +1,78 @@
+#include "facecap/swap/albedo_adaptation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "facecap/core/error.hpp"
+
+namespace facecap {
+
+namespace {
+
+// A square grid of (n+1)^2 vertices, two triangles per cell.
+std::vector<Triangle> grid(int n) {
+  std::vector<Triangle> t;
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
+      t.push_back({a, b, d});
+      t.push_back({a, d, c});
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST(AlbedoAdaptation, BoundaryTakesTheTargetInteriorKeepsSourceGradients) {
+  const int n = 12, count = (n + 1) * (n + 1);
+  const auto tris = grid(n);
+  const AlbedoAdaptation adapt(tris, count, std::vector<bool>(count, true));
+  EXPECT_EQ(adapt.boundary_count(), 4 * n);
+  Positions source(3, count), target(3, count);
+  for (int v = 0; v < count; ++v) {
+    const float x = float(v % (n + 1)) / n, y = float(v / (n + 1)) / n;
+    source.col(v) = Vec3f(0.6f + 0.1f * std::sin(9 * x) * std::cos(7 * y), 0.4f, 0.3f);  // textured
+    target.col(v) = Vec3f(0.3f, 0.2f + 0.1f * x, 0.25f);                                 // darker, a gradient
+  }
+  const Positions h = adapt.offset(source, target);
+  const std::vector<bool> boundary = boundary_vertices(tris, count);
+  for (int v = 0; v < count; ++v) {
+    if (boundary[v]) {
+      EXPECT_LT((source.col(v) + h.col(v) - target.col(v)).norm(), 1e-5f) << v;
+    }
+  }
+  // h is harmonic: the target is linear and the source's red texture is
+  // kept: adapted - source in red is the harmonic extension of (0.3 - source)
+  // on the boundary; green equals the target's linear ramp exactly.
+  for (int v = 0; v < count; ++v) {
+    const float x = float(v % (n + 1)) / n;
+    EXPECT_NEAR(source(1, v) + h(1, v), 0.2f + 0.1f * x, 1e-4f);
+    EXPECT_NEAR(h(2, v), -0.05f, 1e-5f);
+  }
+}
+
+TEST(AlbedoAdaptation, AConstantShiftIsReproducedEverywhere) {
+  const int n = 8, count = (n + 1) * (n + 1);
+  const auto tris = grid(n);
+  Positions source = Positions::Random(3, count) * 0.1f + Positions::Constant(3, count, 0.5f);
+  const Positions target = source + Positions::Constant(3, count, -0.2f);
+  const Positions h = AlbedoAdaptation(tris, count, std::vector<bool>(count, true)).offset(source, target);
+  EXPECT_LT((h - Positions::Constant(3, count, -0.2f)).cwiseAbs().maxCoeff(), 1e-4f);
+}
+
+TEST(AlbedoAdaptation, OutliersOnTheOutlineTakeTheMedian) {
+  const int n = 10, count = (n + 1) * (n + 1);
+  const auto tris = grid(n);
+  const Positions source = Positions::Constant(3, count, 0.5f);
+  Positions target = Positions::Constant(3, count, 0.4f);
+  target.col(3) = Vec3f(1.0f, 1.0f, 1.0f);  // a white collar on the outline
+  const Positions h = AlbedoAdaptation(tris, count, std::vector<bool>(count, true)).offset(source, target);
+  EXPECT_LT((h - Positions::Constant(3, count, -0.1f)).cwiseAbs().maxCoeff(), 1e-4f);
+}
+
+TEST(AlbedoAdaptation, NothingSeenOnTheOutlineIsAnError) {
+  const auto tris = grid(4);
+  EXPECT_THROW(AlbedoAdaptation(tris, 25, std::vector<bool>(25, false)), Error);
+}
+
+}  // namespace facecap
