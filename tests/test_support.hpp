@@ -23,18 +23,18 @@ std::optional<std::filesystem::path> data_path(const std::string& name);
 }  // namespace facecap::test
 
 // Skips the test (or fails it under CI=true) when the model is absent.
-#define FACECAP_REQUIRE_MODEL(var)                                                                       \
-  const ::facecap::FaceModel* var = ::facecap::test::shared_model();                                    \
-  if (var == nullptr) {                                                                                 \
+#define FACECAP_REQUIRE_MODEL(var)                                                                                  \
+  const ::facecap::FaceModel* var = ::facecap::test::shared_model();                                                \
+  if (var == nullptr) {                                                                                             \
     if (::facecap::running_under_ci()) FAIL() << "face model missing under CI: " << ::facecap::default_model_dir(); \
-    GTEST_SKIP() << "face model not found at " << ::facecap::default_model_dir() << " (set FACECAP_MODEL_DIR)"; \
+    GTEST_SKIP() << "face model not found at " << ::facecap::default_model_dir() << " (set FACECAP_MODEL_DIR)";     \
   }
 
 // Skips the test (or fails it under CI=true) when a data file is absent.
-#define FACECAP_REQUIRE_DATA(var, name)                                                                  \
-  const auto var##_opt = ::facecap::test::data_path(name);                                              \
-  if (!var##_opt) {                                                                                     \
-    if (::facecap::running_under_ci()) FAIL() << "test data missing under CI: " << name;               \
-    GTEST_SKIP() << "test data " << name << " not found in " << ::facecap::default_data_dir();          \
-  }                                                                                                     \
+#define FACECAP_REQUIRE_DATA(var, name)                                                        \
+  const auto var##_opt = ::facecap::test::data_path(name);                                     \
+  if (!var##_opt) {                                                                            \
+    if (::facecap::running_under_ci()) FAIL() << "test data missing under CI: " << name;       \
+    GTEST_SKIP() << "test data " << name << " not found in " << ::facecap::default_data_dir(); \
+  }                                                                                            \
   const std::filesystem::path var = *var##_opt;

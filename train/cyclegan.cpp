@@ -91,7 +91,8 @@ CycleGanModels train_cyclegan(const std::vector<Eigen::VectorXf>& xs, const std:
     loss_d.backward();
     opt_d.step();
     out.final_cycle_loss = cycle.item<double>();
-    if (progress && (it % 200 == 0 || it + 1 == o.iterations)) progress(it, loss_g.item<double>(), loss_d.item<double>());
+    if (progress && (it % 200 == 0 || it + 1 == o.iterations))
+      progress(it, loss_g.item<double>(), loss_d.item<double>());
   }
   out.g = export_net(g);
   out.f = export_net(f);

@@ -108,12 +108,17 @@ int main(int argc, char** argv) {
   std::string dataset_out;
   int per_emotion = 3000;
   uint64_t seed = 1;
-  dataset->add_option("--neutral", neutral, "frames.csv files of `facecap track` on neutral talking footage")->required();
+  dataset->add_option("--neutral", neutral, "frames.csv files of `facecap track` on neutral talking footage")
+      ->required();
   dataset->add_option("--per-emotion", per_emotion, "Samples per emotion")->capture_default_str();
   std::vector<std::string> real;
   dataset->add_option("--real", real,
                       "Tracked real frames of an emotion: EMOTION=frames.csv@FROM-TO (seconds), e.g. "
-                      "happiness=smiles/frames.csv@10-19.7; repeated to make up a third of that domain");
+                      "happiness=smiles/frames.csv@10-19.7; repeated to make up --real-share of that domain");
+  double real_share = 0.15;
+  dataset->add_option("--real-share", real_share, "Share of an emotion's samples that real frames make up")
+      ->check(CLI::Range(0.0, 0.9))
+      ->capture_default_str();
   dataset->add_option("--seed", seed, "Random seed")->capture_default_str();
   dataset->add_option("-o,--output", dataset_out, "Output CSV")->required();
 
@@ -154,16 +159,19 @@ int main(int argc, char** argv) {
         const RealFrames r = parse_real_frames(spec);
         const auto w = read_tracked_weights(r.csv, names, r.from, r.to);
         if (w.empty()) throw Error("--real " + spec + ": no tracked frames in that time range");
-        const int repeat = std::max(1, per_emotion / 3 / static_cast<int>(w.size()));
+        const int repeat =
+            std::max(1, static_cast<int>(std::lround(real_share / (1 - real_share) * per_emotion / w.size())));
         for (int k = 0; k < repeat; ++k)
           for (const auto& x : w) rows.push_back({r.emotion, x});
         std::fprintf(stderr, "%s: %zu real frames x %d\n", to_string(r.emotion), w.size(), repeat);
       }
       write_dataset_csv(dataset_out, rows, names);
-      std::fprintf(stderr, "wrote %s: %zu neutral rows, %d per emotion\n", dataset_out.c_str(), speech.size(), per_emotion);
+      std::fprintf(stderr, "wrote %s: %zu neutral rows, %d per emotion\n", dataset_out.c_str(), speech.size(),
+                   per_emotion);
     } else if (*expr) {
       const auto f = parse_emotion(from), t = parse_emotion(to);
-      if (!f || !t) throw Error("--from and --to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
+      if (!f || !t)
+        throw Error("--from and --to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
       if ((*f == Emotion::kNeutral) == (*t == Emotion::kNeutral)) {
         throw Error("one side of a mapping must be neutral (other pairs relay through neutral)");
       }

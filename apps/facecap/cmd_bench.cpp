@@ -88,7 +88,8 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
                      {"albedo_note", "the albedo is solved during the first frames only (every 3rd of the first 30)"},
                      {"displacement_ms_per_level", per_level},
                      {"total_ms_per_frame", stage->refine_ms() / n}};
-      j["fps_with_refine"] = (wall - s.timings.setup_ms / 1000) > 0 ? s.frames / (wall - s.timings.setup_ms / 1000) : 0.0;
+      j["fps_with_refine"] =
+          (wall - s.timings.setup_ms / 1000) > 0 ? s.frames / (wall - s.timings.setup_ms / 1000) : 0.0;
     }
     j["input"] = a->input;
     j["width"] = s.input.width;
@@ -177,8 +178,9 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
                       {"edit_ms_per_frame", edit_ms},
                       {"edit_fps", edit_ms > 0 ? 1000.0 / edit_ms : 0.0},
                       {"lighting_ms_per_frame", s.timings.lighting_ms / n},
-                      {"note", "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
-                               "refinement's SH estimate (albedo over the first 4 frames)"}};
+                      {"note",
+                       "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
+                       "refinement's SH estimate (albedo over the first 4 frames)"}};
     j["fps_end_to_end"] = wall > 0 ? s.timings.frames / wall : 0.0;
     j["input"] = a->input;
     j["width"] = s.capture.input.width;

@@ -1,10 +1,10 @@
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
-#include "facecap/pipeline/synth_landmark_eval.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
-#include "facecap/pipeline/track_eval.hpp"
 #include "facecap/pipeline/swap_eval.hpp"
+#include "facecap/pipeline/synth_landmark_eval.hpp"
+#include "facecap/pipeline/track_eval.hpp"
 #include "facecap/pipeline/transform_eval.hpp"
 
 namespace facecap::cli {
@@ -108,7 +108,8 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     a->options.landmarks = a->landmarks == "dlib" ? LandmarkSource::kDlib : LandmarkSource::kTruth;
     if (a->true_focal) {
       a->options.capture.fit.focal_known = true;
-      a->options.capture.fit.focal_guess = (a->options.synth.focal > 0 ? a->options.synth.focal : 1.1 * a->options.synth.width);
+      a->options.capture.fit.focal_guess =
+          (a->options.synth.focal > 0 ? a->options.synth.focal : 1.1 * a->options.synth.width);
     }
     const TrackEvalResult r = evaluate_track_synthetic(model, a->options);
     print_json({{"frames", r.frames},

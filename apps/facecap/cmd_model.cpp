@@ -9,7 +9,8 @@ namespace facecap::cli {
 void register_model(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand("model", "Load the face model, build its binary cache, and describe it as JSON");
   cmd->callback([&global] {
-    const std::filesystem::path dir = global.model_dir.empty() ? default_model_dir() : std::filesystem::path(global.model_dir);
+    const std::filesystem::path dir =
+        global.model_dir.empty() ? default_model_dir() : std::filesystem::path(global.model_dir);
     ModelLoadReport report;
     const FaceModel m = load_face_model(dir, &report);
     print_json({{"model_dir", dir.string()},

@@ -38,8 +38,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                  "(first %d frames), render %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json (synthetic-media "
                  "marks)\n",
                  s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
-                 t.appearance_ms / n, a->options.swap.appearance_frames, t.render_ms / n, t.warp_ms / n,
-                 t.blend_ms / n, a->output.c_str(), a->output.c_str());
+                 t.appearance_ms / n, a->options.swap.appearance_frames, t.render_ms / n, t.warp_ms / n, t.blend_ms / n,
+                 a->output.c_str(), a->output.c_str());
   });
 }
 

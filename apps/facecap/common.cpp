@@ -9,7 +9,8 @@
 namespace facecap::cli {
 
 FaceModel load_model(const GlobalOptions& global) {
-  const std::filesystem::path dir = global.model_dir.empty() ? default_model_dir() : std::filesystem::path(global.model_dir);
+  const std::filesystem::path dir =
+      global.model_dir.empty() ? default_model_dir() : std::filesystem::path(global.model_dir);
   ModelLoadReport report;
   FaceModel model = load_face_model(dir, &report);
   if (!global.quiet) {

@@ -46,9 +46,8 @@ TEST(Cli, BadInputsExitNonZeroWithOneLine) {
   TempDir dir;
   std::ofstream(dir.path() / "empty.mp4").close();
   std::ofstream(dir.path() / "text.mp4") << "not a video";
-  for (const std::string& input :
-       {(dir.path() / "missing.mp4").string(), (dir.path() / "empty.mp4").string(), (dir.path() / "text.mp4").string(),
-        dir.path().string()}) {
+  for (const std::string& input : {(dir.path() / "missing.mp4").string(), (dir.path() / "empty.mp4").string(),
+                                   (dir.path() / "text.mp4").string(), dir.path().string()}) {
     const RunResult r = run("probe " + input);
     EXPECT_EQ(r.code, 1) << input << ": " << r.out;
     EXPECT_EQ(lines(r.out), 1) << r.out;

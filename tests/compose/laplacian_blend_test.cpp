@@ -50,7 +50,7 @@ TEST(LaplacianBlend, InsideTheMaskTheLayerOutsideTheBaseAndNoHardSeam) {
   cv::rectangle(mask, cv::Rect(40, 30, 240, 180), cv::Scalar(255), -1);
   const cv::Mat out = laplacian_blend(base, layer, feather_mask(mask, 2, 3));
   EXPECT_NEAR(out.at<cv::Vec3b>(120, 160)[0], 200, 1);  // centre of the mask
-  EXPECT_NEAR(out.at<cv::Vec3b>(5, 5)[0], 60, 3);      // far outside
+  EXPECT_NEAR(out.at<cv::Vec3b>(5, 5)[0], 60, 3);       // far outside
   // Across the mask's left edge the profile climbs steadily over many
   // pixels: no pixel-to-pixel jump of more than a fifth of the 140 step.
   int largest_step = 0;

@@ -21,8 +21,8 @@ TEST(MidpointSubdivision, ProlongAveragesParents) {
   const Positions f = s.prolong(p);
   ASSERT_EQ(f.cols(), s.num_vertices);
   for (int v = 0; v < f.cols(); ++v) {
-    EXPECT_NEAR(f(2, v), 1.0f, 1e-6f);                  // stays on the plane z = 1
-    EXPECT_LE(f(0, v) + f(1, v), 2.0f + 1e-6f);          // stays inside the triangle
+    EXPECT_NEAR(f(2, v), 1.0f, 1e-6f);           // stays on the plane z = 1
+    EXPECT_LE(f(0, v) + f(1, v), 2.0f + 1e-6f);  // stays inside the triangle
     EXPECT_GE(f(0, v), -1e-6f);
   }
 }

@@ -21,11 +21,15 @@ TEST(ParallelFor, NestedAndConcurrentCallsComplete) {
   std::atomic<long> sum{0};
   auto job = [&] {
     for (int rep = 0; rep < 50; ++rep) {
-      parallel_for(64, [&](int b, int e) {
-        for (int i = b; i < e; ++i) {
-          parallel_for(100, [&](int bb, int ee) { sum += ee - bb; }, 10);
-        }
-      }, 1);
+      parallel_for(
+          64,
+          [&](int b, int e) {
+            for (int i = b; i < e; ++i) {
+              parallel_for(
+                  100, [&](int bb, int ee) { sum += ee - bb; }, 10);
+            }
+          },
+          1);
     }
   };
   std::thread other(job);

@@ -11,7 +11,7 @@ namespace facecap {
 
 namespace {
 
-const std::vector<std::string> kNames = {"mouthSmile_L", "mouthSmile_R", "cheekSquint_L", "cheekSquint_R",
+const std::vector<std::string> kNames = {"mouthSmile_L",  "mouthSmile_R",  "cheekSquint_L", "cheekSquint_R",
                                          "browInnerUp_L", "browInnerUp_R", "jawOpen"};
 
 std::vector<Eigen::VectorXf> speech() {

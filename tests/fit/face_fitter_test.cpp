@@ -29,7 +29,8 @@ TEST(FaceFitter, RecoversPoseAndExpressionFromPerfectLandmarks) {
     FrameParameters params(fitter.num_expressions());
     fitter.initialize_frame(lm, identity, perf.camera.focal, params);
     const FrameFitReport report = fitter.fit_frame(lm, identity, perf.camera.focal, nullptr, params);
-    EXPECT_LT(rotation_angle_deg(params.pose().rotation_matrix(), f.pose.rotation_matrix()), 0.1) << "frame " << f.index;
+    EXPECT_LT(rotation_angle_deg(params.pose().rotation_matrix(), f.pose.rotation_matrix()), 0.1)
+        << "frame " << f.index;
     EXPECT_LT((params.expression().cast<float>() - f.expression).cwiseAbs().mean(), 0.01f) << "frame " << f.index;
     EXPECT_LT(report.landmark_error, 0.001) << "frame " << f.index;
     EXPECT_GE(params.expression().minCoeff(), 0.0);

@@ -50,8 +50,8 @@ TEST(FaceModel, FaceRegionMeshIsLocalAndUsesAllRegionVertices) {
   }
   EXPECT_EQ(std::count(used.begin(), used.end(), true), face.num_vertices);
   // Outward normals: the nose tip's normal points out of the face (+z).
-  const Positions n = vertex_normals(model->evaluate(Eigen::VectorXf(), Eigen::VectorXf(), regions::kFace),
-                                     face.triangles);
+  const Positions n =
+      vertex_normals(model->evaluate(Eigen::VectorXf(), Eigen::VectorXf(), regions::kFace), face.triangles);
   EXPECT_GT(n(2, model->landmarks.vertices[30]), 0.9f);
 }
 

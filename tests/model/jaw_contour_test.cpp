@@ -36,8 +36,9 @@ TEST(JawContour, FrontalSilhouetteIsTheJawline) {
   // At f = 1000 px and 56 cm, 2 mm is 3.6 px.
   auto image_x = [&](int v) { return 1000.0 * face(0, v) / (60.0 - face(2, v)); };
   for (int k = 0; k < 17; ++k) {
-    const int candidate = k < 8 ? model->landmarks.jaw_right[k] : k == 8 ? model->landmarks.vertices[8]
-                                                                         : model->landmarks.jaw_left[k - 9];
+    const int candidate = k < 8    ? model->landmarks.jaw_right[k]
+                          : k == 8 ? model->landmarks.vertices[8]
+                                   : model->landmarks.jaw_left[k - 9];
     EXPECT_LT(std::abs(image_x(frontal[k]) - image_x(candidate)), 1000.0 * 0.2 / 56.0) << "landmark " << k;
   }
 }

@@ -16,7 +16,9 @@ const char* kSquare =
     "# a unit square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
     "usemtl M\nf 1/1 2/2 3/3 4/4\nf 1/1 2/2 3/3\n";
 
-void write_plain(const std::filesystem::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+void write_plain(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p, std::ios::binary) << text;
+}
 
 void write_gz(const std::filesystem::path& p, const std::string& text) {
   gzFile f = gzopen(p.c_str(), "wb");
@@ -46,7 +48,7 @@ TEST(ObjReader, ReadsPlainAndGzipAlike) {
     ASSERT_EQ(obj.polygons.size(), 2u);
     EXPECT_EQ(obj.polygons[0].size(), 4);
     EXPECT_EQ(obj.polygons[1].size(), 3);
-    EXPECT_EQ(obj.polygons[0].v[2], 2);   // 1-based in the file, 0-based here
+    EXPECT_EQ(obj.polygons[0].v[2], 2);  // 1-based in the file, 0-based here
     EXPECT_EQ(obj.polygons[0].uv[3], 3);
   }
 }

@@ -47,9 +47,9 @@ TEST(TrackEval, RealFootageIsExplainedByTheModel) {
     const char* name;
     bool must_not_lose;
   };
-  for (const Clip& clip : {Clip{"address_720p_a.mp4", true}, Clip{"address_720p_b.mp4", true},
-                           Clip{"talking_webcam_400x300.mp4", true}, Clip{"talking_webcam2_400x300.mp4", true},
-                           Clip{"emotions_pexels_640x360.mp4", false}}) {
+  for (const Clip& clip :
+       {Clip{"address_720p_a.mp4", true}, Clip{"address_720p_b.mp4", true}, Clip{"talking_webcam_400x300.mp4", true},
+        Clip{"talking_webcam2_400x300.mp4", true}, Clip{"emotions_pexels_640x360.mp4", false}}) {
     FACECAP_REQUIRE_DATA(video, clip.name);
     CaptureOptions o;
     o.quiet = true;

@@ -25,7 +25,8 @@ struct BumpCase {
     std::vector<Polygon> polys;
     base.resize(3, (n + 1) * (n + 1));
     for (int y = 0; y <= n; ++y)
-      for (int x = 0; x <= n; ++x) base.col(y * (n + 1) + x) = Vec3f(0.1f * (x - n / 2.0f), 0.1f * (y - n / 2.0f), 30.0f);
+      for (int x = 0; x <= n; ++x)
+        base.col(y * (n + 1) + x) = Vec3f(0.1f * (x - n / 2.0f), 0.1f * (y - n / 2.0f), 30.0f);
     for (int y = 0; y < n; ++y) {
       for (int x = 0; x < n; ++x) {
         Polygon q;

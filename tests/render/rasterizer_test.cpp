@@ -85,8 +85,8 @@ TEST(Rasterizer, OccludedVerticesAreNotVisible) {
   std::vector<Triangle> t;
   square(p, t, 10.0f);
   Positions pts(3, 2);
-  pts.col(0) = Vec3f(0.2f, 0.2f, 10.0f);   // on the square
-  pts.col(1) = Vec3f(0.4f, 0.4f, 20.0f);   // behind it
+  pts.col(0) = Vec3f(0.2f, 0.2f, 10.0f);  // on the square
+  pts.col(1) = Vec3f(0.4f, 0.4f, 20.0f);  // behind it
   Positions normals(3, 2);
   normals.col(0) = Vec3f(0, 0, -1);
   normals.col(1) = Vec3f(0, 0, -1);

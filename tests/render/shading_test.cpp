@@ -21,7 +21,8 @@ void sphere(const Vec3f& c, float r, Positions& p, std::vector<Triangle>& t) {
   }
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < segs; ++j) {
-      const int a = i * segs + j, b = i * segs + (j + 1) % segs, cc = (i + 1) * segs + j, d = (i + 1) * segs + (j + 1) % segs;
+      const int a = i * segs + j, b = i * segs + (j + 1) % segs, cc = (i + 1) * segs + j,
+                d = (i + 1) * segs + (j + 1) % segs;
       t.push_back({a, cc, b});
       t.push_back({b, cc, d});
     }

@@ -72,7 +72,8 @@ TEST(SynthRenderer, DetailDisplacesTheSurfaceAlongItsNormals) {
   ASSERT_EQ(fine.cols(), coarse.cols());
   double max_err = 0;
   for (Eigen::Index v = 0; v < fine.cols(); ++v) {
-    max_err = std::max(max_err, double(std::abs((fine.col(v) - coarse.col(v)).norm() - std::abs(rd.detail_displacement()[v]))));
+    max_err = std::max(max_err,
+                       double(std::abs((fine.col(v) - coarse.col(v)).norm() - std::abs(rd.detail_displacement()[v]))));
   }
   EXPECT_LT(max_err, 1e-4);
   // And it shows in the image: the face pixels change, the background does not.

@@ -20,7 +20,8 @@ cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera) 
   if (x1 < x0) return {};
   // Clamp before converting: a point near the camera plane projects far away.
   auto c = [](float v) { return static_cast<int>(std::clamp(v, -1e6f, 1e6f)); };
-  return cv::Rect(cv::Point(c(std::floor(x0)), c(std::floor(y0))), cv::Point(c(std::ceil(x1)) + 1, c(std::ceil(y1)) + 1));
+  return cv::Rect(cv::Point(c(std::floor(x0)), c(std::floor(y0))),
+                  cv::Point(c(std::ceil(x1)) + 1, c(std::ceil(y1)) + 1));
 }
 
 FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const Positions& new_points,
@@ -37,29 +38,33 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
   rasterize(new_points, triangles, window, buffers);
   const Positions old_normals = vertex_normals(old_points, triangles);
   const Positions new_normals = vertex_normals(new_points, triangles);
-  parallel_for(layer.box.height, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      auto* out = layer.colour.ptr<cv::Vec3b>(y);
-      auto* mask = layer.mask.ptr<uchar>(y);
-      for (int x = 0; x < layer.box.width; ++x) {
-        const size_t i = size_t(y) * layer.box.width + x;
-        if (buffers.triangle[i] < 0) continue;
-        // The same surface point on the old surface, in the source frame.
-        const Vec3f old_point = interpolate(buffers, triangles, old_points, i);
-        const Vec2f q = camera.project(old_point);
-        const Vec3f rgb = sample_bilinear_rgb8(source, q.x(), q.y());
-        const Vec3f n_old = interpolate(buffers, triangles, old_normals, i).normalized();
-        const Vec3f n_new = interpolate(buffers, triangles, new_normals, i).normalized();
-        const Vec3f vo = to_viewer_frame(n_old), vn = to_viewer_frame(n_new);
-        const float s_old = sh_shade(lighting, vo.x(), vo.y(), vo.z());
-        const float s_new = sh_shade(lighting, vn.x(), vn.y(), vn.z());
-        const float ratio = s_old > 0.05f ? std::clamp(s_new / s_old, 0.5f, 2.0f) : 1.0f;
-        out[x] = cv::Vec3b(cv::saturate_cast<uchar>(rgb.z() * ratio * 255), cv::saturate_cast<uchar>(rgb.y() * ratio * 255),
-                           cv::saturate_cast<uchar>(rgb.x() * ratio * 255));
-        mask[x] = 255;
-      }
-    }
-  }, 16);
+  parallel_for(
+      layer.box.height,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          auto* out = layer.colour.ptr<cv::Vec3b>(y);
+          auto* mask = layer.mask.ptr<uchar>(y);
+          for (int x = 0; x < layer.box.width; ++x) {
+            const size_t i = size_t(y) * layer.box.width + x;
+            if (buffers.triangle[i] < 0) continue;
+            // The same surface point on the old surface, in the source frame.
+            const Vec3f old_point = interpolate(buffers, triangles, old_points, i);
+            const Vec2f q = camera.project(old_point);
+            const Vec3f rgb = sample_bilinear_rgb8(source, q.x(), q.y());
+            const Vec3f n_old = interpolate(buffers, triangles, old_normals, i).normalized();
+            const Vec3f n_new = interpolate(buffers, triangles, new_normals, i).normalized();
+            const Vec3f vo = to_viewer_frame(n_old), vn = to_viewer_frame(n_new);
+            const float s_old = sh_shade(lighting, vo.x(), vo.y(), vo.z());
+            const float s_new = sh_shade(lighting, vn.x(), vn.y(), vn.z());
+            const float ratio = s_old > 0.05f ? std::clamp(s_new / s_old, 0.5f, 2.0f) : 1.0f;
+            out[x] = cv::Vec3b(cv::saturate_cast<uchar>(rgb.z() * ratio * 255),
+                               cv::saturate_cast<uchar>(rgb.y() * ratio * 255),
+                               cv::saturate_cast<uchar>(rgb.x() * ratio * 255));
+            mask[x] = 255;
+          }
+        }
+      },
+      16);
   return layer;
 }
 

@@ -19,8 +19,10 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& h, const Eigen::VectorXd& g, con
   std::vector<Bound> state(n, Bound::kFree);
   x = x.cwiseMax(lower).cwiseMin(upper);
   for (int i = 0; i < n; ++i) {
-    if (x[i] <= lower[i]) state[i] = Bound::kLower;
-    else if (x[i] >= upper[i]) state[i] = Bound::kUpper;
+    if (x[i] <= lower[i])
+      state[i] = Bound::kLower;
+    else if (x[i] >= upper[i])
+      state[i] = Bound::kUpper;
   }
   constexpr double kTol = 1e-12;
   std::vector<int> free_idx;

@@ -15,9 +15,7 @@ struct PinholeCamera {
   double cx = 0.0;        // principal point, pixels (the image centre)
   double cy = 0.0;
 
-  static PinholeCamera centered(double focal, int width, int height) {
-    return {focal, 0.5 * width, 0.5 * height};
-  }
+  static PinholeCamera centered(double focal, int width, int height) { return {focal, 0.5 * width, 0.5 * height}; }
   // Eq. 4.2: (i, j) = (f X/Z + c_x, f Y/Z + c_y).
   Vec2d project(const Vec3d& p) const { return {focal * p.x() / p.z() + cx, focal * p.y() / p.z() + cy}; }
   Vec2f project(const Vec3f& p) const {

@@ -18,8 +18,7 @@ Vec3d yaw_pitch_roll_deg(const Mat3d& r) {
 }
 
 Mat3d rotation_from_yaw_pitch_roll_deg(double yaw, double pitch, double roll) {
-  return (Eigen::AngleAxisd(yaw / kDeg, Vec3d::UnitY()) *
-          Eigen::AngleAxisd(pitch / kDeg, Vec3d::UnitX()) *
+  return (Eigen::AngleAxisd(yaw / kDeg, Vec3d::UnitY()) * Eigen::AngleAxisd(pitch / kDeg, Vec3d::UnitX()) *
           Eigen::AngleAxisd(roll / kDeg, Vec3d::UnitZ()))
       .toRotationMatrix();
 }

@@ -48,7 +48,8 @@ inline Vec3f sample_bilinear_rgb8(const cv::Mat& bgr8, float x, float y) {
 // Samples a texture at UV (u right, v up, OBJ convention) into RGB, for a
 // BGR CV_32FC3 texture.
 inline Vec3f sample_uv_rgb(const cv::Mat& texture_bgr, const Vec2f& uv) {
-  const Vec3f bgr = sample_bilinear(texture_bgr, uv.x() * (texture_bgr.cols - 1), (1.0f - uv.y()) * (texture_bgr.rows - 1));
+  const Vec3f bgr =
+      sample_bilinear(texture_bgr, uv.x() * (texture_bgr.cols - 1), (1.0f - uv.y()) * (texture_bgr.rows - 1));
   return {bgr.z(), bgr.y(), bgr.x()};
 }
 

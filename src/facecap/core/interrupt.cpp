@@ -1,8 +1,8 @@
 #include "facecap/core/interrupt.hpp"
 
+#include <unistd.h>
 #include <csignal>
 #include <cstdlib>
-#include <unistd.h>
 
 #include "facecap/core/error.hpp"
 

@@ -6,8 +6,7 @@
 
 namespace facecap {
 
-TriangleMesh triangulate(const std::vector<Polygon>& polygons, const std::vector<Vec2f>& uvs,
-                         int num_vertices) {
+TriangleMesh triangulate(const std::vector<Polygon>& polygons, const std::vector<Vec2f>& uvs, int num_vertices) {
   TriangleMesh mesh;
   mesh.num_vertices = num_vertices;
   mesh.uvs = uvs;

@@ -26,8 +26,7 @@ struct TriangleMesh {
 };
 
 // Splits each quad along its v0-v2 diagonal; keeps triangles as they are.
-TriangleMesh triangulate(const std::vector<Polygon>& polygons, const std::vector<Vec2f>& uvs,
-                         int num_vertices);
+TriangleMesh triangulate(const std::vector<Polygon>& polygons, const std::vector<Vec2f>& uvs, int num_vertices);
 
 // Area-weighted vertex normals (paper §4.3.3: n_i = sum over incident
 // triangles of (v_j - v_i) x (v_k - v_i)), normalised; zero for unused vertices.

@@ -10,7 +10,7 @@ namespace facecap {
 
 struct MidpointSubdivision {
   int num_coarse = 0;
-  int num_vertices = 0;                   // coarse vertices first, then one per split edge
+  int num_vertices = 0;                     // coarse vertices first, then one per split edge
   std::vector<std::array<int, 2>> parents;  // for vertices >= num_coarse: the two averaged vertices
   std::vector<Triangle> triangles;
 

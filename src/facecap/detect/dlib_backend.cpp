@@ -77,7 +77,8 @@ std::vector<FaceDetection> FaceDetector::detect_in(const cv::Mat& image, const B
                        float(r.height() / scale)},
                    d.detection_confidence});
   }
-  std::sort(out.begin(), out.end(), [](const FaceDetection& a, const FaceDetection& b) { return a.box.area() > b.box.area(); });
+  std::sort(out.begin(), out.end(),
+            [](const FaceDetection& a, const FaceDetection& b) { return a.box.area() > b.box.area(); });
   return out;
 }
 
@@ -151,8 +152,8 @@ LandmarkDetector& LandmarkDetector::operator=(LandmarkDetector&&) noexcept = def
 Landmarks LandmarkDetector::detect(const cv::Mat& grey_in, const Box& box) const {
   const cv::Mat grey = to_grey(grey_in);
   dlib::cv_image<unsigned char> img(grey);
-  const dlib::rectangle rect(long(std::lround(box.x)), long(std::lround(box.y)), long(std::lround(box.x + box.width - 1)),
-                             long(std::lround(box.y + box.height - 1)));
+  const dlib::rectangle rect(long(std::lround(box.x)), long(std::lround(box.y)),
+                             long(std::lround(box.x + box.width - 1)), long(std::lround(box.y + box.height - 1)));
   const auto parts = impl_->predict(img, rect);
   Landmarks lm;
   for (int i = 0; i < kNumLandmarks; ++i) lm[i] = Vec2f(float(parts[i].x()), float(parts[i].y()));

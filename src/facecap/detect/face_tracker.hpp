@@ -38,12 +38,12 @@ struct FaceTrackerOptions {
 struct TrackedFace {
   TrackStatus status = TrackStatus::kLost;
   Landmarks landmarks{};
-  Box box;            // the box the shape predictor ran on
-  int faces_seen = 0;  // faces found when the detector ran this frame (0 if it did not run)
-  bool detector_ran = false;     // any detector run: the per-frame check or a full-frame search
-  bool full_detection = false;   // the detector searched the whole frame (start, after a loss)
-  double detector_ms = 0;   // time spent in the HOG detector this frame
-  double landmarks_ms = 0;  // time spent in the shape predictor this frame
+  Box box;                      // the box the shape predictor ran on
+  int faces_seen = 0;           // faces found when the detector ran this frame (0 if it did not run)
+  bool detector_ran = false;    // any detector run: the per-frame check or a full-frame search
+  bool full_detection = false;  // the detector searched the whole frame (start, after a loss)
+  double detector_ms = 0;       // time spent in the HOG detector this frame
+  double landmarks_ms = 0;      // time spent in the shape predictor this frame
 };
 
 class FaceTracker {

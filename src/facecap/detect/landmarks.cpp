@@ -51,7 +51,8 @@ Landmarks read_pts(const std::filesystem::path& path) {
     }
   }
   if (declared != kNumLandmarks || points.size() != static_cast<size_t>(kNumLandmarks)) {
-    throw Error("landmark file " + path.string() + " must hold 68 points (found " + std::to_string(points.size()) + ")");
+    throw Error("landmark file " + path.string() + " must hold 68 points (found " + std::to_string(points.size()) +
+                ")");
   }
   Landmarks lm;
   std::copy(points.begin(), points.end(), lm.begin());

@@ -28,16 +28,23 @@ const std::map<Emotion, Prototype>& prototypes() {
   static const std::map<Emotion, Prototype> table = {
       {Emotion::kNeutral, {}},
       {Emotion::kHappiness, both({{"cheekSquint_", 0.6}, {"mouthSmile_", 1.0}, {"eyeSquint_", 0.3}})},
-      {Emotion::kSadness, both({{"browInnerUp_", 1.0}, {"browDown_", 0.4}, {"mouthFrown_", 0.9},
-                                {"mouthShrugLower", 0.3}})},
-      {Emotion::kSurprise, both({{"browInnerUp_", 1.0}, {"browOuterUp_", 1.0}, {"eyeWide_", 0.8},
-                                 {"jawOpen", 0.4}})},
-      {Emotion::kFear, both({{"browInnerUp_", 1.0}, {"browOuterUp_", 0.6}, {"browDown_", 0.4}, {"eyeWide_", 0.9},
-                             {"eyeSquint_", 0.3}, {"mouthStretch_", 0.9}, {"jawOpen", 0.25}})},
-      {Emotion::kAnger, both({{"browDown_", 1.0}, {"eyeWide_", 0.3}, {"eyeSquint_", 0.6}, {"mouthPress_", 0.8},
-                              {"noseSneer_", 0.3}})},
-      {Emotion::kDisgust, both({{"noseSneer_", 1.0}, {"mouthUpperUp_", 0.6}, {"mouthFrown_", 0.5},
-                                {"mouthLowerDown_", 0.4}, {"browDown_", 0.3}})},
+      {Emotion::kSadness,
+       both({{"browInnerUp_", 1.0}, {"browDown_", 0.4}, {"mouthFrown_", 0.9}, {"mouthShrugLower", 0.3}})},
+      {Emotion::kSurprise, both({{"browInnerUp_", 1.0}, {"browOuterUp_", 1.0}, {"eyeWide_", 0.8}, {"jawOpen", 0.4}})},
+      {Emotion::kFear, both({{"browInnerUp_", 1.0},
+                             {"browOuterUp_", 0.6},
+                             {"browDown_", 0.4},
+                             {"eyeWide_", 0.9},
+                             {"eyeSquint_", 0.3},
+                             {"mouthStretch_", 0.9},
+                             {"jawOpen", 0.25}})},
+      {Emotion::kAnger,
+       both({{"browDown_", 1.0}, {"eyeWide_", 0.3}, {"eyeSquint_", 0.6}, {"mouthPress_", 0.8}, {"noseSneer_", 0.3}})},
+      {Emotion::kDisgust, both({{"noseSneer_", 1.0},
+                                {"mouthUpperUp_", 0.6},
+                                {"mouthFrown_", 0.5},
+                                {"mouthLowerDown_", 0.4},
+                                {"browDown_", 0.3}})},
   };
   return table;
 }
@@ -46,13 +53,20 @@ const std::map<Emotion, Prototype>& prototypes() {
 
 const char* to_string(Emotion e) {
   switch (e) {
-    case Emotion::kNeutral: return "neutral";
-    case Emotion::kAnger: return "anger";
-    case Emotion::kDisgust: return "disgust";
-    case Emotion::kFear: return "fear";
-    case Emotion::kHappiness: return "happiness";
-    case Emotion::kSadness: return "sadness";
-    case Emotion::kSurprise: return "surprise";
+    case Emotion::kNeutral:
+      return "neutral";
+    case Emotion::kAnger:
+      return "anger";
+    case Emotion::kDisgust:
+      return "disgust";
+    case Emotion::kFear:
+      return "fear";
+    case Emotion::kHappiness:
+      return "happiness";
+    case Emotion::kSadness:
+      return "sadness";
+    case Emotion::kSurprise:
+      return "surprise";
   }
   return "neutral";
 }

@@ -31,7 +31,8 @@ const EmotionPair& ExpressionMapper::pair(Emotion emotion) const {
   auto it = pairs_.find(emotion);
   if (it != pairs_.end()) return *it->second;
   const fs::path d = dir_ / (std::string("neutral-") + to_string(emotion));
-  if (!fs::is_directory(d)) throw Error("no expression model for " + std::string(to_string(emotion)) + ": " + d.string());
+  if (!fs::is_directory(d))
+    throw Error("no expression model for " + std::string(to_string(emotion)) + ": " + d.string());
   auto p = std::make_unique<EmotionPair>();
   p->g = read_mlp(d / "G.fcnn");
   p->f = read_mlp(d / "F.fcnn");

@@ -14,7 +14,8 @@ ExpressionSchedule ExpressionSchedule::constant(Emotion target, double intensity
 
 ExpressionSchedule::ExpressionSchedule(std::vector<ScheduleKey> keys) : keys_(std::move(keys)) {
   if (keys_.empty()) throw Error("an expression schedule needs at least one key");
-  std::stable_sort(keys_.begin(), keys_.end(), [](const ScheduleKey& x, const ScheduleKey& y) { return x.time < y.time; });
+  std::stable_sort(keys_.begin(), keys_.end(),
+                   [](const ScheduleKey& x, const ScheduleKey& y) { return x.time < y.time; });
   for (const ScheduleKey& k : keys_) {
     if (!(k.intensity >= 0 && k.intensity <= 1)) throw Error("schedule intensities must be in [0, 1]");
   }
@@ -31,12 +32,16 @@ ExpressionSchedule ExpressionSchedule::read(const std::filesystem::path& path) {
     ScheduleKey k;
     std::string target;
     if (!(ss >> k.time >> target >> k.intensity)) {
-      throw Error("malformed schedule " + path.string() + " line " + std::to_string(n) + ": expected 'seconds target intensity'");
+      throw Error("malformed schedule " + path.string() + " line " + std::to_string(n) +
+                  ": expected 'seconds target intensity'");
     }
     const auto e = parse_emotion(target);
-    if (!e) throw Error("malformed schedule " + path.string() + " line " + std::to_string(n) + ": unknown expression '" + target + "'");
+    if (!e)
+      throw Error("malformed schedule " + path.string() + " line " + std::to_string(n) + ": unknown expression '" +
+                  target + "'");
     if (k.intensity < 0 || k.intensity > 1) {
-      throw Error("malformed schedule " + path.string() + " line " + std::to_string(n) + ": intensity must be in [0, 1]");
+      throw Error("malformed schedule " + path.string() + " line " + std::to_string(n) +
+                  ": intensity must be in [0, 1]");
     }
     k.target = *e;
     keys.push_back(k);

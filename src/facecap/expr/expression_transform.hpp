@@ -25,12 +25,12 @@ struct TransformOptions {
 struct TransformedFrame {
   int index = 0;
   double time = 0;
-  bool valid = false;          // false: no face; the frame passes through
-  Eigen::VectorXf tracked;     // the source weights
-  Eigen::VectorXf mapped;      // per-frame mapping (at the scheduled intensity)
-  Eigen::VectorXf lip_only;    // mapped + lip correction, no smoothing
-  Eigen::VectorXf smoothed;    // window mean of the mapped weights
-  Eigen::VectorXf weights;     // the result: smoothed + lip correction
+  bool valid = false;        // false: no face; the frame passes through
+  Eigen::VectorXf tracked;   // the source weights
+  Eigen::VectorXf mapped;    // per-frame mapping (at the scheduled intensity)
+  Eigen::VectorXf lip_only;  // mapped + lip correction, no smoothing
+  Eigen::VectorXf smoothed;  // window mean of the mapped weights
+  Eigen::VectorXf weights;   // the result: smoothed + lip correction
 };
 
 class ExpressionTransformer {

@@ -12,7 +12,8 @@ std::array<int, 4> key_lip_vertices(const FaceModel& model) {
 Eigen::MatrixXd lip_basis(const FaceModel& model) {
   const auto verts = key_lip_vertices(model);
   Eigen::MatrixXd rows(12, model.num_expressions());
-  for (int k = 0; k < 4; ++k) rows.middleRows(3 * k, 3) = model.expression_basis.middleRows(3 * verts[k], 3).cast<double>();
+  for (int k = 0; k < 4; ++k)
+    rows.middleRows(3 * k, 3) = model.expression_basis.middleRows(3 * verts[k], 3).cast<double>();
   return rows;
 }
 

@@ -27,8 +27,8 @@ struct LipCorrectionOptions {
 };
 
 // target: the smoothed mapped weights; source: the tracked weights.
-Eigen::VectorXf correct_lips(const Eigen::MatrixXd& lip_rows, const Eigen::VectorXf& target, const Eigen::VectorXf& source,
-                             const LipCorrectionOptions& options = {});
+Eigen::VectorXf correct_lips(const Eigen::MatrixXd& lip_rows, const Eigen::VectorXf& target,
+                             const Eigen::VectorXf& source, const LipCorrectionOptions& options = {});
 
 // Confidence-weighted window mean of mapped weights (eq. 5.4's first term).
 Eigen::VectorXf window_mean(const std::vector<Eigen::VectorXf>& mapped, const std::vector<float>& confidence);

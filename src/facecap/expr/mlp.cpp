@@ -41,7 +41,9 @@ Eigen::VectorXf Mlp::forward(const Eigen::VectorXf& x) const {
 Mlp read_mlp(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("expression model not found: " + path.string());
-  auto fail = [&](const std::string& why) -> Error { return Error("bad expression model " + path.string() + ": " + why); };
+  auto fail = [&](const std::string& why) -> Error {
+    return Error("bad expression model " + path.string() + ": " + why);
+  };
   auto read_u32 = [&]() {
     uint32_t v = 0;
     if (!in.read(reinterpret_cast<char*>(&v), sizeof(v))) throw fail("truncated");
@@ -55,7 +57,8 @@ Mlp read_mlp(const std::filesystem::path& path) {
   std::vector<DenseLayer> layers(count);
   for (DenseLayer& layer : layers) {
     const uint32_t inputs = read_u32(), outputs = read_u32(), activation = read_u32();
-    if (inputs == 0 || outputs == 0 || inputs > 4096 || outputs > 4096 || activation > 2) throw fail("impossible layer");
+    if (inputs == 0 || outputs == 0 || inputs > 4096 || outputs > 4096 || activation > 2)
+      throw fail("impossible layer");
     layer.activation = static_cast<Activation>(activation);
     Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w(outputs, inputs);
     layer.bias.resize(outputs);

@@ -48,8 +48,9 @@ float parse_weight(const std::string& s, const std::filesystem::path& path, int 
 
 }  // namespace
 
-std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& csv, const std::vector<std::string>& names,
-                                                  double from_seconds, double to_seconds) {
+std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& csv,
+                                                  const std::vector<std::string>& names, double from_seconds,
+                                                  double to_seconds) {
   std::ifstream in(csv);
   if (!in) throw Error("tracking file not found: " + csv.string());
   std::string line;
@@ -122,9 +123,12 @@ std::vector<LabeledWeights> read_dataset_csv(const std::filesystem::path& path, 
     const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size()) throw Error("malformed " + path.string() + " line " + std::to_string(n));
     const auto label = parse_emotion(cells[label_col[0]]);
-    if (!label) throw Error("malformed " + path.string() + " line " + std::to_string(n) + ": unknown label '" + cells[label_col[0]] + "'");
+    if (!label)
+      throw Error("malformed " + path.string() + " line " + std::to_string(n) + ": unknown label '" +
+                  cells[label_col[0]] + "'");
     LabeledWeights r{*label, Eigen::VectorXf(static_cast<Eigen::Index>(names.size()))};
-    for (size_t k = 0; k < names.size(); ++k) r.weights[k] = std::clamp(parse_weight(cells[cols[k]], path, n), 0.0f, 1.0f);
+    for (size_t k = 0; k < names.size(); ++k)
+      r.weights[k] = std::clamp(parse_weight(cells[cols[k]], path, n), 0.0f, 1.0f);
     out.push_back(std::move(r));
   }
   return out;

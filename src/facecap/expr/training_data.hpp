@@ -9,7 +9,7 @@
 //    frame of the neutral speech (the larger of the two per shape), so that
 //    the mapping learns to keep speech while adding the emotion;
 //  - plus tracked real frames where footage shows the emotion (frames.csv
-//    and a time range), repeated to make up a third of that domain.
+//    and a time range), repeated to make up a share of that domain (15 %).
 // Rows of the CSV: a label, then the 53 weights under their ARKit names.
 #include <cstdint>
 #include <filesystem>
@@ -32,8 +32,8 @@ struct LabeledWeights {
 // between two times (seconds), in the order of `names`. Throws
 // facecap::Error naming the file and the missing column when the file is not
 // a frames.csv.
-std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& csv, const std::vector<std::string>& names,
-                                                  double from_seconds = 0,
+std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& csv,
+                                                  const std::vector<std::string>& names, double from_seconds = 0,
                                                   double to_seconds = std::numeric_limits<double>::infinity());
 
 std::vector<LabeledWeights> make_emotion_samples(Emotion emotion, const std::vector<Eigen::VectorXf>& speech,

@@ -96,7 +96,8 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
     // Maybe the warm start was the problem (a fast turn): start afresh once.
     FrameParameters fresh(fitter_.num_expressions());
     fitter_.initialize_frame(*frame.landmarks, identity_.identity, identity_.focal, fresh);
-    const FrameFitReport second = fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, nullptr, fresh);
+    const FrameFitReport second =
+        fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, nullptr, fresh);
     if (second.landmark_error < report.landmark_error) {
       report = second;
       params = fresh;

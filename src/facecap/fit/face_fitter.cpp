@@ -66,9 +66,8 @@ void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::Vector
     pose.translation = Vec3d((centre.x() - pp.x()) * depth / focal, (centre.y() - pp.y()) * depth / focal + 1.0, depth);
     trial.set_pose(pose);
     for (int round = 0; round < 2; ++round) {
-      energy.set_correspondences(
-          pose_correspondences(model_, basis_, identity, trial.expression(), trial.pose(), camera(focal), observed,
-                               slide_jaw()));
+      energy.set_correspondences(pose_correspondences(model_, basis_, identity, trial.expression(), trial.pose(),
+                                                      camera(focal), observed, slide_jaw()));
       solve_pose(energy, trial, 15);
     }
     const double c = energy.cost(trial);
@@ -87,9 +86,8 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
   FrameFitReport report;
   for (int round = 0; round < options_.bcd_iterations; ++round) {
     // Jaw correspondences follow the current pose (landmark marching).
-    report.correspondences =
-        pose_correspondences(model_, basis_, identity, params.expression(), params.pose(), camera(focal), observed,
-                             slide_jaw());
+    report.correspondences = pose_correspondences(model_, basis_, identity, params.expression(), params.pose(),
+                                                  camera(focal), observed, slide_jaw());
     energy.set_correspondences(report.correspondences);
     solve_pose(energy, params, options_.max_solver_iterations);
     solve_expression(energy, params, 5);

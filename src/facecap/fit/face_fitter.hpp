@@ -29,7 +29,6 @@ class FaceFitter {
  public:
   FaceFitter(const FaceModel& model, const CoarseFitOptions& options, int width, int height);
 
-
   const CoarseFitOptions& options() const { return options_; }
   int num_expressions() const { return num_expressions_; }
   int identity_modes() const { return static_cast<int>(basis_.identity.cols()); }

@@ -22,8 +22,8 @@
 namespace facecap {
 
 struct FitWeights {
-  double sigma_landmark = 2.0;         // px per 100 px of inter-ocular distance
-  double jaw_sigma_factor = 1.5;       // jaw landmarks (0-16) are less certain: sigma x this
+  double sigma_landmark = 2.0;    // px per 100 px of inter-ocular distance
+  double jaw_sigma_factor = 1.5;  // jaw landmarks (0-16) are less certain: sigma x this
   // The identity solve sees the same landmark offsets in every frame: where a
   // detector's convention differs from the model's landmark vertices (dlib's
   // brows, lips and jaw sit a few per cent of the inter-ocular distance away
@@ -31,14 +31,14 @@ struct FitWeights {
   // the identity (identity norms of 16 instead of about 7 were measured on
   // real footage). The identity solve therefore uses sigma x this factor.
   double identity_sigma_factor = 3.0;
-  double sigma_expression = 0.6;       // prior on each weight (mean 0)
-  double expression_l1 = 0.0;          // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
+  double sigma_expression = 0.6;  // prior on each weight (mean 0)
+  double expression_l1 = 0.0;     // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
   double sigma_temporal_expression = 0.1;
   double sigma_temporal_rotation_deg = 3.0;
   double sigma_temporal_translation_cm = 1.5;
-  double sigma_log_focal = 0.5;        // video: weak prior on log(focal / guess)
-  double sigma_log_focal_still = 0.15; // single image: focal is barely observable
-  double huber_scale = 3.0;            // robust loss on landmarks, in sigmas
+  double sigma_log_focal = 0.5;         // video: weak prior on log(focal / guess)
+  double sigma_log_focal_still = 0.15;  // single image: focal is barely observable
+  double huber_scale = 3.0;             // robust loss on landmarks, in sigmas
 
   void check() const;
 };

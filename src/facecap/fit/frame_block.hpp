@@ -33,9 +33,7 @@ struct FrameParameters {
       values[frame_block::kTranslation + k] = p.translation[k];
     }
   }
-  Eigen::Map<Eigen::VectorXd> expression() {
-    return {values.data() + frame_block::kExpression, num_expressions()};
-  }
+  Eigen::Map<Eigen::VectorXd> expression() { return {values.data() + frame_block::kExpression, num_expressions()}; }
   Eigen::Map<const Eigen::VectorXd> expression() const {
     return {values.data() + frame_block::kExpression, num_expressions()};
   }

@@ -112,8 +112,8 @@ double FrameEnergy::linearize(const FrameParameters& x, Eigen::VectorXd& r, Eige
   Eigen::Matrix<double, 2, 6, Eigen::RowMajor> jp;
   Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor> jw(2, num_expressions_);
   for (int i = 0; i < 68; ++i) {
-    const double s = landmark_block(i, x, res, jp.data(), jw.data(), shared ? ja.data() : nullptr,
-                                    shared ? jf.data() : nullptr);
+    const double s =
+        landmark_block(i, x, res, jp.data(), jw.data(), shared ? ja.data() : nullptr, shared ? jf.data() : nullptr);
     // Huber as iteratively reweighted least squares: rows scaled by sqrt(rho'(s)).
     double scale = 1.0;
     if (s > k * k) {

@@ -30,12 +30,15 @@ double total_cost(const std::vector<std::unique_ptr<FrameEnergy>>& energies, con
                   const Eigen::VectorXd& identity, double focal, const IdentitySolverOptions& o) {
   const int n = static_cast<int>(frames.size());
   std::vector<double> costs(n, 0.0);
-  parallel_for(n, [&](int b, int e) {
-    for (int i = b; i < e; ++i) {
-      energies[i]->set_shared(identity, focal);
-      costs[i] = energies[i]->cost(frames[i]);
-    }
-  }, 1);
+  parallel_for(
+      n,
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          energies[i]->set_shared(identity, focal);
+          costs[i] = energies[i]->cost(frames[i]);
+        }
+      },
+      1);
   double total = shared_prior_cost(identity, focal, o);
   for (double c : costs) total += c;
   return total;
@@ -44,8 +47,8 @@ double total_cost(const std::vector<std::unique_ptr<FrameEnergy>>& energies, con
 }  // namespace
 
 IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<FrameEnergy>>& energies,
-                                         std::vector<FrameParameters>& frames, Eigen::VectorXd& identity,
-                                         double& focal, const IdentitySolverOptions& o) {
+                                         std::vector<FrameParameters>& frames, Eigen::VectorXd& identity, double& focal,
+                                         const IdentitySolverOptions& o) {
   IdentitySolveReport rep;
   const int n = static_cast<int>(frames.size());
   const int ni = static_cast<int>(identity.size());
@@ -64,38 +67,41 @@ IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<Frame
       cost = total_cost(energies, frames, identity, focal, o);
     }
     // Linearise every frame (in parallel).
-    parallel_for(n, [&](int b, int e) {
-      Eigen::VectorXd r;
-      Eigen::MatrixXd j, k;
-      for (int i = b; i < e; ++i) {
-        FrameSystem& s = sys[i];
-        energies[i]->set_shared(identity, focal);
-        s.cost = energies[i]->linearize(frames[i], r, j, &k);
-        if (!o.focal_free) k.conservativeResize(Eigen::NoChange, ni);
-        Eigen::VectorXd grad = j.transpose() * r;
-        grad.tail(block - first_weight).array() += energies[i]->expression_l1();
-        // Active set: weights at a bound that the gradient pushes outward stay put.
-        s.free.clear();
-        for (int c = 0; c < block; ++c) {
-          if (c >= first_weight) {
-            const double w = frames[i].values[c];
-            if ((w <= 1e-12 && grad[c] > 0) || (w >= 1.0 - 1e-12 && grad[c] < 0)) continue;
+    parallel_for(
+        n,
+        [&](int b, int e) {
+          Eigen::VectorXd r;
+          Eigen::MatrixXd j, k;
+          for (int i = b; i < e; ++i) {
+            FrameSystem& s = sys[i];
+            energies[i]->set_shared(identity, focal);
+            s.cost = energies[i]->linearize(frames[i], r, j, &k);
+            if (!o.focal_free) k.conservativeResize(Eigen::NoChange, ni);
+            Eigen::VectorXd grad = j.transpose() * r;
+            grad.tail(block - first_weight).array() += energies[i]->expression_l1();
+            // Active set: weights at a bound that the gradient pushes outward stay put.
+            s.free.clear();
+            for (int c = 0; c < block; ++c) {
+              if (c >= first_weight) {
+                const double w = frames[i].values[c];
+                if ((w <= 1e-12 && grad[c] > 0) || (w >= 1.0 - 1e-12 && grad[c] < 0)) continue;
+              }
+              s.free.push_back(c);
+            }
+            const int nf = static_cast<int>(s.free.size());
+            Eigen::MatrixXd jf(j.rows(), nf);
+            s.g.resize(nf);
+            for (int c = 0; c < nf; ++c) {
+              jf.col(c) = j.col(s.free[c]);
+              s.g[c] = grad[s.free[c]];
+            }
+            s.a.noalias() = jf.transpose() * jf;
+            s.b.noalias() = jf.transpose() * k;
+            s.ktk.noalias() = k.transpose() * k;
+            s.ktr.noalias() = k.transpose() * r;
           }
-          s.free.push_back(c);
-        }
-        const int nf = static_cast<int>(s.free.size());
-        Eigen::MatrixXd jf(j.rows(), nf);
-        s.g.resize(nf);
-        for (int c = 0; c < nf; ++c) {
-          jf.col(c) = j.col(s.free[c]);
-          s.g[c] = grad[s.free[c]];
-        }
-        s.a.noalias() = jf.transpose() * jf;
-        s.b.noalias() = jf.transpose() * k;
-        s.ktk.noalias() = k.transpose() * k;
-        s.ktr.noalias() = k.transpose() * r;
-      }
-    }, 1);
+        },
+        1);
     Eigen::MatrixXd u = Eigen::MatrixXd::Zero(ny, ny);
     Eigen::VectorXd gy = Eigen::VectorXd::Zero(ny);
     for (const FrameSystem& s : sys) {

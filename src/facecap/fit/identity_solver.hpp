@@ -36,7 +36,7 @@ struct IdentitySolveReport {
 };
 
 IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<FrameEnergy>>& energies,
-                                         std::vector<FrameParameters>& frames, Eigen::VectorXd& identity,
-                                         double& focal, const IdentitySolverOptions& options);
+                                         std::vector<FrameParameters>& frames, Eigen::VectorXd& identity, double& focal,
+                                         const IdentitySolverOptions& options);
 
 }  // namespace facecap

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-
 namespace facecap {
 
 LandmarkBasis gather_landmark_basis(const FaceModel& model, int identity_modes) {

@@ -16,16 +16,17 @@
 namespace facecap {
 
 struct LandmarkBasis {
-  std::vector<int> vertices;              // global vertex index of each gathered row triple
-  std::unordered_map<int, int> slot_of;   // global vertex -> slot
-  Eigen::Matrix3Xd neutral;               // 3 x slots
-  Eigen::MatrixXd identity;               // 3*slots x identity modes
-  Eigen::MatrixXd expression;             // 3*slots x expressions
+  std::vector<int> vertices;             // global vertex index of each gathered row triple
+  std::unordered_map<int, int> slot_of;  // global vertex -> slot
+  Eigen::Matrix3Xd neutral;              // 3 x slots
+  Eigen::MatrixXd identity;              // 3*slots x identity modes
+  Eigen::MatrixXd expression;            // 3*slots x expressions
   JawContour contour;
 
   int slot(int vertex) const { return slot_of.at(vertex); }
   // Model-space position of a gathered vertex.
-  Eigen::Vector3d position(int slot, const Eigen::VectorXd& identity_weights, const Eigen::VectorXd& expression_weights) const;
+  Eigen::Vector3d position(int slot, const Eigen::VectorXd& identity_weights,
+                           const Eigen::VectorXd& expression_weights) const;
 };
 
 LandmarkBasis gather_landmark_basis(const FaceModel& model, int identity_modes);

@@ -17,7 +17,8 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 
 }  // namespace
 
-Eigen::Matrix3d rotated_point_jacobian(const Eigen::Vector3d& r, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& v) {
+Eigen::Matrix3d rotated_point_jacobian(const Eigen::Vector3d& r, const Eigen::Matrix3d& rotation,
+                                       const Eigen::Vector3d& v) {
   const double theta2 = r.squaredNorm();
   if (theta2 < 1e-16) return -skew(v);
   return -rotation * skew(v) * (r * r.transpose() + (rotation.transpose() - Eigen::Matrix3d::Identity()) * skew(r)) /

@@ -33,6 +33,7 @@ class LandmarkCost final : public ceres::CostFunction {
 };
 
 // d(R(r) v)/dr for the axis-angle r (Gallego & Yezzi 2015): -R [v]x J(r).
-Eigen::Matrix3d rotated_point_jacobian(const Eigen::Vector3d& r, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& v);
+Eigen::Matrix3d rotated_point_jacobian(const Eigen::Vector3d& r, const Eigen::Matrix3d& rotation,
+                                       const Eigen::Vector3d& v);
 
 }  // namespace facecap

@@ -20,11 +20,11 @@ struct InputInfo {
   InputKind kind = InputKind::kVideo;
   int width = 0;
   int height = 0;
-  double fps = 0.0;     // 0 for stills
-  int frames = -1;      // -1 when unknown (camera)
-  bool audio = false;   // has an audio stream
+  double fps = 0.0;           // 0 for stills
+  int frames = -1;            // -1 when unknown (camera)
+  bool audio = false;         // has an audio stream
   double audio_duration = 0;  // seconds of the first audio stream, 0 when unknown or none
-  double duration = 0;  // seconds, 0 when unknown
+  double duration = 0;        // seconds, 0 when unknown
 };
 
 struct Frame {

@@ -59,7 +59,8 @@ InputInfo probe_video_file(const std::filesystem::path& path) {
       if (entries <= 0) continue;
       const AVIndexEntry* last = avformat_index_get_entry(s, entries - 1);
       if (last != nullptr && last->pos + last->size > file_size) {
-        throw Error("cannot read " + path.string() + ": the video is truncated (its index points past the end of the file)");
+        throw Error("cannot read " + path.string() +
+                    ": the video is truncated (its index points past the end of the file)");
       }
     }
   }
@@ -75,7 +76,8 @@ InputInfo probe_video_file(const std::filesystem::path& path) {
     }
     if (s->codecpar->codec_type == AVMEDIA_TYPE_AUDIO && !info.audio) {
       info.audio = true;
-      if (s->duration != AV_NOPTS_VALUE && s->duration > 0) info.audio_duration = double(s->duration) * av_q2d(s->time_base);
+      if (s->duration != AV_NOPTS_VALUE && s->duration > 0)
+        info.audio_duration = double(s->duration) * av_q2d(s->time_base);
     }
   }
   if (video == nullptr) throw Error("cannot read " + path.string() + ": it has no video stream");

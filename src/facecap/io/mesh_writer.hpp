@@ -10,10 +10,10 @@
 namespace facecap {
 
 struct ObjMesh {
-  const Positions* positions = nullptr;       // 3 x N
+  const Positions* positions = nullptr;            // 3 x N
   const std::vector<Polygon>* polygons = nullptr;  // vertex indices into positions, UV indices into uvs
-  const std::vector<Vec2f>* uvs = nullptr;     // may be null
-  std::string comment;                         // written as '# ...' lines at the top
+  const std::vector<Vec2f>* uvs = nullptr;         // may be null
+  std::string comment;                             // written as '# ...' lines at the top
 };
 
 void write_obj(const std::filesystem::path& path, const ObjMesh& mesh);

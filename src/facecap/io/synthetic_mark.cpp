@@ -17,9 +17,7 @@ std::map<std::string, std::string> synthetic_metadata(const SyntheticMark& mark)
           {"encoder_note", "facecap " + std::string(kFacecapVersion)}};
 }
 
-std::filesystem::path sidecar_path(const std::filesystem::path& media_path) {
-  return media_path.string() + ".json";
-}
+std::filesystem::path sidecar_path(const std::filesystem::path& media_path) { return media_path.string() + ".json"; }
 
 void write_synthetic_sidecar(const std::filesystem::path& media_path, const SyntheticMark& mark) {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

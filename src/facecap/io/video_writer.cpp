@@ -30,9 +30,21 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
   log_path_ = file_.temp_path();
   log_path_ += ".log";
 
-  std::vector<std::string> args{"ffmpeg", "-hide_banner", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt",
-                                "bgr24", "-s", std::to_string(options_.width) + "x" + std::to_string(options_.height),
-                                "-r", std::to_string(options_.fps), "-i", "-"};
+  std::vector<std::string> args{"ffmpeg",
+                                "-hide_banner",
+                                "-loglevel",
+                                "error",
+                                "-y",
+                                "-f",
+                                "rawvideo",
+                                "-pix_fmt",
+                                "bgr24",
+                                "-s",
+                                std::to_string(options_.width) + "x" + std::to_string(options_.height),
+                                "-r",
+                                std::to_string(options_.fps),
+                                "-i",
+                                "-"};
   const bool audio = options_.audio_source.has_value();
   if (audio) {
     if (options_.audio_seconds > 0) args.insert(args.end(), {"-t", std::to_string(options_.audio_seconds)});

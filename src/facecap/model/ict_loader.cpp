@@ -20,7 +20,7 @@ constexpr const char* kNeutralStem = "generic_neutral_mesh";
 // Jawline candidates of FACTS.md (from the ICT-FaceKit release notes).
 const std::vector<int> kJawRight{1278, 1272, 12, 1834, 243, 781, 2199, 1447};
 const std::vector<int> kJawLeft{3661, 4390, 3022, 2484, 4036, 2253, 3490, 3496};
-const std::vector<int> kJawRightExtended{1280, 1278, 1275, 1272, 1248, 12, 820, 1834, 1902,
+const std::vector<int> kJawRightExtended{1280, 1278, 1275, 1272, 1248, 12,  820,  1834, 1902,
                                          243,  844,  781,  1673, 2199, 801, 1447, 800};
 const std::vector<int> kJawLeftExtended{3041, 3661, 3042, 4390, 3880, 3022, 3085, 2484, 4102,
                                         4036, 3061, 2253, 3466, 3490, 3493, 3496, 3498};
@@ -87,7 +87,8 @@ FaceModel load_ict_model(const fs::path& dir, const IctLoadOptions& options) {
   const nlohmann::json index = read_index(dir);
   FaceModel model;
   model.expression_names = expression_list(index, dir);
-  if (model.expression_names.empty()) throw Error("model file " + (dir / kIndexFile).string() + " lists no expressions");
+  if (model.expression_names.empty())
+    throw Error("model file " + (dir / kIndexFile).string() + " lists no expressions");
 
   const fs::path neutral_path = resolve(dir, kNeutralStem);
   ObjData neutral = read_obj(neutral_path);

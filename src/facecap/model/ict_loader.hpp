@@ -18,6 +18,7 @@ FaceModel load_ict_model(const std::filesystem::path& dir, const IctLoadOptions&
 
 // The model files a folder must hold (neutral, identities, expressions, JSON),
 // resolved to .obj or .obj.gz; used to fingerprint the cache.
-std::vector<std::filesystem::path> ict_source_files(const std::filesystem::path& dir, const IctLoadOptions& options = {});
+std::vector<std::filesystem::path> ict_source_files(const std::filesystem::path& dir,
+                                                    const IctLoadOptions& options = {});
 
 }  // namespace facecap

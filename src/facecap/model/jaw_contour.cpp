@@ -49,7 +49,8 @@ JawContour build_jaw_contour(const FaceModel& model) {
     contour.lines[k] = march_line(neutral, candidate, std::abs(neutral(0, lm.vertices[k])) * 0.55f);
   }
   // Extended lists: the right one runs ear to chin; the left one chin to ear.
-  for (int v : lm.jaw_right_extended) contour.right_path.push_back(march_line(neutral, v, std::abs(neutral(0, v)) * 0.55f));
+  for (int v : lm.jaw_right_extended)
+    contour.right_path.push_back(march_line(neutral, v, std::abs(neutral(0, v)) * 0.55f));
   for (auto it = lm.jaw_left_extended.rbegin(); it != lm.jaw_left_extended.rend(); ++it) {
     contour.left_path.push_back(march_line(neutral, *it, std::abs(neutral(0, *it)) * 0.55f));
   }
@@ -94,9 +95,8 @@ std::vector<int> silhouette_path(const JawContour& contour, bool right_side, con
 
 std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positions& face_positions,
                                         const Mat3d& model_to_camera, const Vec3d& translation) {
-  return silhouette_vertices(contour, [&](int v) -> Vec3d {
-    return model_to_camera * face_positions.col(v).cast<double>() + translation;
-  });
+  return silhouette_vertices(
+      contour, [&](int v) -> Vec3d { return model_to_camera * face_positions.col(v).cast<double>() + translation; });
 }
 
 std::array<int, 68> landmark_vertices_for_pose(const FaceModel& model, const JawContour& contour,

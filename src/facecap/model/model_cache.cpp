@@ -169,8 +169,10 @@ FaceModel read_model_cache(const fs::path& path, uint64_t expected_fingerprint) 
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("model cache not found: " + path.string());
   CacheHeader header{};
-  if (!in.read(reinterpret_cast<char*>(&header), sizeof(header))) throw Error("model cache is truncated: " + path.string());
-  if (std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0) throw Error("not a facecap model cache: " + path.string());
+  if (!in.read(reinterpret_cast<char*>(&header), sizeof(header)))
+    throw Error("model cache is truncated: " + path.string());
+  if (std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0)
+    throw Error("not a facecap model cache: " + path.string());
   if (header.version != kModelCacheVersion) {
     throw Error("model cache " + path.string() + " has version " + std::to_string(header.version) + ", expected " +
                 std::to_string(kModelCacheVersion));

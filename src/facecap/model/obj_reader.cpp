@@ -146,7 +146,8 @@ ObjData read_obj(const std::filesystem::path& path, const ObjReadOptions& option
   const int nuv = static_cast<int>(obj.uvs.size());
   for (const Polygon& poly : obj.polygons) {
     for (int k = 0; k < poly.size(); ++k) {
-      if (poly.v[k] < 0 || poly.v[k] >= nv) throw Error("corrupt model file " + path.string() + ": face index out of range");
+      if (poly.v[k] < 0 || poly.v[k] >= nv)
+        throw Error("corrupt model file " + path.string() + ": face index out of range");
       if (poly.uv[k] >= nuv) throw Error("corrupt model file " + path.string() + ": UV index out of range");
     }
   }

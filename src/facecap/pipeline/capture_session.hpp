@@ -26,7 +26,7 @@ struct CapturedFrame {
   TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
   CoarseFit fit;
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
-  cv::Mat image;  // when CaptureOptions::keep_images
+  cv::Mat image;              // when CaptureOptions::keep_images
 };
 
 // Milliseconds spent per stage, summed over frames.

@@ -18,7 +18,6 @@ float range_nme(const Landmarks& e, const Landmarks& t, int from, int to) {
   return float(s / (to - from + 1) / std::max(1e-6f, outer_eye_distance(t)));
 }
 
-
 }  // namespace
 
 void region_nme(const Landmarks& e, const Landmarks& t, LandmarkEvalResult& out) {

@@ -8,8 +8,8 @@
 namespace facecap {
 
 struct LandmarkEvalResult {
-  int faces = 0;          // faces the detector found
-  float nme = 0;          // mean error / outer-eye distance of the annotation (300-W convention)
+  int faces = 0;  // faces the detector found
+  float nme = 0;  // mean error / outer-eye distance of the annotation (300-W convention)
   float mean_error_px = 0;
   float max_error_px = 0;
   float nme_jaw = 0, nme_brows = 0, nme_nose = 0, nme_eyes = 0, nme_mouth = 0;

@@ -31,10 +31,11 @@ struct RefineEvalResult {
   // ||k l - l_true|| / ||l_true|| with the best scale k: albedo times
   // lighting is only determined up to a common factor.
   double lighting_error_rel = 0;
-  double albedo_corr = 0;           // Pearson, RGB of the vertices seen
-  double normal_error_deg = 0;      // refined finest level vs the true detailed surface: geometric (triangle) normals per pixel
+  double albedo_corr = 0;  // Pearson, RGB of the vertices seen
+  double normal_error_deg =
+      0;  // refined finest level vs the true detailed surface: geometric (triangle) normals per pixel
   double normal_error_coarse_deg = 0;
-  double vertex_error_mm = 0;       // |depth - true depth| per pixel
+  double vertex_error_mm = 0;  // |depth - true depth| per pixel
   double vertex_error_coarse_mm = 0;
   double refine_ms_per_frame = 0;
 };
@@ -49,7 +50,8 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
 
 struct RefineVideoResult {
   int frames = 0;
-  double photometric_coarse = 0;   // mean absolute difference, 0-255, over skin pixels (narrow face area), mean over frames
+  double photometric_coarse =
+      0;  // mean absolute difference, 0-255, over skin pixels (narrow face area), mean over frames
   double photometric_refined = 0;
   double refine_ms_per_frame = 0;
 };

@@ -17,7 +17,7 @@ struct RefinedFrame {
   CapturedFrame frame;
   std::optional<Refinement> refinement;  // empty for lost frames
   PinholeCamera camera;
-  Positions coarse;                      // camera-space coarse face (tracked frames)
+  Positions coarse;  // camera-space coarse face (tracked frames)
 };
 
 class RefineStage {

@@ -17,7 +17,7 @@
 namespace facecap {
 
 struct SwapSelfEval {
-  int frames = 0;            // target frames measured (all but the first)
+  int frames = 0;  // target frames measured (all but the first)
   double photometric_median = 0;
   double photometric_mean = 0;
   double face_pixels_per_frame = 0;
@@ -31,7 +31,7 @@ struct SwapPairEval {
   double identity_distance_output_source = 0;  // |alpha_out - alpha_S|
   double identity_distance_output_target = 0;  // |alpha_out - alpha_T|
   double identity_distance_source_target = 0;  // |alpha_S - alpha_T|
-  double expression_correlation = 0;  // mean over the weights the target moves of corr(out, target)
+  double expression_correlation = 0;           // mean over the weights the target moves of corr(out, target)
   int expression_weights_compared = 0;
   double seam_ratio = 0;  // mean over frames
   // The same measure on the untouched target frames: the face's outline

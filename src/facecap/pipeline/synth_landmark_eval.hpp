@@ -7,11 +7,11 @@ namespace facecap {
 
 struct SynthLandmarkEval {
   int frames = 0;
-  int detected = 0;            // frames where the detector found the face
-  double detection_rate = 0;   // detected / frames
-  double nme_median = 0;       // against the silhouette-aware truth landmarks
+  int detected = 0;           // frames where the detector found the face
+  double detection_rate = 0;  // detected / frames
+  double nme_median = 0;      // against the silhouette-aware truth landmarks
   double nme_mean = 0;
-  double nme_inner_median = 0; // landmarks 17-67 only (no jaw)
+  double nme_inner_median = 0;  // landmarks 17-67 only (no jaw)
 };
 
 SynthLandmarkEval evaluate_synthetic_landmarks(const FaceModel& model, const SynthOptions& options, bool quiet = false);

@@ -29,16 +29,16 @@ struct TrackEvalOptions {
 struct TrackEvalResult {
   int frames = 0;
   int lost_frames = 0;
-  double vertex_error_mm = 0;     // face region, model space, after rigid alignment; mean over frames
+  double vertex_error_mm = 0;             // face region, model space, after rigid alignment; mean over frames
   double vertex_error_similarity_mm = 0;  // the same after a similarity alignment (scale removed)
-  double rotation_error_deg = 0;  // mean over frames
+  double rotation_error_deg = 0;          // mean over frames
   double translation_error_cm = 0;
   double focal = 0, focal_true = 0;
   double focal_error_rel = 0;
-  double weights_mae = 0;         // mean |w - w_true| over frames and the 53 weights
-  double jitter_mm = 0;           // RMS frame-to-frame motion of the face shape (model space), still head
-  double jitter_camera_mm = 0;    // the same in camera space (adds pose jitter, mostly depth)
-  double identity_error = 0;      // ||a - a_true|| over the fitted modes
+  double weights_mae = 0;       // mean |w - w_true| over frames and the 53 weights
+  double jitter_mm = 0;         // RMS frame-to-frame motion of the face shape (model space), still head
+  double jitter_camera_mm = 0;  // the same in camera space (adds pose jitter, mostly depth)
+  double identity_error = 0;    // ||a - a_true|| over the fitted modes
   double fit_ms_per_frame = 0;
 };
 

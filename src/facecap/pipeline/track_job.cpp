@@ -66,7 +66,12 @@ class FrameWriter {
  public:
   FrameWriter(const FaceModel& model, const InputInfo& info, const std::string& input, const fs::path& dir,
               const TrackOptions& options)
-      : model_(model), info_(info), dir_(dir), options_(options), csv_(dir / "frames.csv"), jsonl_(dir / "frames.jsonl") {
+      : model_(model),
+        info_(info),
+        dir_(dir),
+        options_(options),
+        csv_(dir / "frames.csv"),
+        jsonl_(dir / "frames.jsonl") {
     face_polygons_.assign(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
     face_mesh_ = model.region_mesh(regions::kFace);
     std::ofstream& o = csv_.stream();
@@ -103,7 +108,8 @@ class FrameWriter {
       o << ',' << number(f.fit.landmark_error);
       for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) o << ',' << number(f.fit.expression[k]);
       nlohmann::json weights;
-      for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) weights[model_.expression_names[k]] = f.fit.expression[k];
+      for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k)
+        weights[model_.expression_names[k]] = f.fit.expression[k];
       row["rotation"] = {f.fit.pose.rotation.x(), f.fit.pose.rotation.y(), f.fit.pose.rotation.z()};
       row["translation"] = {f.fit.pose.translation.x(), f.fit.pose.translation.y(), f.fit.pose.translation.z()};
       row["yaw_pitch_roll_deg"] = {ypr.x(), ypr.y(), ypr.z()};
@@ -145,8 +151,9 @@ class FrameWriter {
         {"camera", "x right, y down, z forward (OpenCV); pixel centres at integer coordinates"},
         {"pose", "X_camera = R(rotation) * diag(1,-1,-1) * X_model + translation; rotation is axis-angle in radians"},
         {"model", "X_model = neutral + sum identity_i * (identity_i - neutral) + sum w_j * (expression_j - neutral)"},
-        {"lighting", "l^T SH(n), SH(n) = (1, x, y, z, xy, xz, yz, x^2 - y^2, 3 z^2 - 1), n in the viewer frame "
-                     "(x right, y up, z toward the viewer), intensities in [0, 1]"}};
+        {"lighting",
+         "l^T SH(n), SH(n) = (1, x, y, z, xy, xz, yz, x^2 - y^2, 3 z^2 - 1), n in the viewer frame "
+         "(x right, y up, z toward the viewer), intensities in [0, 1]"}};
     write_text_file(dir_ / "identity.json", j.dump(2) + "\n");
     if (refiner != nullptr && refiner->initialised()) {
       const cv::Mat tex = bake_uv_texture(face_mesh_, refiner->coarse_albedo());
@@ -190,7 +197,8 @@ class FrameWriter {
         }
       }
       const Positions out = camera_space ? ref->positions : to_model(ref->positions, f.fit.pose);
-      write_obj(dir_ / "meshes" / name, {&out, &refined_polygons_, &*refined_uvs_, comment + "\nrefined (finest level)"});
+      write_obj(dir_ / "meshes" / name,
+                {&out, &refined_polygons_, &*refined_uvs_, comment + "\nrefined (finest level)"});
     } else {
       const Positions out = camera_space ? coarse : to_model(coarse, f.fit.pose);
       write_obj(dir_ / "meshes" / name, {&out, &face_polygons_, &model_.uvs, comment});
@@ -281,7 +289,8 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
     Positions coarse;
     PinholeCamera cam;
     if (f.status != TrackStatus::kLost) {
-      coarse = to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
+      coarse =
+          to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
       cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
     }
     writer.write(f, nullptr, coarse, cam);

@@ -26,7 +26,8 @@ double mean_step(const std::vector<TransformedFrame>& frames, Get get) {
 
 }  // namespace
 
-TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames, Emotion target) {
+TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames,
+                                   Emotion target) {
   TransformMetrics m;
   const Eigen::MatrixXd lips = lip_basis(model);  // 12 x E, cm per unit weight
   std::vector<int> defining;

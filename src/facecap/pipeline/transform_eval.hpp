@@ -14,10 +14,10 @@ namespace facecap {
 struct TransformEval {
   int frames = 0;
   int valid_frames = 0;
-  double lip_error_mm = 0;       // mean distance of the 4 key lip vertices to the source's
+  double lip_error_mm = 0;  // mean distance of the 4 key lip vertices to the source's
   double lip_error_max_mm = 0;
-  double target_rise = 0;        // mean rise of the target's defining weights over the source's
-  double smoothness = 0;         // mean |w_t - w_(t-1)| of the result
+  double target_rise = 0;  // mean rise of the target's defining weights over the source's
+  double smoothness = 0;   // mean |w_t - w_(t-1)| of the result
   // The same of the output without the smoothing term: the per-frame mapping
   // with the same lip correction. This is the ablation of the window
   // smoothing; the lip correction re-imports the speech motion of the
@@ -25,9 +25,9 @@ struct TransformEval {
   double smoothness_raw = 0;
   double smoothness_mapped = 0;  // the bare per-frame mapping, no lip correction
   bool input_audio = false;
-  bool audio_ok = false;         // output audio as long as the input's (over the frames processed)
+  bool audio_ok = false;  // output audio as long as the input's (over the frames processed)
   double audio_seconds_in = 0, audio_seconds_out = 0;
-  bool marked_synthetic = false; // container tag and sidecar present
+  bool marked_synthetic = false;  // container tag and sidecar present
   TransformTimings timings;
 };
 

@@ -5,8 +5,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "facecap/compose/face_reshading.hpp"
 #include "facecap/compose/face_layer.hpp"
+#include "facecap/compose/face_reshading.hpp"
 #include "facecap/compose/mouth_warp.hpp"
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
@@ -86,8 +86,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
       if (t.valid) {
         const auto t0 = std::chrono::steady_clock::now();
         const PinholeCamera cam = PinholeCamera::centered(p.frame.fit.focal, info.width, info.height);
-        const Positions changed =
-            to_camera(model.evaluate(p.frame.identity.identity.cast<float>(), t.weights, regions::kFace), p.frame.fit.pose);
+        const Positions changed = to_camera(
+            model.evaluate(p.frame.identity.identity.cast<float>(), t.weights, regions::kFace), p.frame.fit.pose);
         FaceLayer layer = reshade_face(p.frame.image, p.coarse, changed, skin, p.lighting, cam);
         warp_mouth(p.frame.image, project(p.coarse, inner_lips, cam), project(changed, inner_lips, cam), layer);
         out = p.frame.image.clone();
@@ -109,7 +109,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     if (f.status != TrackStatus::kLost) {
       const auto t0 = std::chrono::steady_clock::now();
       const PinholeCamera cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
-      p.coarse = to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
+      p.coarse =
+          to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
       p.lighting = refiner.refine(f.image, p.coarse, cam).lighting;
       summary.timings.lighting_ms += ms_since(t0);
       weights = f.fit.expression;

@@ -19,14 +19,14 @@ struct TransformJobOptions {
   CaptureOptions capture;
   TransformOptions transform;
   std::filesystem::path models_dir = default_expression_models_dir();
-  std::filesystem::path plot;          // PNG of weight curves (empty: none)
-  std::string description;             // for the synthetic mark, e.g. "neutral to happiness"
+  std::filesystem::path plot;  // PNG of weight curves (empty: none)
+  std::string description;     // for the synthetic mark, e.g. "neutral to happiness"
 };
 
 struct TransformTimings {
   double mapping_ms = 0;  // mapping, smoothing and lip QP
   double lighting_ms = 0;
-  double render_ms = 0;   // re-shading, mouth warp and blending
+  double render_ms = 0;  // re-shading, mouth warp and blending
   int frames = 0;
 };
 

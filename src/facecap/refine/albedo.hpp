@@ -17,10 +17,10 @@
 namespace facecap {
 
 struct AlbedoOptions {
-  int frames = 10;                 // frames accumulated before the albedo is fixed
-  int interval = 3;                // take every this-many-th frame: more head motion, less lighting/albedo ambiguity
-  double laplacian_weight = 0.5;   // w2 of eq. 4.10
-  double prior_smoothing = 50.0;   // Laplacian weight of the smooth prior rho_bar
+  int frames = 10;                // frames accumulated before the albedo is fixed
+  int interval = 3;               // take every this-many-th frame: more head motion, less lighting/albedo ambiguity
+  double laplacian_weight = 0.5;  // w2 of eq. 4.10
+  double prior_smoothing = 50.0;  // Laplacian weight of the smooth prior rho_bar
   int pcg_iterations = 100;
 };
 
@@ -49,8 +49,8 @@ class AlbedoEstimator {
 
   const MeshLevel& level_;
   AlbedoOptions options_;
-  Eigen::VectorXd data_diag_;     // sum over frames of s_i^2
-  Eigen::Matrix3Xd data_rhs_;     // sum over frames of s_i I_ic
+  Eigen::VectorXd data_diag_;  // sum over frames of s_i^2
+  Eigen::Matrix3Xd data_rhs_;  // sum over frames of s_i I_ic
   Positions albedo_;
   int frames_ = 0;
 };

@@ -17,10 +17,10 @@ inline Vec3f sh_gradient(const ShCoeffs& l, const Vec3f& v) {
 
 // The linearisation of one Gauss-Newton step.
 struct Linearisation {
-  Eigen::VectorXf shading;      // s_i
-  Eigen::VectorXf self;         // d s_i / d d_i
-  Eigen::VectorXf ring;         // d s_i / d d_q for the ring entries of i
-  Eigen::VectorXf weight;       // W_i = sum_c rho_ic^2 (0 when not visible)
+  Eigen::VectorXf shading;        // s_i
+  Eigen::VectorXf self;           // d s_i / d d_i
+  Eigen::VectorXf ring;           // d s_i / d d_q for the ring entries of i
+  Eigen::VectorXf weight;         // W_i = sum_c rho_ic^2 (0 when not visible)
   Eigen::VectorXf data_residual;  // sum_c rho_ic (rho_ic s_i - I_ic)
   Eigen::VectorXf vertex_cost;    // sum_c (rho_ic s_i - I_ic)^2
   double data_cost = 0;
@@ -72,73 +72,76 @@ class Solver {
     lin.data_residual.setZero();
     const Positions pos = displaced_positions(p_.base, p_.base_normals, d);
     const int nt = static_cast<int>(touched_.size());
-    parallel_for(nt, [&](int b, int e) {
-      for (int ti = b; ti < e; ++ti) {
-        const int i = touched_[ti];
-        const Vec3f pi = pos.col(i);
-        Vec3f m = Vec3f::Zero();
-        Vec3f dm_self = Vec3f::Zero();
-        const int ro = lv_.rings.offsets[i];
-        const int deg = lv_.rings.degree(i);
-        Vec3f dm_ring[32];
-        for (int s = 0; s < std::min(deg, 32); ++s) dm_ring[s] = Vec3f::Zero();
-        for (int c = lv_.corner_offsets[i]; c < lv_.corner_offsets[i + 1]; ++c) {
-          const auto& [j, k] = lv_.corners[c];
-          const auto& [sj, sk] = lv_.corner_slots[c];
-          const Vec3f a = pos.col(j) - pi, bvec = pos.col(k) - pi;
-          m += a.cross(bvec);
-          // d/dd_i (a x b) = n_i x (a - b); d/dd_j = n_j x b; d/dd_k = a x n_k.
-          dm_self += Vec3f(p_.base_normals.col(i)).cross(a - bvec);
-          if (sj >= 0 && sj < 32) dm_ring[sj] += Vec3f(p_.base_normals.col(j)).cross(bvec);
-          if (sk >= 0 && sk < 32) dm_ring[sk] += a.cross(Vec3f(p_.base_normals.col(k)));
-        }
-        const float len = m.norm();
-        const bool visible = p_.samples->visible[i] && len > 0;
-        if (len <= 0) {
-          lin.shading[i] = 0;
-          lin.self[i] = 0;
-          for (int s = 0; s < deg; ++s) lin.ring[ro + s] = 0;
-          lin.weight[i] = 0;
-          lin.data_residual[i] = 0;
-          continue;
-        }
-        const Vec3f nhat = m / len;
-        const Vec3f v(nhat.x(), -nhat.y(), -nhat.z());  // viewer frame for SH
-        const Vec3f gv = sh_gradient(p_.lighting, v);
-        const Vec3f g(gv.x(), -gv.y(), -gv.z());         // back to the camera frame
-        // ds/dm = g^T (I - n n^T) / |m|
-        const Vec3f dsdm = (g - nhat * nhat.dot(g)) / len;
-        const float s = float(sh_shade(p_.lighting, double(v.x()), double(v.y()), double(v.z())));
-        lin.shading[i] = s;
-        lin.self[i] = dsdm.dot(dm_self);
-        for (int sl = 0; sl < deg; ++sl) lin.ring[ro + sl] = sl < 32 ? dsdm.dot(dm_ring[sl]) : 0.0f;
-        if (visible) {
-          float w = 0, r = 0, e2 = 0;
-          for (int c = 0; c < 3; ++c) {
-            const float rho = p_.albedo(c, i);
-            const float res = rho * s - p_.samples->colour(c, i);
-            w += rho * rho;
-            r += rho * res;
-            e2 += res * res;
+    parallel_for(
+        nt,
+        [&](int b, int e) {
+          for (int ti = b; ti < e; ++ti) {
+            const int i = touched_[ti];
+            const Vec3f pi = pos.col(i);
+            Vec3f m = Vec3f::Zero();
+            Vec3f dm_self = Vec3f::Zero();
+            const int ro = lv_.rings.offsets[i];
+            const int deg = lv_.rings.degree(i);
+            Vec3f dm_ring[32];
+            for (int s = 0; s < std::min(deg, 32); ++s) dm_ring[s] = Vec3f::Zero();
+            for (int c = lv_.corner_offsets[i]; c < lv_.corner_offsets[i + 1]; ++c) {
+              const auto& [j, k] = lv_.corners[c];
+              const auto& [sj, sk] = lv_.corner_slots[c];
+              const Vec3f a = pos.col(j) - pi, bvec = pos.col(k) - pi;
+              m += a.cross(bvec);
+              // d/dd_i (a x b) = n_i x (a - b); d/dd_j = n_j x b; d/dd_k = a x n_k.
+              dm_self += Vec3f(p_.base_normals.col(i)).cross(a - bvec);
+              if (sj >= 0 && sj < 32) dm_ring[sj] += Vec3f(p_.base_normals.col(j)).cross(bvec);
+              if (sk >= 0 && sk < 32) dm_ring[sk] += a.cross(Vec3f(p_.base_normals.col(k)));
+            }
+            const float len = m.norm();
+            const bool visible = p_.samples->visible[i] && len > 0;
+            if (len <= 0) {
+              lin.shading[i] = 0;
+              lin.self[i] = 0;
+              for (int s = 0; s < deg; ++s) lin.ring[ro + s] = 0;
+              lin.weight[i] = 0;
+              lin.data_residual[i] = 0;
+              continue;
+            }
+            const Vec3f nhat = m / len;
+            const Vec3f v(nhat.x(), -nhat.y(), -nhat.z());  // viewer frame for SH
+            const Vec3f gv = sh_gradient(p_.lighting, v);
+            const Vec3f g(gv.x(), -gv.y(), -gv.z());  // back to the camera frame
+            // ds/dm = g^T (I - n n^T) / |m|
+            const Vec3f dsdm = (g - nhat * nhat.dot(g)) / len;
+            const float s = float(sh_shade(p_.lighting, double(v.x()), double(v.y()), double(v.z())));
+            lin.shading[i] = s;
+            lin.self[i] = dsdm.dot(dm_self);
+            for (int sl = 0; sl < deg; ++sl) lin.ring[ro + sl] = sl < 32 ? dsdm.dot(dm_ring[sl]) : 0.0f;
+            if (visible) {
+              float w = 0, r = 0, e2 = 0;
+              for (int c = 0; c < 3; ++c) {
+                const float rho = p_.albedo(c, i);
+                const float res = rho * s - p_.samples->colour(c, i);
+                w += rho * rho;
+                r += rho * res;
+                e2 += res * res;
+              }
+              // Huber on the vertex's residual, as reweighted least squares.
+              const float k = float(o_.data_huber);
+              float robust = 1.0f;
+              if (k > 0 && e2 > k * k) {
+                const float e = std::sqrt(e2);
+                robust = k / e;
+                lin.vertex_cost[i] = 2 * k * e - k * k;
+              } else {
+                lin.vertex_cost[i] = e2;
+              }
+              lin.weight[i] = robust * w;
+              lin.data_residual[i] = robust * r;
+            } else {
+              lin.weight[i] = 0;
+              lin.data_residual[i] = 0;
+            }
           }
-          // Huber on the vertex's residual, as reweighted least squares.
-          const float k = float(o_.data_huber);
-          float robust = 1.0f;
-          if (k > 0 && e2 > k * k) {
-            const float e = std::sqrt(e2);
-            robust = k / e;
-            lin.vertex_cost[i] = 2 * k * e - k * k;
-          } else {
-            lin.vertex_cost[i] = e2;
-          }
-          lin.weight[i] = robust * w;
-          lin.data_residual[i] = robust * r;
-        } else {
-          lin.weight[i] = 0;
-          lin.data_residual[i] = 0;
-        }
-      }
-    }, 512);
+        },
+        512);
     lin.data_cost = lin.vertex_cost.cast<double>().sum();
   }
 
@@ -146,60 +149,73 @@ class Solver {
   void apply_g(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     y.setZero(n_);
     const int nt = static_cast<int>(touched_.size());
-    parallel_for(nt, [&](int b, int e) {
-      for (int ti = b; ti < e; ++ti) {
-        const int i = touched_[ti];
-        float acc = lin.self[i] * x[i];
-        for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) acc += lin.ring[s] * x[lv_.rings.indices[s]];
-        y[i] = acc;
-      }
-    }, 1024);
+    parallel_for(
+        nt,
+        [&](int b, int e) {
+          for (int ti = b; ti < e; ++ti) {
+            const int i = touched_[ti];
+            float acc = lin.self[i] * x[i];
+            for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s)
+              acc += lin.ring[s] * x[lv_.rings.indices[s]];
+            y[i] = acc;
+          }
+        },
+        1024);
   }
   // y = G^T x (a gather: entry q collects from q and its ring), free entries only.
   void apply_gt(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     y.setZero(n_);
     const int na = static_cast<int>(active_.size());
-    parallel_for(na, [&](int b, int e) {
-      for (int ai = b; ai < e; ++ai) {
-        const int q = active_[ai];
-        float acc = lin.self[q] * x[q];
-        for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-          const int i = lv_.rings.indices[s];
-          const int back = lv_.ring_reverse[s];
-          if (back >= 0) acc += lin.ring[lv_.rings.offsets[i] + back] * x[i];
-        }
-        y[q] = acc;
-      }
-    }, 1024);
+    parallel_for(
+        na,
+        [&](int b, int e) {
+          for (int ai = b; ai < e; ++ai) {
+            const int q = active_[ai];
+            float acc = lin.self[q] * x[q];
+            for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
+              const int i = lv_.rings.indices[s];
+              const int back = lv_.ring_reverse[s];
+              if (back >= 0) acc += lin.ring[lv_.rings.offsets[i] + back] * x[i];
+            }
+            y[q] = acc;
+          }
+        },
+        1024);
   }
   // y = L x and y = L^T x for the uniform graph Laplacian L = I - A / r.
   void apply_l(const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     y.setZero(n_);
     const int nt = static_cast<int>(touched_.size());
-    parallel_for(nt, [&](int b, int e) {
-      for (int ti = b; ti < e; ++ti) {
-        const int i = touched_[ti];
-        const int deg = lv_.rings.degree(i);
-        float mean = 0;
-        for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) mean += x[lv_.rings.indices[s]];
-        y[i] = deg > 0 ? x[i] - mean / deg : 0.0f;
-      }
-    }, 1024);
+    parallel_for(
+        nt,
+        [&](int b, int e) {
+          for (int ti = b; ti < e; ++ti) {
+            const int i = touched_[ti];
+            const int deg = lv_.rings.degree(i);
+            float mean = 0;
+            for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) mean += x[lv_.rings.indices[s]];
+            y[i] = deg > 0 ? x[i] - mean / deg : 0.0f;
+          }
+        },
+        1024);
   }
   void apply_lt(const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     y.setZero(n_);
     const int na = static_cast<int>(active_.size());
-    parallel_for(na, [&](int b, int e) {
-      for (int ai = b; ai < e; ++ai) {
-        const int q = active_[ai];
-        float acc = lv_.rings.degree(q) > 0 ? x[q] : 0.0f;
-        for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-          const int i = lv_.rings.indices[s];
-          acc -= x[i] / lv_.rings.degree(i);
-        }
-        y[q] = acc;
-      }
-    }, 1024);
+    parallel_for(
+        na,
+        [&](int b, int e) {
+          for (int ai = b; ai < e; ++ai) {
+            const int q = active_[ai];
+            float acc = lv_.rings.degree(q) > 0 ? x[q] : 0.0f;
+            for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
+              const int i = lv_.rings.indices[s];
+              acc -= x[i] / lv_.rings.degree(i);
+            }
+            y[q] = acc;
+          }
+        },
+        1024);
   }
 
   // (J^T J) x restricted to free vertices.
@@ -243,24 +259,27 @@ class Solver {
       // Jacobi preconditioner: diag(J^T J).
       Eigen::VectorXf diag = Eigen::VectorXf::Ones(n_);
       const int na = static_cast<int>(active_.size());
-      parallel_for(na, [&](int b, int e) {
-        for (int ai = b; ai < e; ++ai) {
-          const int q = active_[ai];
-          float dd = lin.weight[q] * lin.self[q] * lin.self[q];
-          float lap = lv_.rings.degree(q) > 0 ? 1.0f : 0.0f;
-          for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-            const int i = lv_.rings.indices[s];
-            const int back = lv_.ring_reverse[s];
-            if (back >= 0) {
-              const float g = lin.ring[lv_.rings.offsets[i] + back];
-              dd += lin.weight[i] * g * g;
+      parallel_for(
+          na,
+          [&](int b, int e) {
+            for (int ai = b; ai < e; ++ai) {
+              const int q = active_[ai];
+              float dd = lin.weight[q] * lin.self[q] * lin.self[q];
+              float lap = lv_.rings.degree(q) > 0 ? 1.0f : 0.0f;
+              for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
+                const int i = lv_.rings.indices[s];
+                const int back = lv_.ring_reverse[s];
+                if (back >= 0) {
+                  const float g = lin.ring[lv_.rings.offsets[i] + back];
+                  dd += lin.weight[i] * g * g;
+                }
+                const float deg = float(lv_.rings.degree(i));
+                lap += 1.0f / (deg * deg);
+              }
+              diag[q] = dd + float(o_.weights.smooth) * lap + diag_const_;
             }
-            const float deg = float(lv_.rings.degree(i));
-            lap += 1.0f / (deg * deg);
-          }
-          diag[q] = dd + float(o_.weights.smooth) * lap + diag_const_;
-        }
-      }, 1024);
+          },
+          1024);
       // Algorithm 2: PCG from x0 = 0 on (J^T J) x = -J^T r.
       x.setZero(n_);
       r = -grad;

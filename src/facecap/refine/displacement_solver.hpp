@@ -24,10 +24,10 @@
 namespace facecap {
 
 struct DisplacementWeights {
-  double smooth = 10.0;    // w3
-  double hierarchy = 30.0; // w4
-  double temporal = 1.0;   // w5
-  double coarse = 7.0;     // w6
+  double smooth = 10.0;     // w3
+  double hierarchy = 30.0;  // w4
+  double temporal = 1.0;    // w5
+  double coarse = 7.0;      // w6
 };
 
 struct DisplacementOptions {

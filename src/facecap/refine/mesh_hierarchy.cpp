@@ -25,7 +25,8 @@ class Bisector {
     bool alive = true;
   };
 
-  Bisector(std::vector<Tri> tris, std::vector<Vec3f> positions, const PinholeCamera& cam, double epsilon, bool smoothing)
+  Bisector(std::vector<Tri> tris, std::vector<Vec3f> positions, const PinholeCamera& cam, double epsilon,
+           bool smoothing)
       : tris_(std::move(tris)), pos_(std::move(positions)), cam_(cam), epsilon_(epsilon), smoothing_(smoothing) {
     for (int t = 0; t < static_cast<int>(tris_.size()); ++t) add_edges(t);
   }
@@ -65,8 +66,8 @@ class Bisector {
   // Each edge maps to the (at most two) live triangles that use it.
   void add_edges(int t) {
     for (int k = 0; k < 3; ++k) {
-      auto [it, inserted] = edges_.try_emplace(edge_key(tris_[t].v[k], tris_[t].v[(k + 1) % 3]),
-                                               std::array<int, 2>{-1, -1});
+      auto [it, inserted] =
+          edges_.try_emplace(edge_key(tris_[t].v[k], tris_[t].v[(k + 1) % 3]), std::array<int, 2>{-1, -1});
       auto& slot = it->second;
       if (slot[0] < 0) {
         slot[0] = t;

@@ -35,7 +35,7 @@ struct VertexStencil {
 
 struct MeshLevel {
   int num_vertices = 0;
-  std::vector<Triangle> triangles;         // counter-clockwise seen from outside
+  std::vector<Triangle> triangles;          // counter-clockwise seen from outside
   std::vector<VertexStencil> new_vertices;  // vertices [previous level's count, num_vertices)
   VertexAdjacency rings;                    // one-ring neighbours
   // Incident triangles of each vertex as the other two corners in
@@ -48,9 +48,9 @@ struct MeshLevel {
 };
 
 struct HierarchyOptions {
-  int levels = 0;          // 0: choose from the projected edge length
+  int levels = 0;  // 0: choose from the projected edge length
   int max_levels = 4;
-  double epsilon_px = 1.5; // do not bisect interior edges shorter than this (full-resolution pixels)
+  double epsilon_px = 1.5;  // do not bisect interior edges shorter than this (full-resolution pixels)
   // Vertex positions for new vertices: the linear 4-8 mask (edge midpoint),
   // so that every level's base surface is the tracked coarse surface itself
   // and displacements are the detail relative to it (M_d = M + d N), or the

@@ -69,7 +69,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, normals0, previous_[0]);
   const Positions md_normals = level_normals(level0, md);
   VertexSamples samples0 = sample_vertices(image_for(0), md, md_normals, masked_triangles(level0.triangles, data_mask_),
-                                          camera_for(0), raster_[0]);
+                                           camera_for(0), raster_[0]);
   apply_mask(samples0, data_mask_);
   if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
   const ShCoeffs lighting = estimate_lighting(samples0, md_normals, albedo_->albedo(), lighting_, options_.lighting);
@@ -87,7 +87,8 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     for (int round = 0; round < options_.albedo_rounds; ++round) {
       albedo_->clear_data();
       for (AlbedoFrame& f : albedo_frames_) {
-        if (round > 0) f.lighting = estimate_lighting(f.samples, f.normals, albedo_->albedo(), std::nullopt, options_.lighting);
+        if (round > 0)
+          f.lighting = estimate_lighting(f.samples, f.normals, albedo_->albedo(), std::nullopt, options_.lighting);
         albedo_->add_frame(f.samples, f.normals, f.lighting);
       }
       albedo_->solve();

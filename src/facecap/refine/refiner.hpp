@@ -20,7 +20,7 @@ namespace facecap {
 
 struct RefineOptions {
   bool displacements = true;  // false: lighting and albedo only (the finest level is the coarse mesh)
-  int albedo_rounds = 4;  // lighting/albedo alternations over the albedo frames at each new one
+  int albedo_rounds = 4;      // lighting/albedo alternations over the albedo frames at each new one
   HierarchyOptions hierarchy;
   LightingOptions lighting;
   AlbedoOptions albedo;
@@ -37,10 +37,10 @@ struct RefineTimings {
 
 struct Refinement {
   ShCoeffs lighting;
-  Positions positions;  // refined finest level, camera space (cm)
-  Positions normals;    // of the refined finest level
-  Positions albedo;     // finest level, RGB
-  std::vector<bool> visible;  // finest level vertices seen in this frame (and in the data mask)
+  Positions positions;          // refined finest level, camera space (cm)
+  Positions normals;            // of the refined finest level
+  Positions albedo;             // finest level, RGB
+  std::vector<bool> visible;    // finest level vertices seen in this frame (and in the data mask)
   std::vector<bool> data_mask;  // finest level vertices the estimators used
   int levels = 0;
   RefineTimings timings;

@@ -20,7 +20,8 @@ void draw_wireframe(cv::Mat& image, const Positions& camera_points, const std::v
     const Vec3f a = camera_points.col(poly.v[0]), b = camera_points.col(poly.v[1]), c = camera_points.col(poly.v[2]);
     if ((b - a).cross(c - a).dot(a) >= 0.0f) continue;  // faces away
     const int n = poly.size();
-    for (int k = 0; k < n; ++k) cv::line(layer, projected[poly.v[k]], projected[poly.v[(k + 1) % n]], colour, 1, cv::LINE_AA);
+    for (int k = 0; k < n; ++k)
+      cv::line(layer, projected[poly.v[k]], projected[poly.v[(k + 1) % n]], colour, 1, cv::LINE_AA);
   }
   cv::addWeighted(layer, 0.45, image, 0.55, 0.0, image);
 }

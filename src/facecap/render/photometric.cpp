@@ -37,9 +37,10 @@ cv::Mat face_normal_image(const RasterBuffers& b, const std::vector<Triangle>& t
   return out;
 }
 
-PhotometricError photometric_error(const cv::Mat& frame, const Positions& points, const std::vector<Triangle>& triangles,
-                                   const Positions& normals, const Positions& albedo, const ShCoeffs& lighting,
-                                   const PinholeCamera& camera, bool heat_map) {
+PhotometricError photometric_error(const cv::Mat& frame, const Positions& points,
+                                   const std::vector<Triangle>& triangles, const Positions& normals,
+                                   const Positions& albedo, const ShCoeffs& lighting, const PinholeCamera& camera,
+                                   bool heat_map) {
   RasterBuffers buffers;
   buffers.resize(frame.cols, frame.rows);
   rasterize(points, triangles, camera, buffers);
@@ -59,7 +60,8 @@ PhotometricError photometric_error(const cv::Mat& frame, const Positions& points
       e /= 3.0;
       sum += e;
       ++out.pixels;
-      if (heat_map) error_map.at<uchar>(y, x) = static_cast<uchar>(std::min(255.0, e * 255.0 / 40.0));  // 40 levels = red
+      if (heat_map)
+        error_map.at<uchar>(y, x) = static_cast<uchar>(std::min(255.0, e * 255.0 / 40.0));  // 40 levels = red
     }
   }
   out.mean_abs = out.pixels > 0 ? sum / out.pixels : 0.0;

@@ -24,7 +24,7 @@ cv::Mat face_normal_image(const RasterBuffers& buffers, const std::vector<Triang
 struct PhotometricError {
   double mean_abs = 0;  // 0-255, averaged over channels and covered pixels
   int pixels = 0;
-  cv::Mat heat_map;     // BGR 8-bit, the frame dimmed with the error coloured over the face (when requested)
+  cv::Mat heat_map;  // BGR 8-bit, the frame dimmed with the error coloured over the face (when requested)
 };
 
 // Renders albedo * l^T SH(n) for the mesh and compares it with `frame`

@@ -12,9 +12,9 @@ namespace facecap {
 struct RasterBuffers {
   int width = 0;
   int height = 0;
-  std::vector<float> depth;     // camera-space z; +inf where nothing was drawn
-  std::vector<int> triangle;    // index into the triangle list; -1 for background
-  std::vector<Vec2f> bary;      // perspective-correct weights of corners 1 and 2 (corner 0 = 1 - sum)
+  std::vector<float> depth;   // camera-space z; +inf where nothing was drawn
+  std::vector<int> triangle;  // index into the triangle list; -1 for background
+  std::vector<Vec2f> bary;    // perspective-correct weights of corners 1 and 2 (corner 0 = 1 - sum)
 
   void resize(int w, int h);
   bool covered(int x, int y) const { return triangle[size_t(y) * width + x] >= 0; }

@@ -11,9 +11,9 @@
 namespace facecap {
 
 struct UvTexelMap {
-  int size = 0;                 // the texture is size x size
-  std::vector<int> triangle;    // per texel (row-major, row 0 = v 1); -1 where no triangle covers it
-  std::vector<Vec3f> weights;   // barycentric weights of the triangle's three corners
+  int size = 0;                // the texture is size x size
+  std::vector<int> triangle;   // per texel (row-major, row 0 = v 1); -1 where no triangle covers it
+  std::vector<Vec3f> weights;  // barycentric weights of the triangle's three corners
 
   int index(int x, int y) const { return y * size + x; }
   // The per-vertex attribute (3 x N) at a covered texel.

@@ -47,8 +47,8 @@ std::vector<bool> outer_boundary(const std::vector<Triangle>& triangles, int num
 }  // namespace
 
 struct AlbedoAdaptation::Impl {
-  std::vector<int> interior;  // vertex -> row of the interior system, -1 on the boundary or unused
-  std::vector<int> boundary;  // fixed vertices
+  std::vector<int> interior;             // vertex -> row of the interior system, -1 on the boundary or unused
+  std::vector<int> boundary;             // fixed vertices
   Eigen::SparseMatrix<double> coupling;  // interior x all: -adjacency to the fixed vertices
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   int used = 0;
@@ -80,8 +80,10 @@ AlbedoAdaptation::AlbedoAdaptation(const std::vector<Triangle>& triangles, int n
     a.emplace_back(r, r, adj.degree(v));
     for (int k = adj.offsets[v]; k < adj.offsets[v + 1]; ++k) {
       const int u = adj.indices[k];
-      if (m.interior[u] >= 0) a.emplace_back(r, m.interior[u], -1.0);
-      else if (fixed[u]) c.emplace_back(r, u, 1.0);
+      if (m.interior[u] >= 0)
+        a.emplace_back(r, m.interior[u], -1.0);
+      else if (fixed[u])
+        c.emplace_back(r, u, 1.0);
     }
   }
   Eigen::SparseMatrix<double> lap(rows, rows);

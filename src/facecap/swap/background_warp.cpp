@@ -41,8 +41,8 @@ void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& anchors, const 
   }
 }
 
-void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
-                          cv::Rect window, cv::Mat& out) {
+void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from,
+                          const std::vector<cv::Point2f>& to, cv::Rect window, cv::Mat& out) {
   window &= cv::Rect(0, 0, frame.cols, frame.rows);
   if (triangles_.empty()) triangulate(from, window);
   std::vector<cv::Point2f> src = from, dst = to;

@@ -96,8 +96,8 @@ struct FaceSwapper::Impl {
   UvTexelMap map;
   cv::Mat source_albedo;  // filled, CV_32FC3
   cv::Mat source_weight;
-  cv::Mat alpha;          // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
-  cv::Mat texture;        // CV_32FC4: harmonised albedo (BGR) and alpha
+  cv::Mat alpha;    // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
+  cv::Mat texture;  // CV_32FC4: harmonised albedo (BGR) and alpha
   FaceTexture target_sum;
   FaceTexture target_first;
   int appearance_seen = 0;
@@ -129,7 +129,8 @@ struct FaceSwapper::Impl {
   void harmonise() {
     const FaceTexture target = weighted_mean(target_sum);
     std::vector<float> seen_s, seen_t;
-    const Positions src = vertex_means(map, skin.triangles, source_albedo, cv::Mat(source_weight + 1e-3f), skin.num_vertices, seen_s);
+    const Positions src =
+        vertex_means(map, skin.triangles, source_albedo, cv::Mat(source_weight + 1e-3f), skin.num_vertices, seen_s);
     const Positions tgt = vertex_means(map, skin.triangles, target.albedo, target.weight, skin.num_vertices, seen_t);
     std::vector<bool> known(skin.num_vertices);
     for (int v = 0; v < skin.num_vertices; ++v) known[v] = seen_t[v] > 0.05f;
@@ -139,27 +140,31 @@ struct FaceSwapper::Impl {
     cv::Mat smooth;
     cv::GaussianBlur(source_albedo, smooth, cv::Size(0, 0), options.noise_sigma);
     const cv::Mat residual_s = source_albedo - smooth;
-    const cv::Mat residual_t = fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);
+    const cv::Mat residual_t =
+        fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);
     const cv::Mat matched =
         match_histograms(residual_s, source_weight > 0, residual_t, target_first.weight > 0, -0.3f, 0.3f);
     texture.create(map.size, map.size, CV_32FC4);
-    parallel_for(map.size, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) {
-        const auto* sm = smooth.ptr<cv::Vec3f>(y);
-        const auto* nm = matched.ptr<cv::Vec3f>(y);
-        const float* al = alpha.ptr<float>(y);
-        auto* out = texture.ptr<cv::Vec4f>(y);
-        for (int x = 0; x < map.size; ++x) {
-          const int i = map.index(x, y);
-          Vec3f offset = Vec3f::Zero();
-          if (map.triangle[i] >= 0) offset = map.interpolate(skin.triangles, h, i);
-          cv::Vec4f v;
-          for (int c = 0; c < 3; ++c) v[c] = std::max(0.0f, sm[x][c] + offset[c] + nm[x][c]);
-          v[3] = al[x];
-          out[x] = v;
-        }
-      }
-    }, 32);
+    parallel_for(
+        map.size,
+        [&](int y0, int y1) {
+          for (int y = y0; y < y1; ++y) {
+            const auto* sm = smooth.ptr<cv::Vec3f>(y);
+            const auto* nm = matched.ptr<cv::Vec3f>(y);
+            const float* al = alpha.ptr<float>(y);
+            auto* out = texture.ptr<cv::Vec4f>(y);
+            for (int x = 0; x < map.size; ++x) {
+              const int i = map.index(x, y);
+              Vec3f offset = Vec3f::Zero();
+              if (map.triangle[i] >= 0) offset = map.interpolate(skin.triangles, h, i);
+              cv::Vec4f v;
+              for (int c = 0; c < 3; ++c) v[c] = std::max(0.0f, sm[x][c] + offset[c] + nm[x][c]);
+              v[3] = al[x];
+              out[x] = v;
+            }
+          }
+        },
+        32);
     // Texels outside the skin take their neighbours' colour, so bilinear lookups at the edge stay clean.
     std::vector<cv::Mat> channels;
     cv::split(texture, channels);
@@ -212,7 +217,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
 
   SwappedFrame out;
   out.image = frame.clone();
-  const cv::Rect bounds = projected_bounds(swapped_points, target.camera) | projected_bounds(target_points, target.camera);
+  const cv::Rect bounds =
+      projected_bounds(swapped_points, target.camera) | projected_bounds(target_points, target.camera);
   const int margin = std::max(16, bounds.width / 5);
   out.window = cv::Rect(bounds.x - margin, bounds.y - margin, bounds.width + 2 * margin, bounds.height + 2 * margin) &
                cv::Rect(0, 0, frame.cols, frame.rows);
@@ -230,38 +236,42 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   cv::Mat render(out.window.size(), CV_32FC3, cv::Scalar::all(0));
   out.alpha = cv::Mat(out.window.size(), CV_32F, cv::Scalar(0));
   const float texels = float(m.map.size - 1);
-  parallel_for(out.window.height, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      auto* colour = render.ptr<cv::Vec3f>(y);
-      float* a = out.alpha.ptr<float>(y);
-      for (int x = 0; x < out.window.width; ++x) {
-        const size_t i = size_t(y) * out.window.width + x;
-        const int tri = buffers.triangle[i];
-        if (tri < 0) continue;
-        const Vec2f b = buffers.bary[i];
-        const Triangle& uv = m.skin.triangle_uvs[tri];
-        const Vec2f coord = (1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]];
-        const cv::Vec4f s = sample_bilinear4(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
-        const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
-        const Vec3f n = to_viewer_frame(normal);
-        const float shade = std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
-        colour[x] = cv::Vec3f(s[0] * shade, s[1] * shade, s[2] * shade) * 255.0f;
-        // Fade where the surface turns away too: the silhouette (the side of
-        // the jaw, the cheek under a turned head) is no UV boundary.
-        const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
-        const float facing = std::clamp((-normal.dot(ray) - 0.1f) / 0.3f, 0.0f, 1.0f);
-        a[x] = s[3] * facing * facing * (3 - 2 * facing);
-      }
-    }
-  }, 16);
+  parallel_for(
+      out.window.height,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          auto* colour = render.ptr<cv::Vec3f>(y);
+          float* a = out.alpha.ptr<float>(y);
+          for (int x = 0; x < out.window.width; ++x) {
+            const size_t i = size_t(y) * out.window.width + x;
+            const int tri = buffers.triangle[i];
+            if (tri < 0) continue;
+            const Vec2f b = buffers.bary[i];
+            const Triangle& uv = m.skin.triangle_uvs[tri];
+            const Vec2f coord =
+                (1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]];
+            const cv::Vec4f s = sample_bilinear4(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
+            const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
+            const Vec3f n = to_viewer_frame(normal);
+            const float shade = std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
+            colour[x] = cv::Vec3f(s[0] * shade, s[1] * shade, s[2] * shade) * 255.0f;
+            // Fade where the surface turns away too: the silhouette (the side of
+            // the jaw, the cheek under a turned head) is no UV boundary.
+            const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
+            const float facing = std::clamp((-normal.dot(ray) - 0.1f) / 0.3f, 0.0f, 1.0f);
+            a[x] = s[3] * facing * facing * (3 - 2 * facing);
+          }
+        }
+      },
+      16);
   t.render_ms += ms_since(t0);
 
   // §6.3: the target background warped to the swapped face's outline.
   t0 = std::chrono::steady_clock::now();
   cv::Mat background;
   if (m.options.warp_background) {
-    m.warp.warp(frame, project(target_points, m.anchors, target.camera), project(swapped_points, m.anchors, target.camera),
-                out.window, background);
+    m.warp.warp(frame, project(target_points, m.anchors, target.camera),
+                project(swapped_points, m.anchors, target.camera), out.window, background);
   } else {
     background = frame(out.window).clone();
   }
@@ -281,8 +291,9 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     const float* a = out.alpha.ptr<float>(y);
     auto* o = layer.colour.ptr<cv::Vec3b>(y);
     for (int x = 0; x < out.window.width; ++x) {
-      if (a[x] > 0) o[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[x][0]), cv::saturate_cast<uchar>(c[x][1]),
-                                     cv::saturate_cast<uchar>(c[x][2]));
+      if (a[x] > 0)
+        o[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[x][0]), cv::saturate_cast<uchar>(c[x][1]),
+                         cv::saturate_cast<uchar>(c[x][2]));
     }
   }
   out.alpha.convertTo(layer.mask, CV_8U, 255.0);

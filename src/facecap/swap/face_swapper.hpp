@@ -17,11 +17,11 @@
 namespace facecap {
 
 struct SwapOptions {
-  int texture_size = 1024;     // UV texture of the face
-  int appearance_frames = 5;   // target frames over which the appearance is harmonised, then held
-  float fade_texels = 40.0f;   // width of the alpha fade at the face boundary, in texels
-  double noise_sigma = 2.0;    // texels: the residual of eq. 6.4 is what a blur of this size removes
-  bool warp_background = true; // §6.3; off: the new face is laid over the unwarped frame
+  int texture_size = 1024;      // UV texture of the face
+  int appearance_frames = 5;    // target frames over which the appearance is harmonised, then held
+  float fade_texels = 40.0f;    // width of the alpha fade at the face boundary, in texels
+  double noise_sigma = 2.0;     // texels: the residual of eq. 6.4 is what a blur of this size removes
+  bool warp_background = true;  // §6.3; off: the new face is laid over the unwarped frame
 };
 
 // The source portrait, reconstructed.

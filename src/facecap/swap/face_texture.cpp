@@ -27,31 +27,34 @@ FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, c
   FaceTexture out;
   out.albedo = cv::Mat(map.size, map.size, CV_32FC3, cv::Scalar::all(0));
   out.weight = cv::Mat(map.size, map.size, CV_32F, cv::Scalar(0));
-  parallel_for(map.size, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      auto* albedo = out.albedo.ptr<cv::Vec3f>(y);
-      auto* weight = out.weight.ptr<float>(y);
-      for (int x = 0; x < map.size; ++x) {
-        const int i = map.index(x, y);
-        if (map.triangle[i] < 0) continue;
-        const Vec3f p = map.interpolate(triangles, camera_points, i);
-        const Vec3f n = map.interpolate(triangles, normals, i).normalized();
-        const float facing = -n.dot(p.normalized());  // cosine between the normal and the view ray
-        if (!(facing > 0.2f)) continue;
-        const Vec2f q = window.project(p);
-        const int px = static_cast<int>(std::lround(q.x())), py = static_cast<int>(std::lround(q.y()));
-        if (px < 0 || py < 0 || px >= buffers.width || py >= buffers.height) continue;
-        if (p.z() > buffers.depth[size_t(py) * buffers.width + px] + 0.3f) continue;  // hidden
-        const Vec2f qi = camera.project(p);
-        const Vec3f rgb = sample_bilinear_rgb8(image, qi.x(), qi.y());
-        const Vec3f nv = to_viewer_frame(n);
-        const float shade = sh_shade(lighting, nv.x(), nv.y(), nv.z());
-        if (!(shade > 0.05f)) continue;
-        albedo[x] = cv::Vec3f(rgb.z() / shade, rgb.y() / shade, rgb.x() / shade);
-        weight[x] = facing;
-      }
-    }
-  }, 32);
+  parallel_for(
+      map.size,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          auto* albedo = out.albedo.ptr<cv::Vec3f>(y);
+          auto* weight = out.weight.ptr<float>(y);
+          for (int x = 0; x < map.size; ++x) {
+            const int i = map.index(x, y);
+            if (map.triangle[i] < 0) continue;
+            const Vec3f p = map.interpolate(triangles, camera_points, i);
+            const Vec3f n = map.interpolate(triangles, normals, i).normalized();
+            const float facing = -n.dot(p.normalized());  // cosine between the normal and the view ray
+            if (!(facing > 0.2f)) continue;
+            const Vec2f q = window.project(p);
+            const int px = static_cast<int>(std::lround(q.x())), py = static_cast<int>(std::lround(q.y()));
+            if (px < 0 || py < 0 || px >= buffers.width || py >= buffers.height) continue;
+            if (p.z() > buffers.depth[size_t(py) * buffers.width + px] + 0.3f) continue;  // hidden
+            const Vec2f qi = camera.project(p);
+            const Vec3f rgb = sample_bilinear_rgb8(image, qi.x(), qi.y());
+            const Vec3f nv = to_viewer_frame(n);
+            const float shade = sh_shade(lighting, nv.x(), nv.y(), nv.z());
+            if (!(shade > 0.05f)) continue;
+            albedo[x] = cv::Vec3f(rgb.z() / shade, rgb.y() / shade, rgb.x() / shade);
+            weight[x] = facing;
+          }
+        }
+      },
+      32);
   return out;
 }
 

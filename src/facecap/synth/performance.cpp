@@ -95,12 +95,24 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
 
   std::vector<ExpressionEvent> events;
   const std::vector<std::vector<std::pair<std::string, double>>> kinds = {
-      {{"mouthSmile_L", 1.0}, {"mouthSmile_R", 1.0}, {"cheekSquint_L", 0.6}, {"cheekSquint_R", 0.6},
-       {"eyeSquint_L", 0.3}, {"eyeSquint_R", 0.3}},
-      {{"browInnerUp_L", 1.0}, {"browInnerUp_R", 1.0}, {"browOuterUp_L", 0.8}, {"browOuterUp_R", 0.8},
-       {"eyeWide_L", 0.5}, {"eyeWide_R", 0.5}},
-      {{"browDown_L", 0.9}, {"browDown_R", 0.9}, {"mouthFrown_L", 0.6}, {"mouthFrown_R", 0.6},
-       {"noseSneer_L", 0.3}, {"noseSneer_R", 0.3}},
+      {{"mouthSmile_L", 1.0},
+       {"mouthSmile_R", 1.0},
+       {"cheekSquint_L", 0.6},
+       {"cheekSquint_R", 0.6},
+       {"eyeSquint_L", 0.3},
+       {"eyeSquint_R", 0.3}},
+      {{"browInnerUp_L", 1.0},
+       {"browInnerUp_R", 1.0},
+       {"browOuterUp_L", 0.8},
+       {"browOuterUp_R", 0.8},
+       {"eyeWide_L", 0.5},
+       {"eyeWide_R", 0.5}},
+      {{"browDown_L", 0.9},
+       {"browDown_R", 0.9},
+       {"mouthFrown_L", 0.6},
+       {"mouthFrown_R", 0.6},
+       {"noseSneer_L", 0.3},
+       {"noseSneer_R", 0.3}},
       {{"mouthPucker", 0.8}, {"mouthFunnel", 0.4}},
       {{"mouthStretch_L", 0.6}, {"mouthStretch_R", 0.6}, {"mouthDimple_L", 0.5}, {"mouthDimple_R", 0.5}}};
   if (!options.still) {

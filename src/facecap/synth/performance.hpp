@@ -18,15 +18,15 @@ struct SynthOptions {
   int width = 640;
   int height = 480;
   double fps = 30.0;
-  double focal = 0.0;          // pixels; 0 = 1.1 x width
-  double max_yaw_deg = 30.0;   // head turns sweep +-this
+  double focal = 0.0;         // pixels; 0 = 1.1 x width
+  double max_yaw_deg = 30.0;  // head turns sweep +-this
   double max_pitch_deg = 8.0;
   double max_roll_deg = 5.0;
-  double face_height = 0.45;   // chin-to-brow height as a share of the image height
-  bool still = false;          // hold pose and expression (for jitter measurements)
-  bool detail = false;         // wrinkle-like displacements along the normals
-  int identity_modes = 50;     // random identity on the leading modes, N(0, 1)
-  double noise_sigma = 1.5;    // sensor noise, 0-255 grey levels
+  double face_height = 0.45;  // chin-to-brow height as a share of the image height
+  bool still = false;         // hold pose and expression (for jitter measurements)
+  bool detail = false;        // wrinkle-like displacements along the normals
+  int identity_modes = 50;    // random identity on the leading modes, N(0, 1)
+  double noise_sigma = 1.5;   // sensor noise, 0-255 grey levels
 
   // Throws facecap::Error naming the bad option.
   void check() const;

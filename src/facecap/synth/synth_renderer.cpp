@@ -30,7 +30,8 @@ SynthRenderer::SynthRenderer(const FaceModel& model, const SynthPerformance& per
     for (int v = 0; v < subdivision_.num_vertices; ++v) displacement_[v] = wrinkle_displacement(fine_neutral.col(v));
     const std::vector<Vec2f> fine_uv = subdivision_.prolong(per_vertex_uvs(face));
     fine_albedo_.resize(3, subdivision_.num_vertices);
-    for (int v = 0; v < subdivision_.num_vertices; ++v) fine_albedo_.col(v) = sample_uv_rgb(appearance_.face_texture, fine_uv[v]);
+    for (int v = 0; v < subdivision_.num_vertices; ++v)
+      fine_albedo_.col(v) = sample_uv_rgb(appearance_.face_texture, fine_uv[v]);
   }
   // A quiet studio background: a vertical gradient with soft blotches.
   const int w = performance.options.width * kSupersample, h = performance.options.height * kSupersample;
@@ -114,11 +115,9 @@ cv::Mat SynthRenderer::render(const SynthFrame& frame, std::mt19937_64& noise_rn
 }
 
 Landmarks SynthRenderer::landmarks(const SynthFrame& frame) const {
-  const Positions model_face =
-      model_.evaluate(performance_.identity, frame.expression, regions::kFace);
+  const Positions model_face = model_.evaluate(performance_.identity, frame.expression, regions::kFace);
   const Mat3d r = frame.pose.model_to_camera_rotation();
-  const auto vertices =
-      landmark_vertices_for_pose(model_, contour_, model_face, r, frame.pose.translation);
+  const auto vertices = landmark_vertices_for_pose(model_, contour_, model_face, r, frame.pose.translation);
   Landmarks lm;
   for (int i = 0; i < kNumLandmarks; ++i) {
     const Vec3d p = r * model_face.col(vertices[i]).cast<double>() + frame.pose.translation;

@@ -31,7 +31,8 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
   SyntheticMark mark;
   mark.kind = "synthetic-render";
   mark.description = "A face rendered from the ICT face model with known parameters; no real person.";
-  mark.parameters = {{"seed", std::to_string(options.seed)}, {"frames", std::to_string(options.frames)},
+  mark.parameters = {{"seed", std::to_string(options.seed)},
+                     {"frames", std::to_string(options.frames)},
                      {"detail", options.detail ? "true" : "false"}};
   VideoWriterOptions vo;
   vo.width = options.width;

@@ -41,16 +41,25 @@ void write_truth(const std::filesystem::path& path, const SynthTruth& truth) {
   j["format"] = "facecap-synth-truth";
   j["version"] = 1;
   j["synthetic"] = true;
-  j["options"] = {{"frames", o.frames},           {"seed", o.seed},           {"width", o.width},
-                  {"height", o.height},           {"fps", o.fps},             {"max_yaw_deg", o.max_yaw_deg},
-                  {"max_pitch_deg", o.max_pitch_deg}, {"max_roll_deg", o.max_roll_deg},
-                  {"face_height", o.face_height}, {"still", o.still},         {"detail", o.detail},
-                  {"identity_modes", o.identity_modes}, {"noise_sigma", o.noise_sigma}};
+  j["options"] = {{"frames", o.frames},
+                  {"seed", o.seed},
+                  {"width", o.width},
+                  {"height", o.height},
+                  {"fps", o.fps},
+                  {"max_yaw_deg", o.max_yaw_deg},
+                  {"max_pitch_deg", o.max_pitch_deg},
+                  {"max_roll_deg", o.max_roll_deg},
+                  {"face_height", o.face_height},
+                  {"still", o.still},
+                  {"detail", o.detail},
+                  {"identity_modes", o.identity_modes},
+                  {"noise_sigma", o.noise_sigma}};
   j["camera"] = {{"focal", p.camera.focal}, {"cx", p.camera.cx}, {"cy", p.camera.cy}};
   j["identity"] = vec(p.identity);
   j["skin_tone_rgb"] = vec(p.skin_tone);
   j["expression_names"] = truth.expression_names;
-  j["units"] = {{"translation", "cm"}, {"rotation", "axis-angle radians, camera frame x right y down z forward"},
+  j["units"] = {{"translation", "cm"},
+                {"rotation", "axis-angle radians, camera frame x right y down z forward"},
                 {"landmarks", "pixels, 0-based, pixel centres at integers"}};
   json frames = json::array();
   for (size_t f = 0; f < p.frames.size(); ++f) {
