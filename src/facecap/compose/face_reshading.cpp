@@ -8,6 +8,17 @@
 
 namespace facecap {
 
+std::vector<cv::Point2f> project_vertices(const Positions& points, const std::vector<int>& vertices,
+                                          const PinholeCamera& camera) {
+  std::vector<cv::Point2f> out;
+  out.reserve(vertices.size());
+  for (int v : vertices) {
+    const Vec2f q = camera.project(Vec3f(points.col(v)));
+    out.emplace_back(q.x(), q.y());
+  }
+  return out;
+}
+
 cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera) {
   float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
   for (Eigen::Index v = 0; v < points.cols(); ++v) {

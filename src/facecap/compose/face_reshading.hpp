@@ -18,6 +18,10 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
                        const std::vector<Triangle>& triangles, const ShCoeffs& lighting, const PinholeCamera& camera,
                        int margin = 32);
 
+// The image positions of some of the points (by index).
+std::vector<cv::Point2f> project_vertices(const Positions& points, const std::vector<int>& vertices,
+                                          const PinholeCamera& camera);
+
 // The image bounding box of the points' projections.
 cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera);
 

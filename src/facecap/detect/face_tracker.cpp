@@ -4,6 +4,8 @@
 #include <chrono>
 #include <opencv2/imgproc.hpp>
 
+#include "facecap/core/stopwatch.hpp"
+
 namespace facecap {
 
 float box_overlap(const Box& a, const Box& b) {
@@ -64,12 +66,6 @@ void FaceTracker::learn_box_relation(const Box& det, const Landmarks& lm) {
   const Eigen::Vector4f measured(offset.x(), offset.y(), det.width / size, det.height / size);
   box_relation_ = 0.7f * box_relation_ + 0.3f * measured;
 }
-
-namespace {
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-}  // namespace
 
 TrackedFace FaceTracker::next(const cv::Mat& image) {
   cv::Mat grey;

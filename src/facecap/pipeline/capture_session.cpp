@@ -9,16 +9,9 @@
 
 #include "facecap/core/interrupt.hpp"
 #include "facecap/core/progress.hpp"
+#include "facecap/core/stopwatch.hpp"
 
 namespace facecap {
-
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink) {
   const auto start = std::chrono::steady_clock::now();

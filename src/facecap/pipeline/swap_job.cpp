@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/stopwatch.hpp"
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
@@ -16,10 +17,6 @@ namespace facecap {
 namespace fs = std::filesystem;
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 
 RefineOptions lighting_only() {
   RefineOptions o;

@@ -10,6 +10,7 @@
 #include "facecap/compose/mouth_warp.hpp"
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/stopwatch.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
@@ -20,25 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
 // A tracked frame waiting for its transformed weights (k frames of delay).
 struct Pending {
   CapturedFrame frame;
   Positions coarse;  // camera-space face region, source expression
   ShCoeffs lighting;
 };
-
-std::vector<cv::Point2f> project(const Positions& p, const std::vector<int>& vertices, const PinholeCamera& cam) {
-  std::vector<cv::Point2f> out;
-  for (int v : vertices) {
-    const Vec2f q = cam.project(Vec3f(p.col(v)));
-    out.emplace_back(q.x(), q.y());
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -89,7 +77,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
         const Positions changed = to_camera(
             model.evaluate(p.frame.identity.identity.cast<float>(), t.weights, regions::kFace), p.frame.fit.pose);
         FaceLayer layer = reshade_face(p.frame.image, p.coarse, changed, skin, p.lighting, cam);
-        warp_mouth(p.frame.image, project(p.coarse, inner_lips, cam), project(changed, inner_lips, cam), layer);
+        warp_mouth(p.frame.image, project_vertices(p.coarse, inner_lips, cam),
+                   project_vertices(changed, inner_lips, cam), layer);
         out = p.frame.image.clone();
         composite_layer(out, layer);
         summary.timings.render_ms += ms_since(t0);

@@ -2,15 +2,9 @@
 
 #include <chrono>
 
+#include "facecap/core/stopwatch.hpp"
+
 namespace facecap {
-
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 Refiner::Refiner(std::vector<Polygon> polygons, int num_vertices, RefineOptions options, std::vector<bool> data_mask)
     : polygons_(std::move(polygons)), num_vertices_(num_vertices), data_mask_(std::move(data_mask)), options_(options) {

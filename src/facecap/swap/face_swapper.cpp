@@ -6,6 +6,7 @@
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/core/parallel.hpp"
+#include "facecap/core/stopwatch.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
@@ -18,10 +19,6 @@
 namespace facecap {
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 
 // The skin of the face region (the narrow face of FACTS.md) with its UVs.
 TriangleMesh skin_mesh(const FaceModel& model) {
@@ -76,14 +73,19 @@ cv::Vec4f sample_bilinear4(const cv::Mat& tex, float x, float y) {
   return (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
 }
 
-std::vector<cv::Point2f> project(const Positions& p, const std::vector<int>& vertices, const PinholeCamera& cam) {
-  std::vector<cv::Point2f> out;
-  out.reserve(vertices.size());
-  for (int v : vertices) {
-    const Vec2f q = cam.project(Vec3f(p.col(v)));
-    out.emplace_back(q.x(), q.y());
+// The image polygons of what the skin mesh does not model: the eyes
+// (landmarks 36-41, 42-47) and the mouth interior (inner lips 60-67).
+std::vector<std::vector<cv::Point>> feature_holes(const FaceModel& model, const Positions& points,
+                                                  const PinholeCamera& camera) {
+  std::vector<std::vector<cv::Point>> holes;
+  for (const auto& [first, last] : {std::pair{36, 41}, std::pair{42, 47}, std::pair{60, 67}}) {
+    std::vector<int> vertices(model.landmarks.vertices.begin() + first, model.landmarks.vertices.begin() + last + 1);
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& q : project_vertices(points, vertices, camera))
+      polygon.emplace_back(cvRound(q.x), cvRound(q.y));
+    holes.push_back(std::move(polygon));
   }
-  return out;
+  return holes;
 }
 
 }  // namespace
@@ -106,7 +108,8 @@ struct FaceSwapper::Impl {
 
   Impl(const FaceModel& m, const cv::Mat& photo, SourceFace s, SwapOptions o)
       : model(m), options(o), source(std::move(s)), skin(skin_mesh(m)), map(rasterize_uv(skin, o.texture_size)) {
-    FaceTexture t = unshade_face(photo, source.camera_points, skin.triangles, source.camera, source.lighting, map);
+    FaceTexture t = unshade_face(photo, source.camera_points, skin.triangles, source.camera, source.lighting, map,
+                                 feature_holes(m, source.camera_points, source.camera));
     drop_non_skin(t);
     source_albedo = fill_unseen(t.albedo, t.weight);
     source_weight = t.weight;
@@ -206,7 +209,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
 
   auto t0 = std::chrono::steady_clock::now();
   if (m.appearance_seen < m.options.appearance_frames) {
-    FaceTexture tex = unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map);
+    FaceTexture tex = unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map,
+                                   feature_holes(m.model, target_points, target.camera));
     drop_non_skin(tex);
     if (m.appearance_seen == 0) m.target_first = tex;
     accumulate(m.target_sum, tex);
@@ -270,8 +274,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   t0 = std::chrono::steady_clock::now();
   cv::Mat background;
   if (m.options.warp_background) {
-    m.warp.warp(frame, project(target_points, m.anchors, target.camera),
-                project(swapped_points, m.anchors, target.camera), out.window, background);
+    m.warp.warp(frame, project_vertices(target_points, m.anchors, target.camera),
+                project_vertices(swapped_points, m.anchors, target.camera), out.window, background);
   } else {
     background = frame(out.window).clone();
   }

@@ -13,7 +13,8 @@
 namespace facecap {
 
 FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, const std::vector<Triangle>& triangles,
-                         const PinholeCamera& camera, const ShCoeffs& lighting, const UvTexelMap& map) {
+                         const PinholeCamera& camera, const ShCoeffs& lighting, const UvTexelMap& map,
+                         const std::vector<std::vector<cv::Point>>& excluded) {
   // Depth of the visible surface, rasterised into the face's window.
   const cv::Rect box = projected_bounds(camera_points, camera) & cv::Rect(0, 0, image.cols, image.rows);
   PinholeCamera window = camera;
@@ -23,6 +24,12 @@ FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, c
   buffers.resize(std::max(1, box.width), std::max(1, box.height));
   rasterize(camera_points, triangles, window, buffers);
   const Positions normals = vertex_normals(camera_points, triangles);
+  // The excluded polygons in the window, grown by 2 px (eyelashes, lip edges).
+  cv::Mat holes(buffers.height, buffers.width, CV_8U, cv::Scalar(0));
+  if (!excluded.empty()) {
+    cv::fillPoly(holes, excluded, cv::Scalar(255), cv::LINE_8, 0, cv::Point(-box.x, -box.y));
+    cv::dilate(holes, holes, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+  }
 
   FaceTexture out;
   out.albedo = cv::Mat(map.size, map.size, CV_32FC3, cv::Scalar::all(0));
@@ -44,6 +51,7 @@ FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, c
             const int px = static_cast<int>(std::lround(q.x())), py = static_cast<int>(std::lround(q.y()));
             if (px < 0 || py < 0 || px >= buffers.width || py >= buffers.height) continue;
             if (p.z() > buffers.depth[size_t(py) * buffers.width + px] + 0.3f) continue;  // hidden
+            if (holes.at<uchar>(py, px)) continue;
             const Vec2f qi = camera.project(p);
             const Vec3f rgb = sample_bilinear_rgb8(image, qi.x(), qi.y());
             const Vec3f nv = to_viewer_frame(n);

@@ -21,9 +21,12 @@ struct FaceTexture {
 };
 
 // `camera_points`: the face's vertices in camera space for `image`;
-// `triangles`: the mesh the texel map was built from.
+// `triangles`: the mesh the texel map was built from. Surface points that
+// land inside an `excluded` image polygon (the open mouth, the eyes: what
+// the skin mesh does not model) count as unseen.
 FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, const std::vector<Triangle>& triangles,
-                         const PinholeCamera& camera, const ShCoeffs& lighting, const UvTexelMap& map);
+                         const PinholeCamera& camera, const ShCoeffs& lighting, const UvTexelMap& map,
+                         const std::vector<std::vector<cv::Point>>& excluded = {});
 
 // Drops (zero weight) the texels whose colour is far from the face's median
 // skin colour in chromaticity or brightness: a collar, hair or a hand the
