@@ -245,6 +245,7 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--target", a->target, "Target video");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
   cmd->add_option("-o,--output", a->output, "Keep the swapped video here (--source/--target; default: temporary)");
+  cmd->add_flag("--wrinkles", a->options.swap.wrinkles, "Predict the target's expression wrinkles (§6.1.2)");
   cmd->callback([a, &global] {
     const bool self = !a->self.empty();
     if (self == (!a->source.empty() || !a->target.empty()))

@@ -25,6 +25,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                   "Target frames over which the appearance is harmonised, then held")
       ->capture_default_str();
   cmd->add_flag("--no-warp", a->no_warp, "Do not warp the target background to the new face outline");
+  cmd->add_flag("--wrinkles", a->options.swap.wrinkles,
+                "Predict the target's expression wrinkles on the new face (§6.1.2; refines the target, slower)");
   cmd->callback([a, &global] {
     if (a->options.swap.appearance_frames < 1) throw Error("--appearance-frames must be at least 1");
     a->options.swap.warp_background = !a->no_warp;
@@ -35,11 +37,12 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     const SwapTimings& t = s.timings.swap;
     std::fprintf(stderr,
                  "frames %d, swapped %d, lost %d | source %.0f ms | per frame: lighting %.2f, appearance %.2f "
-                 "(first %d frames), render %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json (synthetic-media "
+                 "(first %d frames), render %.2f, wrinkles %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json "
+                 "(synthetic-media "
                  "marks)\n",
                  s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
-                 t.appearance_ms / n, a->options.swap.appearance_frames, t.render_ms / n, t.warp_ms / n, t.blend_ms / n,
-                 a->output.c_str(), a->output.c_str());
+                 t.appearance_ms / n, a->options.swap.appearance_frames, t.render_ms / n, t.wrinkle_ms / n,
+                 t.warp_ms / n, t.blend_ms / n, a->output.c_str(), a->output.c_str());
   });
 }
 

@@ -65,6 +65,36 @@ TEST(SwapEval, PortraitIntoVideoTakesTheSourceShapeAndTheTargetExpression) {
   EXPECT_TRUE(carries_synthetic_marks(out));
 }
 
+TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
+  TempDir dir;
+  SwapJobOptions o = short_run(12);
+  std::vector<cv::Mat> plain, wrinkled;
+  cv::Rect window;
+  o.on_frame = [&](const CapturedFrame&, const SwappedFrame& r) {
+    plain.push_back(r.image.clone());
+    window = r.window;
+  };
+  run_swap(*model, photo.string(), video.string(), dir.path() / "plain.mp4", o);
+  o.swap.wrinkles = true;
+  o.on_frame = [&](const CapturedFrame&, const SwappedFrame& r) { wrinkled.push_back(r.image.clone()); };
+  const SwapSummary s = run_swap(*model, photo.string(), video.string(), dir.path() / "wrinkled.mp4", o);
+  EXPECT_GT(s.timings.swap.wrinkle_ms, 0.0);
+  ASSERT_EQ(plain.size(), wrinkled.size());
+  // Outside the face window the frames are the target's in both.
+  cv::Mat outside(plain.back().size(), CV_8U, cv::Scalar(255));
+  outside(window).setTo(0);
+  cv::Mat d;
+  cv::absdiff(plain.back(), wrinkled.back(), d);
+  EXPECT_EQ(cv::norm(d, cv::NORM_INF, outside), 0.0);
+  // Inside, the refined target lighting and the predicted motion change the face, boundedly.
+  const double inside = cv::mean(d(window))[1];
+  EXPECT_GT(inside, 0.05);
+  EXPECT_LT(inside, 20.0);
+}
+
 TEST(SwapJob, APhotoWithoutAFaceIsAClearErrorAndWritesNothing) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");

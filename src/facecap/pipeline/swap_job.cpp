@@ -77,7 +77,15 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   VideoWriter writer(output, vo);
 
   FaceSwapper swapper(model, summary.source.photo, summary.source.face, options.swap);
-  Refiner refiner = make_face_refiner(model, lighting_only());
+  // With wrinkles the target is refined as `track --refine` does, on a
+  // two-level hierarchy (the coarse mesh and one 4-8 level, about 4x the
+  // vertices), whose finest level carries the coating transfer.
+  RefineOptions refine = lighting_only();
+  if (options.swap.wrinkles) {
+    refine.displacements = true;
+    refine.hierarchy.levels = 2;
+  }
+  Refiner refiner = make_face_refiner(model, refine);
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
   summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
@@ -92,7 +100,12 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
       t.camera = PinholeCamera::centered(f.fit.focal, info.width, info.height);
       const auto l0 = std::chrono::steady_clock::now();
       const Positions coarse = to_camera(model.evaluate(t.identity, t.expression, regions::kFace), t.pose);
-      t.lighting = refiner.refine(f.image, coarse, t.camera).lighting;
+      Refinement refined = refiner.refine(f.image, coarse, t.camera);
+      t.lighting = refined.lighting;
+      if (options.swap.wrinkles) {
+        t.fine = std::move(refined.positions);
+        t.hierarchy = &refiner.hierarchy();
+      }
       summary.timings.lighting_ms += ms_since(l0);
       result = swapper.swap(f.image, t, &summary.timings.swap);
       ++summary.timings.swapped;

@@ -32,7 +32,7 @@ struct SwapJobOptions {
 
 struct SwapJobTimings {
   SwapTimings swap;
-  double lighting_ms = 0;  // the target's SH lighting per frame
+  double lighting_ms = 0;  // the target's SH lighting per frame (and its displacements with wrinkles)
   double source_ms = 0;    // reconstructing the portrait
   int swapped = 0;         // frames with a face
 };

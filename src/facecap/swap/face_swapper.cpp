@@ -2,12 +2,15 @@
 
 #include <chrono>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/refine/mesh_hierarchy.hpp"
+#include "facecap/refine/refiner.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/render/uv_raster.hpp"
@@ -15,6 +18,7 @@
 #include "facecap/swap/background_warp.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/noise_matching.hpp"
+#include "facecap/swap/wrinkle_transfer.hpp"
 
 namespace facecap {
 
@@ -105,6 +109,11 @@ struct FaceSwapper::Impl {
   int appearance_seen = 0;
   std::vector<int> anchors;  // landmark and boundary vertices for the background warp
   BackgroundWarp warp;
+  // §6.1.2, built on the first refined target frame.
+  std::unique_ptr<CoatingTransfer> coating;
+  std::optional<ExpressionReference> reference;
+  Positions reference_coating;      // xi_0^T
+  std::vector<Triangle> fine_skin;  // the finest level's skin triangles
 
   Impl(const FaceModel& m, const cv::Mat& photo, SourceFace s, SwapOptions o)
       : model(m), options(o), source(std::move(s)), skin(skin_mesh(m)), map(rasterize_uv(skin, o.texture_size)) {
@@ -126,6 +135,56 @@ struct FaceSwapper::Impl {
     for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
       if (boundary[v] && (k++ % 3 == 0)) anchors.push_back(v);
     }
+  }
+
+  // Eq. 6.1-6.2: the target's fine motion since the reference frame, rotated
+  // into the swapped mesh's tangent frames and solved for, shades the render:
+  // each pixel is scaled by the SH shading of the wrinkled surface over that
+  // of the coarse one (the texture already holds the photo's static detail).
+  void add_wrinkles(const TargetFrame& target, const Positions& target_points, const Positions& swapped_points,
+                    const PinholeCamera& window, cv::Mat& render) {
+    const MeshHierarchy& h = *target.hierarchy;
+    const int finest = h.num_levels() - 1;
+    const MeshLevel& level = h.level(finest);
+    if (target.fine.cols() != level.num_vertices) return;
+    if (!coating) {
+      coating = std::make_unique<CoatingTransfer>(level.triangles, level.num_vertices);
+      reference.emplace(source.expression);
+      std::vector<bool> skin_vertices(skin.num_vertices, false);
+      for (const Triangle& tri : skin.triangles)
+        for (int v : tri) skin_vertices[v] = true;
+      fine_skin = masked_triangles(level.triangles, h.prolong_mask(skin_vertices, finest));
+    }
+    const Positions base_target = h.prolong_from_coarse(target_points, finest);
+    const Positions base_swapped = h.prolong_from_coarse(swapped_points, finest);
+    const Positions xi = coating->coating(target.fine, base_target);
+    if (reference->offer(target.expression)) reference_coating = xi;
+    const Positions swapped_normals = level_normals(level, base_swapped);
+    const Positions motion =
+        rotate_between_normals(xi - reference_coating, level_normals(level, base_target), swapped_normals);
+    const Positions wrinkled = coating->solve(base_swapped, motion);
+    const Positions wrinkled_normals = level_normals(level, wrinkled);
+    RasterBuffers buffers;
+    buffers.resize(render.cols, render.rows);
+    rasterize(wrinkled, fine_skin, window, buffers);
+    parallel_for(
+        render.rows,
+        [&](int y0, int y1) {
+          for (int y = y0; y < y1; ++y) {
+            auto* colour = render.ptr<cv::Vec3f>(y);
+            for (int x = 0; x < render.cols; ++x) {
+              const size_t i = size_t(y) * render.cols + x;
+              if (buffers.triangle[i] < 0) continue;
+              const Vec3f nw = to_viewer_frame(interpolate(buffers, fine_skin, wrinkled_normals, i).normalized());
+              const Vec3f nc = to_viewer_frame(interpolate(buffers, fine_skin, swapped_normals, i).normalized());
+              const float sc = sh_shade(target.lighting, nc.x(), nc.y(), nc.z());
+              if (!(sc > 0.05f)) continue;
+              const float ratio = std::clamp(sh_shade(target.lighting, nw.x(), nw.y(), nw.z()) / sc, 0.5f, 2.0f);
+              colour[x] *= ratio;
+            }
+          }
+        },
+        16);
   }
 
   // Eq. 6.3-6.5 with the target frames seen so far.
@@ -269,6 +328,12 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
       },
       16);
   t.render_ms += ms_since(t0);
+
+  if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {
+    t0 = std::chrono::steady_clock::now();
+    m.add_wrinkles(target, target_points, swapped_points, window, render);
+    t.wrinkle_ms += ms_since(t0);
+  }
 
   // §6.3: the target background warped to the swapped face's outline.
   t0 = std::chrono::steady_clock::now();

@@ -22,6 +22,11 @@ struct SwapOptions {
   float fade_texels = 40.0f;    // width of the alpha fade at the face boundary, in texels
   double noise_sigma = 2.0;     // texels: the residual of eq. 6.4 is what a blur of this size removes
   bool warp_background = true;  // §6.3; off: the new face is laid over the unwarped frame
+  // §6.1.2: carry the target's fine-scale motion (wrinkles that come and go
+  // with its expression) onto the new face; needs each target frame's
+  // refined mesh (TargetFrame::fine). The photo's own static detail is in its
+  // texture already, so only the motion is added as geometry.
+  bool wrinkles = false;
 };
 
 // The source portrait, reconstructed.
@@ -34,12 +39,18 @@ struct SourceFace {
 };
 
 // One tracked target frame.
+class MeshHierarchy;
+
 struct TargetFrame {
   Eigen::VectorXf identity;    // alpha^T
   Eigen::VectorXf expression;  // beta^T_t
   HeadPose pose;
   PinholeCamera camera;
   ShCoeffs lighting;
+  // With SwapOptions::wrinkles: the refined face at the hierarchy's finest
+  // level (camera space) and the hierarchy it lives on.
+  Positions fine;
+  const MeshHierarchy* hierarchy = nullptr;
 };
 
 struct SwapTimings {
@@ -47,6 +58,7 @@ struct SwapTimings {
   double render_ms = 0;      // swapped mesh and its shading
   double warp_ms = 0;        // background warp
   double blend_ms = 0;       // alpha blending
+  double wrinkle_ms = 0;     // coating transfer and its shading (with SwapOptions::wrinkles)
 };
 
 struct SwappedFrame {
