@@ -51,7 +51,12 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
 
 double seam_ratio(const cv::Mat& image, const cv::Mat& alpha) {
   if (image.empty() || alpha.empty()) return 0;
-  cv::Mat mask = alpha > 0.01f;
+  // The blend's outer boundary: the eyes and the mouth, where the target's
+  // own show through the holes of the face mesh by design, count as inside.
+  cv::Mat padded;
+  cv::copyMakeBorder(cv::Mat(alpha > 0.01f), padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::floodFill(padded, cv::Point(0, 0), cv::Scalar(128));
+  const cv::Mat mask = padded(cv::Rect(1, 1, alpha.cols, alpha.rows)) != 128;
   cv::Mat grey, gx, gy, magnitude;
   cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
   cv::Sobel(grey, gx, CV_32F, 1, 0);

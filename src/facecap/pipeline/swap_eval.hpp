@@ -45,8 +45,9 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
                                 const SwapJobOptions& options, const std::filesystem::path& output = {});
 
 // Seam measure of one blended frame: mean gradient magnitude of `image` on
-// the outer edge of `alpha` (> 0.01) over that 6-10 px inside it; 0 when
-// either is empty.
+// the outer edge of `alpha` (> 0.01, holes filled: the eyes and mouth of the
+// target show through the face mesh by design) over that 6-10 px inside it;
+// 0 when either is empty.
 double seam_ratio(const cv::Mat& image, const cv::Mat& alpha);
 
 }  // namespace facecap
