@@ -6,6 +6,7 @@
 
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/compose/face_reshading.hpp"
+#include "facecap/core/error.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/model/regions.hpp"
@@ -196,8 +197,13 @@ struct FaceSwapper::Impl {
     const Positions tgt = vertex_means(map, skin.triangles, target.albedo, target.weight, skin.num_vertices, seen_t);
     std::vector<bool> known(skin.num_vertices);
     for (int v = 0; v < skin.num_vertices; ++v) known[v] = seen_t[v] > 0.05f;
-    const AlbedoAdaptation adaptation(skin.triangles, skin.num_vertices, known);
-    const Positions h = adaptation.offset(src, tgt);
+    // Where none of the face's outline was seen in the target yet (a head
+    // turned far away), the source albedo stays as it is until one is.
+    Positions h = Positions::Zero(3, skin.num_vertices);
+    try {
+      h = AlbedoAdaptation(skin.triangles, skin.num_vertices, known).offset(src, tgt);
+    } catch (const Error&) {
+    }
     // Noise: the photo's fine residual, histogram-matched to the first target frame's.
     cv::Mat smooth;
     cv::GaussianBlur(source_albedo, smooth, cv::Size(0, 0), options.noise_sigma);
