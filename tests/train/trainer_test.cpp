@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
 #include <random>
 
 #include "facecap/core/temp_dir.hpp"
@@ -74,6 +75,46 @@ TEST(Trainer, ShortRunGivesLoadableModelsThatSmile) {
   EXPECT_NE(run_trainer("expr " + data + " --to sadness -o " + (dir.path() / "sad").string(), out), 0);
   EXPECT_NE(out.find("no sadness rows"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "sad" / "G.fcnn"));
+}
+
+TEST(Trainer, BadDatasetRequestsAreOneLineErrors) {
+  FACECAP_REQUIRE_MODEL(model);
+  TempDir dir;
+  std::vector<LabeledWeights> rows;
+  for (const auto& w : speech(*model, 5)) rows.push_back({Emotion::kNeutral, w});
+  write_dataset_csv(dir.path() / "not_frames.csv", rows, model->expression_names);
+  {  // A frames.csv as `facecap track` writes it (the columns the trainer reads).
+    std::ofstream f(dir.path() / "frames.csv");
+    f << "frame,time,status";
+    for (const auto& n : model->expression_names) f << ',' << n;
+    f << '\n';
+    for (int i = 0; i < 5; ++i) {
+      f << i << ',' << i / 30.0 << ",tracked";
+      for (size_t k = 0; k < model->expression_names.size(); ++k) f << ",0.1";
+      f << '\n';
+    }
+  }
+  const std::string frames = (dir.path() / "frames.csv").string();
+  const std::string out = (dir.path() / "set.csv").string();
+  for (const std::string& args :
+       {"expr-dataset --neutral " + (dir.path() / "missing.csv").string() + " -o " + out,
+        "expr-dataset --neutral " + (dir.path() / "not_frames.csv").string() + " -o " + out,  // no status column
+        "expr-dataset --neutral " + frames + " --real smiles -o " + out,
+        "expr-dataset --neutral " + frames + " --real contempt=" + frames + "@0-1 -o " + out,
+        "expr-dataset --neutral " + frames + " --real happiness=" + frames + "@5-1 -o " + out,
+        "expr-dataset --neutral " + frames + " --real happiness=" + frames + "@30-40 -o " + out}) {  // no frames
+    std::string text;
+    EXPECT_NE(run_trainer(args, text), 0) << args;
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << args << ": " << text;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+  }
+  std::string text;
+  EXPECT_EQ(
+      run_trainer("expr-dataset --neutral " + frames + " --per-emotion 30 --real sadness=" + frames + "@0-1 -o " + out,
+                  text),
+      0)
+      << text;
+  EXPECT_TRUE(std::filesystem::exists(out));
 }
 
 }  // namespace facecap
