@@ -41,9 +41,7 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
   FaceLayer layer = make_layer(source, projected_bounds(new_points, camera), margin);
   if (layer.box.area() == 0) return layer;
   // Rasterise into the window: the same camera with its principal point shifted.
-  PinholeCamera window = camera;
-  window.cx -= layer.box.x;
-  window.cy -= layer.box.y;
+  const PinholeCamera window = camera.cropped(layer.box.x, layer.box.y);
   RasterBuffers buffers;
   buffers.resize(layer.box.width, layer.box.height);
   rasterize(new_points, triangles, window, buffers);

@@ -21,6 +21,8 @@ struct PinholeCamera {
   Vec2f project(const Vec3f& p) const {
     return {float(focal) * p.x() / p.z() + float(cx), float(focal) * p.y() / p.z() + float(cy)};
   }
+  // The same camera for a window of the image whose top-left pixel is (x0, y0).
+  PinholeCamera cropped(double x0, double y0) const { return {focal, cx - x0, cy - y0}; }
 };
 
 struct HeadPose {

@@ -59,6 +59,13 @@ Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options) 
   return Refiner(polygons, regions::kFace.num_vertices(), options, face_skin_mask());
 }
 
+RefineOptions lighting_only_refinement() {
+  RefineOptions o;
+  o.displacements = false;
+  o.albedo.frames = 4;
+  return o;
+}
+
 RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineEvalOptions& o) {
   SynthOptions so;
   so.frames = o.frames;

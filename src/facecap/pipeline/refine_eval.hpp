@@ -45,6 +45,10 @@ struct RefineEvalResult {
 std::vector<bool> face_skin_mask();
 // A refiner for the model's face region with that mask.
 Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options);
+// Lighting and albedo only (no displacements), with the albedo over 4 frames
+// instead of 10: for the edits, where the lighting feeds a shading ratio or
+// a re-shading whose scale only has to be consistent within one video.
+RefineOptions lighting_only_refinement();
 
 RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineEvalOptions& options);
 

@@ -16,17 +16,6 @@ namespace facecap {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-RefineOptions lighting_only() {
-  RefineOptions o;
-  o.displacements = false;
-  o.albedo.frames = 4;  // the lighting's scale only has to be consistent within a video
-  return o;
-}
-
-}  // namespace
-
 SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& photo, bool quiet) {
   SourceReconstruction r;
   if (!fs::is_regular_file(photo)) throw Error("source photo not found: " + photo);
@@ -51,7 +40,7 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   s.expression = fit->fit.expression;
   s.camera = PinholeCamera::centered(fit->fit.focal, r.photo.cols, r.photo.rows);
   s.camera_points = to_camera(model.evaluate(s.identity, s.expression, regions::kFace), fit->fit.pose);
-  Refiner refiner = make_face_refiner(model, lighting_only());
+  Refiner refiner = make_face_refiner(model, lighting_only_refinement());
   s.lighting = refiner.refine(r.photo, s.camera_points, s.camera).lighting;
   return r;
 }
@@ -80,7 +69,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   // With wrinkles the target is refined as `track --refine` does, on a
   // two-level hierarchy (the coarse mesh and one 4-8 level, about 4x the
   // vertices), whose finest level carries the coating transfer.
-  RefineOptions refine = lighting_only();
+  RefineOptions refine = lighting_only_refinement();
   if (options.swap.wrinkles) {
     refine.displacements = true;
     refine.hierarchy.levels = 2;

@@ -51,12 +51,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(output, vo);
 
-  RefineOptions ro;
-  ro.displacements = false;  // lighting only: the source frame carries the fine detail
-  // The lighting only feeds a shading ratio (its scale cancels), so a short
-  // albedo estimate will do: 4 frames instead of 10.
-  ro.albedo.frames = 4;
-  Refiner refiner = make_face_refiner(model, ro);
+  // Lighting only: the source frame carries the fine detail.
+  Refiner refiner = make_face_refiner(model, lighting_only_refinement());
   ExpressionTransformer transformer(mapper, lip_basis(model), options.transform);
   const TriangleMesh face = model.region_mesh(regions::kFace);
   const std::vector<Triangle> skin = masked_triangles(face.triangles, face_skin_mask());

@@ -295,9 +295,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
 
   // Eq. 6.7: the harmonised albedo under the target's lighting, on the swapped mesh's normals.
   t0 = std::chrono::steady_clock::now();
-  PinholeCamera window = target.camera;
-  window.cx -= out.window.x;
-  window.cy -= out.window.y;
+  const PinholeCamera window = target.camera.cropped(out.window.x, out.window.y);
   RasterBuffers buffers;
   buffers.resize(out.window.width, out.window.height);
   rasterize(swapped_points, m.skin.triangles, window, buffers);

@@ -17,9 +17,7 @@ FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, c
                          const std::vector<std::vector<cv::Point>>& excluded) {
   // Depth of the visible surface, rasterised into the face's window.
   const cv::Rect box = projected_bounds(camera_points, camera) & cv::Rect(0, 0, image.cols, image.rows);
-  PinholeCamera window = camera;
-  window.cx -= box.x;
-  window.cy -= box.y;
+  const PinholeCamera window = camera.cropped(box.x, box.y);
   RasterBuffers buffers;
   buffers.resize(std::max(1, box.width), std::max(1, box.height));
   rasterize(camera_points, triangles, window, buffers);
