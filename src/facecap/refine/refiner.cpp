@@ -121,6 +121,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     apply_mask(samples, mask);
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
     problem.active = samples.visible;
+    erode_observations(samples, level.rings, options_.data_margin_rings);
     for (int grow = 0; grow < 2; ++grow) {
       std::vector<bool> next = problem.active;
       for (int i = 0; i < level.num_vertices; ++i) {

@@ -1,5 +1,7 @@
 #include "facecap/refine/vertex_samples.hpp"
 
+#include <algorithm>
+
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/image_sampling.hpp"
@@ -28,6 +30,19 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Po
     ++s.visible_count;
   }
   return s;
+}
+
+void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int rings) {
+  for (int r = 0; r < rings; ++r) {
+    std::vector<bool> next = s.visible;
+    for (size_t i = 0; i < s.visible.size(); ++i) {
+      if (!s.visible[i]) continue;
+      for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && next[i]; ++k)
+        next[i] = s.visible[adjacency.indices[k]];
+    }
+    s.visible = std::move(next);
+  }
+  s.visible_count = static_cast<int>(std::count(s.visible.begin(), s.visible.end(), true));
 }
 
 std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels) {

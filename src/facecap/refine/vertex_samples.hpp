@@ -28,6 +28,13 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_poin
                               const std::vector<Triangle>& triangles, const PinholeCamera& camera,
                               RasterBuffers& buffers);
 
+// Drops the observations within `rings` rings of a vertex that is not
+// observed (the silhouette, the rims of the eye and mouth holes, the edge of
+// the skin mask). There a vertex's bilinear sample mixes in the background,
+// the eyeball or the lips, and its normal depends on neighbours no pixel
+// constrains: the displacement solve bends the surface to explain them.
+void erode_observations(VertexSamples& samples, const VertexAdjacency& adjacency, int rings);
+
 // An 8-bit image pyramid: level 0 the frame, each next level half the size.
 // The refinement reads level k - 1 - l for mesh level l of k.
 std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels);
