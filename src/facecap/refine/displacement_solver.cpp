@@ -145,23 +145,6 @@ class Solver {
     lin.data_cost = lin.vertex_cost.cast<double>().sum();
   }
 
-  // y = G x, with G_iq = d s_i / d d_q (rows of the touched vertices).
-  void apply_g(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    y.setZero(n_);
-    const int nt = static_cast<int>(touched_.size());
-    parallel_for(
-        nt,
-        [&](int b, int e) {
-          for (int ti = b; ti < e; ++ti) {
-            const int i = touched_[ti];
-            float acc = lin.self[i] * x[i];
-            for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s)
-              acc += lin.ring[s] * x[lv_.rings.indices[s]];
-            y[i] = acc;
-          }
-        },
-        1024);
-  }
   // y = G^T x (a gather: entry q collects from q and its ring), free entries only.
   void apply_gt(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     y.setZero(n_);
@@ -218,16 +201,53 @@ class Solver {
         1024);
   }
 
-  // (J^T J) x restricted to free vertices.
-  void apply_normal(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y, Eigen::VectorXf& t1,
-                    Eigen::VectorXf& t2) const {
-    apply_g(lin, x, t1);
-    t1.array() *= lin.weight.array();
-    apply_gt(lin, t1, y);
-    apply_l(x, t1);
-    apply_lt(t1, t2);
-    y += float(o_.weights.smooth) * t2 + diag_const_ * x;
-    y.array() *= free_.array();
+  // (J^T J) x restricted to free vertices, in two passes (one wake of the
+  // workers each): the rows, W G x and L x over the touched vertices, then the
+  // columns, G^T and L^T over the free ones (G_iq = d s_i / d d_q). The same
+  // sums as apply_gt and apply_lt after the row products, in the same order.
+  void apply_normal(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y, Eigen::VectorXf& wgx,
+                    Eigen::VectorXf& lx) const {
+    wgx.resize(n_);  // read only at touched vertices, which the first pass writes
+    lx.resize(n_);
+    const int nt = static_cast<int>(touched_.size());
+    parallel_for(
+        nt,
+        [&](int b, int e) {
+          for (int ti = b; ti < e; ++ti) {
+            const int i = touched_[ti];
+            const int deg = lv_.rings.degree(i);
+            float g = lin.self[i] * x[i];
+            float mean = 0;
+            for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) {
+              const float xs = x[lv_.rings.indices[s]];
+              g += lin.ring[s] * xs;
+              mean += xs;
+            }
+            wgx[i] = g * lin.weight[i];
+            lx[i] = deg > 0 ? x[i] - mean / deg : 0.0f;
+          }
+        },
+        1024);
+    y.setZero(n_);
+    const float smooth = float(o_.weights.smooth);
+    const int na = static_cast<int>(active_.size());
+    parallel_for(
+        na,
+        [&](int b, int e) {
+          for (int ai = b; ai < e; ++ai) {
+            const int q = active_[ai];
+            float data = lin.self[q] * wgx[q];
+            float lap = lv_.rings.degree(q) > 0 ? lx[q] : 0.0f;
+            for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
+              const int i = lv_.rings.indices[s];
+              const int back = lv_.ring_reverse[s];
+              if (back >= 0) data += lin.ring[lv_.rings.offsets[i] + back] * wgx[i];
+              lap -= lx[i] / lv_.rings.degree(i);
+            }
+            y[q] = data + (smooth * lap + diag_const_ * x[q]);
+          }
+        },
+        1024);
   }
 
   double cost(const Eigen::VectorXf& d, const Linearisation& lin) const {
