@@ -157,8 +157,8 @@ class Solver {
             float acc = lin.self[q] * x[q];
             for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
               const int i = lv_.rings.indices[s];
-              const int back = lv_.ring_reverse[s];
-              if (back >= 0) acc += lin.ring[lv_.rings.offsets[i] + back] * x[i];
+              const int back = lv_.ring_transpose[s];
+              if (back >= 0) acc += lin.ring[back] * x[i];
             }
             y[q] = acc;
           }
@@ -240,8 +240,8 @@ class Solver {
             float lap = lv_.rings.degree(q) > 0 ? lx[q] : 0.0f;
             for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
               const int i = lv_.rings.indices[s];
-              const int back = lv_.ring_reverse[s];
-              if (back >= 0) data += lin.ring[lv_.rings.offsets[i] + back] * wgx[i];
+              const int back = lv_.ring_transpose[s];
+              if (back >= 0) data += lin.ring[back] * wgx[i];
               lap -= lx[i] / lv_.rings.degree(i);
             }
             y[q] = data + (smooth * lap + diag_const_ * x[q]);
@@ -288,9 +288,9 @@ class Solver {
               float lap = lv_.rings.degree(q) > 0 ? 1.0f : 0.0f;
               for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
                 const int i = lv_.rings.indices[s];
-                const int back = lv_.ring_reverse[s];
+                const int back = lv_.ring_transpose[s];
                 if (back >= 0) {
-                  const float g = lin.ring[lv_.rings.offsets[i] + back];
+                  const float g = lin.ring[back];
                   dd += lin.weight[i] * g * g;
                 }
                 const float deg = float(lv_.rings.degree(i));

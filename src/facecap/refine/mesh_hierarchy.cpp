@@ -172,9 +172,13 @@ void finish_topology(MeshLevel& level) {
       level.corner_slots[c] = {slot_of(i, level.corners[c][0]), slot_of(i, level.corners[c][1])};
     }
   }
-  level.ring_reverse.resize(r.indices.size());
+  level.ring_transpose.resize(r.indices.size());
   for (int i = 0; i < level.num_vertices; ++i) {
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) level.ring_reverse[s] = slot_of(r.indices[s], i);
+    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
+      const int j = r.indices[s];
+      const int slot = slot_of(j, i);
+      level.ring_transpose[s] = slot >= 0 ? r.offsets[j] + slot : -1;
+    }
   }
 }
 

@@ -43,7 +43,9 @@ struct MeshLevel {
   std::vector<int> corner_offsets;
   std::vector<std::array<int, 2>> corners;
   std::vector<std::array<int, 2>> corner_slots;  // where each corner vertex sits in the vertex's ring
-  std::vector<int> ring_reverse;                 // for ring entry (i, s): where i sits in the ring of that neighbour
+  // For ring entry s (vertex i, neighbour j): the index of the entry (j, i)
+  // in `rings.indices`, or -1 where j does not list i.
+  std::vector<int> ring_transpose;
   std::vector<bool> boundary;
 };
 
