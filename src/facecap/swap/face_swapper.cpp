@@ -325,7 +325,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             // Fade where the surface turns away too: the silhouette (the side of
             // the jaw, the cheek under a turned head) is no UV boundary.
             const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
-            const float facing = std::clamp((-normal.dot(ray) - 0.1f) / 0.3f, 0.0f, 1.0f);
+            const float facing = std::clamp((-normal.dot(ray) - m.options.silhouette_fade_start) / 0.3f, 0.0f, 1.0f);
             a[x] = s[3] * facing * facing * (3 - 2 * facing);
           }
         }
@@ -359,14 +359,16 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   FaceLayer layer;
   layer.box = out.window;
   layer.colour = background.clone();
+  // The layer's colour is the render already mixed by alpha, so it has no
+  // step where alpha starts: the pyramid's coarse bands, which reach past
+  // the mask, would carry that step out to the blend's edge.
   for (int y = 0; y < out.window.height; ++y) {
     const auto* c = render.ptr<cv::Vec3f>(y);
     const float* a = out.alpha.ptr<float>(y);
     auto* o = layer.colour.ptr<cv::Vec3b>(y);
     for (int x = 0; x < out.window.width; ++x) {
-      if (a[x] > 0)
-        o[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[x][0]), cv::saturate_cast<uchar>(c[x][1]),
-                         cv::saturate_cast<uchar>(c[x][2]));
+      if (a[x] <= 0) continue;
+      for (int k = 0; k < 3; ++k) o[x][k] = cv::saturate_cast<uchar>(a[x] * c[x][k] + (1 - a[x]) * o[x][k]);
     }
   }
   out.alpha.convertTo(layer.mask, CV_8U, 255.0);
