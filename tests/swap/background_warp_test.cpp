@@ -60,4 +60,28 @@ TEST(BackgroundWarp, AnchorsCarryTheirSurroundingsAndTheBorderStays) {
   EXPECT_EQ(out.at<cv::Vec3b>(159, 159), frame.at<cv::Vec3b>(window.y + 159, window.x + 159));
 }
 
+// Beyond the fixed ring the background is untouched: the warp fades out
+// around the face instead of bending everything up to the window's edge.
+TEST(BackgroundWarp, TheBackgroundBeyondTheRingStaysPut) {
+  const cv::Mat frame = textured();
+  const auto from = ring({120, 100}, 30, 12);
+  std::vector<cv::Point2f> to = from;
+  for (auto& p : to) p += cv::Point2f(6, 0);
+  const cv::Rect window(20, 10, 200, 180);
+  const auto fixed = fixed_ring(from, to, window);
+  ASSERT_EQ(static_cast<int>(fixed.size()), kRingPoints);
+  for (const cv::Point2f& p : fixed) {
+    EXPECT_TRUE(window.contains(cv::Point(int(p.x), int(p.y))));
+    EXPECT_GT(cv::norm(p - cv::Point2f(120, 100)), 36.0);  // outside both anchor sets
+  }
+  BackgroundWarp warp;
+  cv::Mat out;
+  warp.warp(frame, from, to, window, out);
+  // Points between the ring (radius about 47) and the window's border.
+  for (const cv::Point p :
+       {cv::Point(30, 20), cv::Point(60, 40), cv::Point(200, 170), cv::Point(30, 150), cv::Point(190, 30)}) {
+    EXPECT_EQ(out.at<cv::Vec3b>(p.y - window.y, p.x - window.x), frame.at<cv::Vec3b>(p)) << p;
+  }
+}
+
 }  // namespace facecap

@@ -12,6 +12,32 @@ std::vector<cv::Point2f> window_border(const cv::Rect& w) {
   return {{x0, y0}, {xm, y0}, {x1, y0}, {x1, ym}, {x1, y1}, {xm, y1}, {x0, y1}, {x0, ym}};
 }
 
+std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
+                                    const cv::Rect& w) {
+  if (from.empty()) return {};
+  cv::Point2f c(0, 0);
+  for (const cv::Point2f& p : from) c += p;
+  c *= 1.0f / float(from.size());
+  float reach = 0;
+  for (const auto* set : {&from, &to})
+    for (const cv::Point2f& p : *set) reach = std::max(reach, float(cv::norm(p - c)));
+  const float r = kRingScale * reach;
+  const float x0 = w.x + 2.0f, y0 = w.y + 2.0f, x1 = w.x + w.width - 3.0f, y1 = w.y + w.height - 3.0f;
+  std::vector<cv::Point2f> ring;
+  for (int k = 0; k < kRingPoints; ++k) {
+    const float angle = 6.2831853f * float(k) / kRingPoints;
+    const cv::Point2f dir(std::cos(angle), std::sin(angle));
+    // The largest t <= r with c + t dir inside [x0, x1] x [y0, y1].
+    float t = r;
+    if (dir.x > 1e-6f) t = std::min(t, (x1 - c.x) / dir.x);
+    if (dir.x < -1e-6f) t = std::min(t, (x0 - c.x) / dir.x);
+    if (dir.y > 1e-6f) t = std::min(t, (y1 - c.y) / dir.y);
+    if (dir.y < -1e-6f) t = std::min(t, (y0 - c.y) / dir.y);
+    ring.push_back(c + std::max(0.0f, t) * dir);
+  }
+  return ring;
+}
+
 void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& anchors, const cv::Rect& window) {
   std::vector<cv::Point2f> points = anchors;
   const auto border = window_border(window);
@@ -44,8 +70,12 @@ void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& anchors, const 
 void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from,
                           const std::vector<cv::Point2f>& to, cv::Rect window, cv::Mat& out) {
   window &= cv::Rect(0, 0, frame.cols, frame.rows);
-  if (triangles_.empty()) triangulate(from, window);
+  // Anchors, then the fixed ring (the same points in both sets), then the border.
   std::vector<cv::Point2f> src = from, dst = to;
+  const auto ring = fixed_ring(from, to, window);
+  src.insert(src.end(), ring.begin(), ring.end());
+  dst.insert(dst.end(), ring.begin(), ring.end());
+  if (triangles_.empty()) triangulate(src, window);
   const auto border = window_border(window);
   src.insert(src.end(), border.begin(), border.end());
   dst.insert(dst.end(), border.begin(), border.end());
