@@ -40,28 +40,28 @@ void AlbedoEstimator::add_frame(const VertexSamples& samples, const Positions& n
   ++frames_;
 }
 
-Eigen::VectorXd AlbedoEstimator::laplacian_normal(const Eigen::VectorXd& x) const {
+AlbedoEstimator::Channels AlbedoEstimator::laplacian_normal(const Channels& x) const {
   // L = I - A / r (uniform graph Laplacian); returns L^T (L x).
   const VertexAdjacency& r = level_.rings;
   const int n = level_.num_vertices;
-  Eigen::VectorXd lx(n);
+  Channels lx(n, 3);
   for (int i = 0; i < n; ++i) {
-    double mean = 0;
+    Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
     const int deg = r.degree(i);
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) mean += x[r.indices[s]];
-    lx[i] = deg > 0 ? x[i] - mean / deg : 0.0;
+    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) mean += x.row(r.indices[s]);
+    lx.row(i) = deg > 0 ? Eigen::RowVector3d(x.row(i) - mean / deg) : Eigen::RowVector3d::Zero();
   }
-  Eigen::VectorXd out = lx;
+  Channels out = lx;
   for (int i = 0; i < n; ++i) {
     const int deg = r.degree(i);
     if (deg == 0) continue;
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) out[r.indices[s]] -= lx[i] / deg;
+    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) out.row(r.indices[s]) -= lx.row(i) / deg;
   }
   return out;
 }
 
-Eigen::VectorXd AlbedoEstimator::solve_channel(const Eigen::VectorXd& d, const Eigen::VectorXd& b, double w,
-                                               const Eigen::VectorXd& prior, Eigen::VectorXd x) const {
+AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd& d, const Channels& b, double w,
+                                                          const Channels& prior, Channels x) const {
   const int n = level_.num_vertices;
   // Jacobi preconditioner: diag(D + w L^T L) = D_i + w (1 + sum_{j in ring(i)} 1/r_j^2).
   Eigen::VectorXd diag = d;
@@ -74,36 +74,42 @@ Eigen::VectorXd AlbedoEstimator::solve_channel(const Eigen::VectorXd& d, const E
     }
     diag[i] += w * s;
   }
-  auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return d.cwiseProduct(v) + w * laplacian_normal(v); };
-  const Eigen::VectorXd rhs = b + w * laplacian_normal(prior);
-  Eigen::VectorXd res = rhs - apply(x);
-  Eigen::VectorXd z = res.cwiseQuotient(diag);
-  Eigen::VectorXd p = z;
-  double rz = res.dot(z);
-  for (int k = 0; k < options_.pcg_iterations && rz > 1e-20; ++k) {
-    const Eigen::VectorXd ap = apply(p);
-    const double alpha = rz / p.dot(ap);
-    x += alpha * p;
-    res -= alpha * ap;
-    z = res.cwiseQuotient(diag);
-    const double rz_new = res.dot(z);
-    p = z + (rz_new / rz) * p;
-    rz = rz_new;
+  const auto apply = [&](const Channels& v) -> Channels {
+    return Channels(d.asDiagonal() * v) + w * laplacian_normal(v);
+  };
+  const auto precondition = [&](const Channels& v) -> Channels { return v.array().colwise() / diag.array(); };
+  const Channels rhs = b + w * laplacian_normal(prior);
+  Channels res = rhs - apply(x);
+  Channels z = precondition(res);
+  Channels p = z;
+  Eigen::Array3d rz = (res.array() * z.array()).colwise().sum().transpose();
+  for (int k = 0; k < options_.pcg_iterations && (rz > 1e-20).any(); ++k) {
+    const Channels ap = apply(p);
+    Eigen::Array3d alpha = Eigen::Array3d::Zero();
+    for (int c = 0; c < 3; ++c) {
+      if (rz[c] > 1e-20) alpha[c] = rz[c] / p.col(c).dot(ap.col(c));  // converged columns hold still
+    }
+    x += p * alpha.matrix().asDiagonal();
+    res -= ap * alpha.matrix().asDiagonal();
+    z = precondition(res);
+    for (int c = 0; c < 3; ++c) {
+      if (!(rz[c] > 1e-20)) continue;
+      const double rz_new = res.col(c).dot(z.col(c));
+      p.col(c) = z.col(c) + (rz_new / rz[c]) * p.col(c);
+      rz[c] = rz_new;
+    }
   }
   return x;
 }
 
 void AlbedoEstimator::solve() {
   const int n = level_.num_vertices;
-  for (int c = 0; c < 3; ++c) {
-    const Eigen::VectorXd b = data_rhs_.row(c).transpose();
-    const Eigen::VectorXd start = albedo_.row(c).transpose().cast<double>();
-    // The smooth prior rho_bar, then eq. 4.10 against it.
-    const Eigen::VectorXd prior =
-        solve_channel(data_diag_, b, options_.prior_smoothing, Eigen::VectorXd::Zero(n), start);
-    const Eigen::VectorXd rho = solve_channel(data_diag_, b, options_.laplacian_weight, prior, prior);
-    albedo_.row(c) = rho.cwiseMax(0.0).cwiseMin(2.0).transpose().cast<float>();
-  }
+  const Channels b = data_rhs_.transpose();
+  const Channels start = albedo_.transpose().cast<double>();
+  // The smooth prior rho_bar, then eq. 4.10 against it.
+  const Channels prior = solve_channels(data_diag_, b, options_.prior_smoothing, Channels::Zero(n, 3), start);
+  const Channels rho = solve_channels(data_diag_, b, options_.laplacian_weight, prior, prior);
+  albedo_ = rho.cwiseMax(0.0).cwiseMin(2.0).transpose().cast<float>();
 }
 
 }  // namespace facecap

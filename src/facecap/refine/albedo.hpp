@@ -42,10 +42,13 @@ class AlbedoEstimator {
   bool fixed() const { return frames_ >= options_.frames; }
 
  private:
-  // (D + w L^T L) x = b + w L^T L x_bar, per channel, by PCG.
-  Eigen::VectorXd solve_channel(const Eigen::VectorXd& d, const Eigen::VectorXd& b, double w,
-                                const Eigen::VectorXd& prior, Eigen::VectorXd x) const;
-  Eigen::VectorXd laplacian_normal(const Eigen::VectorXd& x) const;  // L^T L x
+  // One column per colour channel: the channels share the operator.
+  using Channels = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  // (D + w L^T L) x = b + w L^T L x_bar for the three channels at once: one
+  // PCG per column, with its own step sizes, sharing each pass over the mesh.
+  Channels solve_channels(const Eigen::VectorXd& d, const Channels& b, double w, const Channels& prior,
+                          Channels x) const;
+  Channels laplacian_normal(const Channels& x) const;  // L^T L x, per column
 
   const MeshLevel& level_;
   AlbedoOptions options_;
