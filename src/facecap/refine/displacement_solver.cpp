@@ -145,29 +145,11 @@ class Solver {
     lin.data_cost = lin.vertex_cost.cast<double>().sum();
   }
 
-  // y = G^T x (a gather: entry q collects from q and its ring), free entries only.
-  void apply_gt(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    y.setZero(n_);
-    const int na = static_cast<int>(active_.size());
-    parallel_for(
-        na,
-        [&](int b, int e) {
-          for (int ai = b; ai < e; ++ai) {
-            const int q = active_[ai];
-            float acc = lin.self[q] * x[q];
-            for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-              const int i = lv_.rings.indices[s];
-              const int back = lv_.ring_transpose[s];
-              if (back >= 0) acc += lin.ring[back] * x[i];
-            }
-            y[q] = acc;
-          }
-        },
-        1024);
-  }
-  // y = L x and y = L^T x for the uniform graph Laplacian L = I - A / r.
-  void apply_l(const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    y.setZero(n_);
+  // The row products over the touched vertices: lx = L x for the uniform
+  // graph Laplacian L = I - A / r and, given a linearisation, wgx = W G x
+  // (G_iq = d s_i / d d_q). Entries elsewhere are left as they were.
+  template <bool kWithData>
+  void apply_rows(const Linearisation* lin, const Eigen::VectorXf& x, Eigen::VectorXf* wgx, Eigen::VectorXf& lx) const {
     const int nt = static_cast<int>(touched_.size());
     parallel_for(
         nt,
@@ -175,59 +157,30 @@ class Solver {
           for (int ti = b; ti < e; ++ti) {
             const int i = touched_[ti];
             const int deg = lv_.rings.degree(i);
-            float mean = 0;
-            for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) mean += x[lv_.rings.indices[s]];
-            y[i] = deg > 0 ? x[i] - mean / deg : 0.0f;
-          }
-        },
-        1024);
-  }
-  void apply_lt(const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    y.setZero(n_);
-    const int na = static_cast<int>(active_.size());
-    parallel_for(
-        na,
-        [&](int b, int e) {
-          for (int ai = b; ai < e; ++ai) {
-            const int q = active_[ai];
-            float acc = lv_.rings.degree(q) > 0 ? x[q] : 0.0f;
-            for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-              const int i = lv_.rings.indices[s];
-              acc -= x[i] / lv_.rings.degree(i);
-            }
-            y[q] = acc;
-          }
-        },
-        1024);
-  }
-
-  // (J^T J) x restricted to free vertices, in two passes (one wake of the
-  // workers each): the rows, W G x and L x over the touched vertices, then the
-  // columns, G^T and L^T over the free ones (G_iq = d s_i / d d_q). The same
-  // sums as apply_gt and apply_lt after the row products, in the same order.
-  void apply_normal(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y, Eigen::VectorXf& wgx,
-                    Eigen::VectorXf& lx) const {
-    wgx.resize(n_);  // read only at touched vertices, which the first pass writes
-    lx.resize(n_);
-    const int nt = static_cast<int>(touched_.size());
-    parallel_for(
-        nt,
-        [&](int b, int e) {
-          for (int ti = b; ti < e; ++ti) {
-            const int i = touched_[ti];
-            const int deg = lv_.rings.degree(i);
-            float g = lin.self[i] * x[i];
+            float g = 0;
+            if constexpr (kWithData) g = lin->self[i] * x[i];
             float mean = 0;
             for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) {
               const float xs = x[lv_.rings.indices[s]];
-              g += lin.ring[s] * xs;
+              if constexpr (kWithData) g += lin->ring[s] * xs;
               mean += xs;
             }
-            wgx[i] = g * lin.weight[i];
+            if constexpr (kWithData) (*wgx)[i] = g * lin->weight[i];
             lx[i] = deg > 0 ? x[i] - mean / deg : 0.0f;
           }
         },
         1024);
+  }
+  // y = L x, zero where no free vertex reaches.
+  void apply_l(const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
+    y.setZero(n_);
+    apply_rows<false>(nullptr, x, nullptr, y);
+  }
+  // The column products over the free vertices, zero elsewhere:
+  //   y = G^T u + (w3 L^T v + c x)
+  // (gathers: entry q collects from q and its ring).
+  void apply_columns(const Linearisation& lin, const Eigen::VectorXf& u, const Eigen::VectorXf& v, float c,
+                     const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     y.setZero(n_);
     const float smooth = float(o_.weights.smooth);
     const int na = static_cast<int>(active_.size());
@@ -236,18 +189,28 @@ class Solver {
         [&](int b, int e) {
           for (int ai = b; ai < e; ++ai) {
             const int q = active_[ai];
-            float data = lin.self[q] * wgx[q];
-            float lap = lv_.rings.degree(q) > 0 ? lx[q] : 0.0f;
+            float data = lin.self[q] * u[q];
+            float lap = lv_.rings.degree(q) > 0 ? v[q] : 0.0f;
             for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
               const int i = lv_.rings.indices[s];
               const int back = lv_.ring_transpose[s];
-              if (back >= 0) data += lin.ring[back] * wgx[i];
-              lap -= lx[i] / lv_.rings.degree(i);
+              if (back >= 0) data += lin.ring[back] * u[i];
+              lap -= v[i] / lv_.rings.degree(i);
             }
-            y[q] = data + (smooth * lap + diag_const_ * x[q]);
+            y[q] = data + (smooth * lap + c * x[q]);
           }
         },
         1024);
+  }
+
+  // (J^T J) x restricted to free vertices: the row pass, then the column pass
+  // (one wake of the workers each).
+  void apply_normal(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y, Eigen::VectorXf& wgx,
+                    Eigen::VectorXf& lx) const {
+    wgx.resize(n_);  // read only at touched vertices, which the row pass writes
+    lx.resize(n_);
+    apply_rows<true>(&lin, x, &wgx, lx);
+    apply_columns(lin, wgx, lx, diag_const_, x, y);
   }
 
   double cost(const Eigen::VectorXf& d, const Linearisation& lin) const {
@@ -269,10 +232,8 @@ class Solver {
     Eigen::VectorXf grad, t1, t2, r, z, p, ap, x;
     for (rep.steps = 0; rep.steps < o_.gauss_newton_steps; ++rep.steps) {
       // Gradient J^T r of the whole energy.
-      apply_gt(lin, lin.data_residual, grad);
       apply_l(d, t1);
-      apply_lt(t1, t2);
-      grad += float(o_.weights.smooth) * t2 + float(o_.weights.coarse) * d;
+      apply_columns(lin, lin.data_residual, t1, float(o_.weights.coarse), d, grad);
       if (p_.prolonged.size()) grad += float(o_.weights.hierarchy) * (d - p_.prolonged);
       if (p_.previous.size()) grad += float(o_.weights.temporal) * (d - p_.previous);
       grad.array() *= free_.array();
