@@ -7,20 +7,26 @@
 
 namespace facecap {
 
-// Samples a CV_32FC3 image; positions outside are clamped to the border.
-inline Vec3f sample_bilinear(const cv::Mat& image, float x, float y) {
+// Samples a float image of N channels (CV_32FC(N)); positions outside are
+// clamped to the border.
+template <int N>
+inline cv::Vec<float, N> sample_bilinear_channels(const cv::Mat& image, float x, float y) {
   x = std::clamp(x, 0.0f, float(image.cols - 1));
   y = std::clamp(y, 0.0f, float(image.rows - 1));
-  const int x0 = std::min(int(x), image.cols - 2 < 0 ? 0 : image.cols - 2);
-  const int y0 = std::min(int(y), image.rows - 2 < 0 ? 0 : image.rows - 2);
+  const int x0 = std::min(int(x), std::max(0, image.cols - 2));
+  const int y0 = std::min(int(y), std::max(0, image.rows - 2));
   const int x1 = std::min(x0 + 1, image.cols - 1);
   const int y1 = std::min(y0 + 1, image.rows - 1);
   const float fx = x - x0, fy = y - y0;
-  const auto& a = image.at<cv::Vec3f>(y0, x0);
-  const auto& b = image.at<cv::Vec3f>(y0, x1);
-  const auto& c = image.at<cv::Vec3f>(y1, x0);
-  const auto& d = image.at<cv::Vec3f>(y1, x1);
-  const cv::Vec3f v = (a * (1 - fx) + b * fx) * (1 - fy) + (c * (1 - fx) + d * fx) * fy;
+  using Pixel = cv::Vec<float, N>;
+  const Pixel* r0 = image.ptr<Pixel>(y0);
+  const Pixel* r1 = image.ptr<Pixel>(y1);
+  return (r0[x0] * (1 - fx) + r0[x1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x1] * fx) * fy;
+}
+
+// Samples a CV_32FC3 image; positions outside are clamped to the border.
+inline Vec3f sample_bilinear(const cv::Mat& image, float x, float y) {
+  const cv::Vec3f v = sample_bilinear_channels<3>(image, x, y);
   return {v[0], v[1], v[2]};
 }
 

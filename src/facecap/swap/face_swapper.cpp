@@ -7,6 +7,7 @@
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/model/regions.hpp"
@@ -66,16 +67,6 @@ Positions vertex_means(const UvTexelMap& map, const std::vector<Triangle>& trian
     if (seen[v] > 0) sum.col(v) /= seen[v];
   }
   return sum;
-}
-
-cv::Vec4f sample_bilinear4(const cv::Mat& tex, float x, float y) {
-  x = std::clamp(x, 0.0f, float(tex.cols - 1));
-  y = std::clamp(y, 0.0f, float(tex.rows - 1));
-  const int x0 = std::min(int(x), tex.cols - 2), y0 = std::min(int(y), tex.rows - 2);
-  const float fx = x - x0, fy = y - y0;
-  const cv::Vec4f* r0 = tex.ptr<cv::Vec4f>(y0);
-  const cv::Vec4f* r1 = tex.ptr<cv::Vec4f>(y0 + 1);
-  return (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
 }
 
 // The image polygons of what the skin mesh does not model: the eyes
@@ -317,7 +308,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             const Triangle& uv = m.skin.triangle_uvs[tri];
             const Vec2f coord =
                 (1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]];
-            const cv::Vec4f s = sample_bilinear4(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
+            const cv::Vec4f s = sample_bilinear_channels<4>(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
             const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
             const float shade = std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
