@@ -5,6 +5,7 @@
 #include <random>
 
 #include "facecap/core/progress.hpp"
+#include "facecap/core/statistics.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 
@@ -17,19 +18,6 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
   const double k = l.squaredNorm() > 0 ? l.dot(truth) / l.squaredNorm() : 1.0;
   return (k * l - truth).norm() / truth.norm();
-}
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = double(a.size());
-  double ma = 0, mb = 0;
-  for (size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
-  double cov = 0, va = 0, vb = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    cov += (a[i] - ma) * (b[i] - mb);
-    va += (a[i] - ma) * (a[i] - ma);
-    vb += (b[i] - mb) * (b[i] - mb);
-  }
-  return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
 }
 
 struct SurfaceImage {
@@ -140,7 +128,7 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
       tru.push_back(renderer.appearance().vertex_albedo(c, v));
     }
   }
-  r.albedo_corr = pearson(est, tru);
+  r.albedo_corr = pearson_correlation(est, tru);
   return r;
 }
 

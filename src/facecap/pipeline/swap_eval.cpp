@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
 
 namespace facecap {
@@ -33,19 +34,6 @@ struct ErrorHistogram {
     return 0;
   }
 };
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = static_cast<double>(a.size());
-  double ma = 0, mb = 0;
-  for (size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
-  double sab = 0, saa = 0, sbb = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
-}
 
 }  // namespace
 
@@ -164,7 +152,7 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
     for (double v : a) mean += v / a.size();
     for (double v : a) var += (v - mean) * (v - mean) / a.size();
     if (std::sqrt(var) < 0.03) continue;  // a weight the target hardly moves says nothing
-    correlation += pearson(a, b);
+    correlation += pearson_correlation(a, b);
     ++r.expression_weights_compared;
   }
   r.expression_correlation = r.expression_weights_compared > 0 ? correlation / r.expression_weights_compared : 0;

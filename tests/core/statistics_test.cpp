@@ -1,0 +1,25 @@
+#include "facecap/core/statistics.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace facecap {
+
+TEST(PearsonCorrelation, LinearRelationsGivePlusOrMinusOne) {
+  const std::vector<double> a{1, 2, 3, 4, 5};
+  EXPECT_NEAR(pearson_correlation(a, {3, 5, 7, 9, 11}), 1.0, 1e-12);
+  EXPECT_NEAR(pearson_correlation(a, {10, 8, 6, 4, 2}), -1.0, 1e-12);
+}
+
+TEST(PearsonCorrelation, MatchesAWorkedExample) {
+  // Sums of products of deviations: cov 4, a 10, b 5.2.
+  EXPECT_NEAR(pearson_correlation({1, 2, 3, 4, 5}, {2, 1, 4, 3, 3}), 4.0 / std::sqrt(10.0 * 5.2), 1e-12);
+}
+
+TEST(PearsonCorrelation, AConstantOrEmptySampleGivesZero) {
+  EXPECT_EQ(pearson_correlation({1, 2, 3}, {4, 4, 4}), 0.0);
+  EXPECT_EQ(pearson_correlation({}, {}), 0.0);
+}
+
+}  // namespace facecap
