@@ -1,0 +1,72 @@
+// Shape-from-shading refinement benchmarks on a synthetic 1280x720 render
+// with wrinkles: one frame's refinement once the albedo is fixed (lighting,
+// the displacement solve at every level), as `facecap track --refine` runs it
+// after its first frames. The frames alternate so that the warm start from
+// the previous frame is a real one.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "facecap/core/paths.hpp"
+#include "facecap/model/model_cache.hpp"
+#include "facecap/model/regions.hpp"
+#include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/synth/synth_renderer.hpp"
+
+namespace facecap {
+
+namespace {
+
+struct Scene {
+  FaceModel model = load_face_model(default_model_dir());
+  SynthPerformance performance;
+  std::vector<cv::Mat> images;
+  std::vector<Positions> coarse;
+
+  Scene() {
+    SynthOptions o;
+    o.frames = 8;
+    o.width = 1280;
+    o.height = 720;
+    o.detail = true;
+    performance = make_performance(model, o);
+    const SynthRenderer renderer(model, performance);
+    std::mt19937_64 rng(7);
+    for (const SynthFrame& f : performance.frames) {
+      images.push_back(renderer.render(f, rng));
+      coarse.push_back(to_camera(model.evaluate(performance.identity, f.expression, regions::kFace), f.pose));
+    }
+  }
+};
+
+const Scene& scene() {
+  static const Scene s;
+  return s;
+}
+
+void BM_RefineFrame720p(benchmark::State& state) {
+  const Scene& s = scene();
+  RefineOptions options;
+  options.albedo.frames = 1;  // fixed after the first frame: measure the per-frame work
+  Refiner refiner = make_face_refiner(s.model, options);
+  refiner.refine(s.images[0], s.coarse[0], s.performance.camera);
+  size_t frame = 1;
+  std::vector<double> lighting, levels;
+  for (auto _ : state) {
+    const Refinement r = refiner.refine(s.images[frame], s.coarse[frame], s.performance.camera);
+    frame = frame + 1 < s.images.size() ? frame + 1 : 1;
+    lighting.push_back(r.timings.lighting_ms);
+    levels.resize(r.timings.level_ms.size());
+    for (size_t l = 0; l < levels.size(); ++l) levels[l] += r.timings.level_ms[l];
+  }
+  const double n = double(std::max<size_t>(1, lighting.size()));
+  double lighting_sum = 0;
+  for (double v : lighting) lighting_sum += v;
+  state.counters["lighting_ms"] = lighting_sum / n;
+  for (size_t l = 0; l < levels.size(); ++l) state.counters["level" + std::to_string(l) + "_ms"] = levels[l] / n;
+}
+BENCHMARK(BM_RefineFrame720p)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+}  // namespace
+
+}  // namespace facecap
