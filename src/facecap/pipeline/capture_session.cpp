@@ -28,6 +28,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
 
   struct Waiting {
     TrackStatus status;
+    int faces_seen;
     cv::Mat image;
   };
   std::map<int, Waiting> waiting;  // frames whose fit is not final yet
@@ -39,6 +40,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.time = fit.time;
       out.fit = fit;
       out.status = fit.valid ? it->second.status : TrackStatus::kLost;
+      out.faces_seen = it->second.faces_seen;
       out.image = it->second.image;
       out.identity = tracker.identity();
       waiting.erase(it);
@@ -94,7 +96,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     t.detect_ms += face.detector_ms;
     t.landmarks_ms += face.landmarks_ms;
 
-    waiting[frame.index] = {face.status, options.keep_images ? frame.image : cv::Mat()};
+    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat()};
     std::optional<Landmarks> landmarks;
     if (face.status != TrackStatus::kLost) landmarks = face.landmarks;
 

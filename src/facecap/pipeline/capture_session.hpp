@@ -24,6 +24,7 @@ struct CapturedFrame {
   int index = 0;
   double time = 0.0;
   TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
+  int faces_seen = 0;                       // faces the detector found in this frame (0 when it did not run)
   CoarseFit fit;
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
   cv::Mat image;              // when CaptureOptions::keep_images

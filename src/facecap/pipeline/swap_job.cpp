@@ -1,12 +1,12 @@
 #include "facecap/pipeline/swap_job.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
-#include "facecap/detect/face_detector.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/regions.hpp"
@@ -21,19 +21,21 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   if (!fs::is_regular_file(photo)) throw Error("source photo not found: " + photo);
   r.photo = cv::imread(photo, cv::IMREAD_COLOR);
   if (r.photo.empty()) throw Error("cannot read the source photo " + photo + " (not an image, or corrupt)");
-  r.faces_found = static_cast<int>(FaceDetector().detect(r.photo).size());
-  if (r.faces_found == 0) throw Error("no face found in the source photo " + photo);
-  if (r.faces_found > 1 && !quiet) {
-    std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, photo.c_str());
-  }
+  // One capture of the photo: the detector's full-frame search (which counts
+  // the faces), the landmarks of the largest, and the still-image fit.
   auto input = open_input(photo);
   CaptureOptions capture;
   capture.quiet = true;
   capture.keep_images = true;
   std::optional<CapturedFrame> fit;
   run_capture(model, *input, capture, [&](const CapturedFrame& f) {
+    r.faces_found = std::max(r.faces_found, f.faces_seen);
     if (!fit && f.status != TrackStatus::kLost) fit = f;
   });
+  if (r.faces_found == 0) throw Error("no face found in the source photo " + photo);
+  if (r.faces_found > 1 && !quiet) {
+    std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, photo.c_str());
+  }
   if (!fit) throw Error("no face could be fitted in the source photo " + photo);
   SourceFace& s = r.face;
   s.identity = fit->identity.identity.cast<float>();
