@@ -54,8 +54,10 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30));
   EXPECT_EQ(r.frames, 29);
   EXPECT_GT(r.face_pixels_per_frame, 30000);
-  EXPECT_LT(r.photometric_median, 12.0);
-  EXPECT_LT(r.photometric_mean, 17.0);
+  // 6.0 / 9.7 on these frames (the bars are 3 / 6); 8.7 / 12.7 when
+  // the photo's identity weighed as one video frame (still_identity_frames).
+  EXPECT_LT(r.photometric_median, 7.5);
+  EXPECT_LT(r.photometric_mean, 11.0);
 }
 
 TEST(SwapEval, PortraitIntoVideoTakesTheSourceShapeAndTheTargetExpression) {
@@ -164,6 +166,30 @@ TEST(SwapJob, SeveralFacesInThePhotoUseTheLargest) {
   // The face used is Obama's (the larger, on the left): his nose tip projects there.
   const Vec3f nose = r.face.camera_points.col(model->landmarks.vertices[30]);
   EXPECT_LT(r.face.camera.project(nose).x(), a.cols);
+}
+
+TEST(SwapJob, APhotoAndAVideoOfOneFaceReachNearbyIdentities) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  // The video's first frame as a photo.
+  auto input = open_input(video.string());
+  Frame first;
+  ASSERT_TRUE(input->read(first));
+  ASSERT_FALSE(first.image.empty());
+  const fs::path photo = dir.path() / "first_frame.png";
+  ASSERT_TRUE(cv::imwrite(photo.string(), first.image));
+  const SourceReconstruction still = reconstruct_source(*model, photo.string(), true);
+  auto again = open_input(video.string());
+  CaptureOptions capture;
+  capture.quiet = true;
+  capture.max_frames = 30;
+  const CaptureSummary tracked = run_capture(*model, *again, capture, [](const CapturedFrame&) {});
+  const double distance = (still.face.identity - tracked.identity.identity.cast<float>()).norm();
+  // Both see the same landmarks' systematic error; with the photo weighing
+  // as one frame the prior halved its identity (distance 7.1, as far as
+  // Biden's photo from this speaker); weighed as a video's 30 frames, 3.9.
+  EXPECT_LT(distance, 5.0);
 }
 
 }  // namespace facecap

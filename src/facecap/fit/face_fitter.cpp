@@ -102,6 +102,7 @@ void FaceFitter::fit_identity(const std::vector<Landmarks>& observed, std::vecto
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
   FitWeights weights = options_.weights;
   weights.sigma_landmark *= weights.identity_sigma_factor;
+  if (options_.still) weights.sigma_landmark /= std::sqrt(weights.still_identity_frames);
   std::vector<std::unique_ptr<FrameEnergy>> energies;
   for (const Landmarks& lm : observed) {
     energies.push_back(std::make_unique<FrameEnergy>(basis_, weights, lm, pp, identity, focal, nullptr));

@@ -31,6 +31,15 @@ struct FitWeights {
   // the identity (identity norms of 16 instead of about 7 were measured on
   // real footage). The identity solve therefore uses sigma x this factor.
   double identity_sigma_factor = 3.0;
+  // A still image's landmarks weigh in the identity solve as much as this
+  // many video frames' (the default init_frames). The systematic part of a
+  // detector's error is the same in a photo and in a video, so a photo of a
+  // face should reach the identity a video of it reaches; with one frame's
+  // weight the prior pulled the photo's identity to a third of the video's
+  // size (photo vs video identity of the same speaker, address_720p_a frame 0:
+  // distance 7.1 with one frame's weight, 3.9 with 30), and a swap's face
+  // toward the mean face (self-swap median 8.0 -> 5.7 grey levels with 30).
+  double still_identity_frames = 30.0;
   double sigma_expression = 0.6;  // prior on each weight (mean 0)
   double expression_l1 = 0.0;     // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
   double sigma_temporal_expression = 0.1;
