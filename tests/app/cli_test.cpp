@@ -112,7 +112,9 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   TempDir dir;
   std::ofstream(dir.path() / "text.jpg") << "not an image";
   const std::string out = (dir.path() / "out.mp4").string();
-  for (const std::string& photo : {(dir.path() / "text.jpg").string(), (dir.path() / "missing.jpg").string()}) {
+  // A corrupt image, a missing file, and a video where a photo belongs.
+  for (const std::string& photo :
+       {(dir.path() / "text.jpg").string(), (dir.path() / "missing.jpg").string(), video.string()}) {
     const RunResult r = run("swap --source " + photo + " --target " + video.string() + " -o " + out);
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_EQ(lines(r.out), 1) << r.out;

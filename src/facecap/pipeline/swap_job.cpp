@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
@@ -19,11 +18,15 @@ namespace fs = std::filesystem;
 SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& photo, bool quiet) {
   SourceReconstruction r;
   if (!fs::is_regular_file(photo)) throw Error("source photo not found: " + photo);
-  r.photo = cv::imread(photo, cv::IMREAD_COLOR);
-  if (r.photo.empty()) throw Error("cannot read the source photo " + photo + " (not an image, or corrupt)");
-  // One capture of the photo: the detector's full-frame search (which counts
-  // the faces), the landmarks of the largest, and the still-image fit.
-  auto input = open_input(photo);
+  // One decode and one capture of the photo: the detector's full-frame search
+  // (which counts the faces), the landmarks of the largest, the still-image fit.
+  std::unique_ptr<FrameSource> input;
+  try {
+    input = open_input(photo);
+  } catch (const Error&) {
+  }
+  if (!input || input->info().kind != InputKind::kImage)
+    throw Error("cannot read the source photo " + photo + " (not an image, or corrupt)");
   CaptureOptions capture;
   capture.quiet = true;
   capture.keep_images = true;
@@ -37,6 +40,7 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
     std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, photo.c_str());
   }
   if (!fit) throw Error("no face could be fitted in the source photo " + photo);
+  r.photo = fit->image;
   SourceFace& s = r.face;
   s.identity = fit->identity.identity.cast<float>();
   s.expression = fit->fit.expression;
