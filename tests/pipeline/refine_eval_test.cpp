@@ -25,8 +25,10 @@ TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
   EXPECT_LT(r.vertex_error_mm, 0.2);
   EXPECT_TRUE(std::isfinite(r.normal_error_deg));
   // False detail stays bounded: with the observations at the silhouette and
-  // the eye and mouth rims kept, this was 2.4 times the coarse error.
-  EXPECT_LT(r.normal_error_deg, 2.0 * r.normal_error_coarse_deg);
+  // the eye and mouth rims kept, this was 2.4 times the coarse error; with
+  // every visible vertex in the displacement solve (not only those facing the
+  // camera within 45 degrees) 2.6 times; now 1.5 times.
+  EXPECT_LT(r.normal_error_deg, 1.7 * r.normal_error_coarse_deg);
 }
 
 TEST(RefineEval, RealFootageRefinedMeshExplainsTheImageBetter) {
@@ -39,7 +41,11 @@ TEST(RefineEval, RealFootageRefinedMeshExplainsTheImageBetter) {
   EXPECT_EQ(r.frames, 40);
   EXPECT_TRUE(std::isfinite(r.photometric_refined));
   EXPECT_LT(r.photometric_refined, r.photometric_coarse);
-  EXPECT_LT(r.photometric_coarse, 10.0);  // the recovered albedo and lighting explain the skin
+  // The bar for the refined error (4.6 here); the recovered albedo
+  // and lighting explain the skin (coarse 4.8). When the depth test rejected
+  // tilted skin, its albedo was never estimated: coarse 7.2, refined 7.0.
+  EXPECT_LT(r.photometric_refined, 6.0);
+  EXPECT_LT(r.photometric_coarse, 6.0);
 }
 
 }  // namespace facecap

@@ -100,4 +100,38 @@ TEST(Rasterizer, OccludedVerticesAreNotVisible) {
   EXPECT_FALSE(vertex_visibility(pts, normals, kCamera, b)[0]);
 }
 
+TEST(Rasterizer, VerticesOnASteepSlopeAreVisibleAndThoseBehindItAreNot) {
+  // A plane turned 70 degrees away from the camera, meshed finer than the
+  // pixels (as a refinement level is): at 0.1 cm per pixel its depth changes
+  // 0.27 cm per pixel, more than the tolerance a flat surface needs.
+  const float a = 70.0f * 3.14159265f / 180.0f;
+  constexpr int kSide = 41;
+  Positions p(3, kSide * kSide + 1);
+  std::vector<Triangle> t;
+  for (int j = 0; j < kSide; ++j) {
+    for (int i = 0; i < kSide; ++i) {
+      const float u = -1.0f + 2.0f * i / (kSide - 1), v = -1.0f + 2.0f * j / (kSide - 1);
+      p.col(j * kSide + i) = Vec3f(u * std::cos(a), v, 10.0f + u * std::sin(a));
+      if (i + 1 < kSide && j + 1 < kSide) {
+        const int k = j * kSide + i;
+        t.push_back({k, k + 1, k + kSide + 1});
+        t.push_back({k, k + kSide + 1, k + kSide});
+      }
+    }
+  }
+  p.col(kSide * kSide) = Vec3f(0.0f, 0.0f, 11.0f);  // 1 cm behind the plane's centre
+  Positions normals(3, p.cols());
+  normals.colwise() = Vec3f(std::sin(a), 0.0f, -std::cos(a));
+  RasterBuffers b;
+  b.resize(100, 100);
+  RasterOptions no_culling;
+  no_culling.cull_back_faces = false;
+  rasterize(p, t, kCamera, b, no_culling);
+  const auto vis = vertex_visibility(p, normals, kCamera, b, 0.1f);
+  int seen = 0;
+  for (int k = 0; k < kSide * kSide; ++k) seen += vis[k];
+  EXPECT_EQ(seen, kSide * kSide);
+  EXPECT_FALSE(vis[kSide * kSide]);
+}
+
 }  // namespace facecap

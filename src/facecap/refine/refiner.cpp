@@ -119,6 +119,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     VertexSamples samples =
         sample_vertices(image_for(l), problem.base, problem.base_normals, skin, camera_for(l), raster_[l]);
     apply_mask(samples, mask);
+    drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
     problem.active = samples.visible;
     erode_observations(samples, level.rings, options_.data_margin_rings);

@@ -27,8 +27,19 @@ struct RefineOptions {
   // synthetic wrinkles with the true lighting and albedo, 0 / 1 / 2 / 3 rings
   // leave 0.36 / 0.21 / 0.13 / 0.09 deg of false normal detail where the truth
   // has none; more rings mostly refine less (on address_720p_a the refined
-  // photometric error goes 6.6 / 6.8 / 6.9 for 0 / 1 / 2 rings).
+  // photometric error went 6.6 / 6.8 / 6.9 for 0 / 1 / 2 rings, measured
+  // before the depth test allowed for slopes).
   int data_margin_rings = 2;
+  // The displacement solve reads only vertices facing the camera within 45
+  // degrees (cos >= 0.7; drop_oblique_observations); the lighting and albedo
+  // read every visible vertex (the oblique ones are what pin the lighting's
+  // n_z terms). On 12 synthetic frames with wrinkles (`eval refine
+  // --synthetic 12`, seeds 1 / 2) the refined normal error with all / cos 0.5
+  // / cos 0.7 is 1.90 / 1.49 / 1.11 and 1.04 / 0.92 / 0.83 degrees (coarse
+  // 0.72 and 0.64); seed 2's albedo correlation 0.89 / 0.99 / 0.99: oblique
+  // displacements also corrupt the next frame's M_d. On address_720p_a (30
+  // frames) the refined photometric error is 4.29 / 4.41 / 4.50.
+  double displacement_min_facing = 0.7;
   HierarchyOptions hierarchy;
   LightingOptions lighting;
   AlbedoOptions albedo;

@@ -45,6 +45,18 @@ void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int 
   s.visible_count = static_cast<int>(std::count(s.visible.begin(), s.visible.end(), true));
 }
 
+void drop_oblique_observations(VertexSamples& s, const Positions& p, const Positions& n, float min_facing) {
+  for (size_t i = 0; i < s.visible.size(); ++i) {
+    if (!s.visible[i]) continue;
+    const Vec3f point = p.col(i), normal = n.col(i);
+    const float facing = -normal.dot(point) / std::max(1e-12f, normal.norm() * point.norm());
+    if (facing < min_facing) {
+      s.visible[i] = false;
+      --s.visible_count;
+    }
+  }
+}
+
 std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels) {
   std::vector<cv::Mat> out(std::max(1, levels));
   out[0] = bgr8;

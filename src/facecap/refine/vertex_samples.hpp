@@ -35,6 +35,14 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_poin
 // constrains: the displacement solve bends the surface to explain them.
 void erode_observations(VertexSamples& samples, const VertexAdjacency& adjacency, int rings);
 
+// Drops the observations of vertices seen more obliquely than `min_facing`
+// (the cosine between the normal and the ray to the camera). There a
+// displacement along the normal moves the vertex's image point by a sizeable
+// part of itself while its colour is sampled where the base vertex projects,
+// and the bilinear sample spans a stretch of skin foreshortened by cos.
+void drop_oblique_observations(VertexSamples& samples, const Positions& camera_points,
+                               const Positions& camera_normals, float min_facing);
+
 // An 8-bit image pyramid: level 0 the frame, each next level half the size.
 // The refinement reads level k - 1 - l for mesh level l of k.
 std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels);

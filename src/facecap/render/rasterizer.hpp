@@ -31,8 +31,9 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
                RasterBuffers& out, const RasterOptions& options = {});
 
 // Per-vertex visibility: the vertex projects inside the image, passes the
-// depth test against the buffers (within `depth_tolerance` cm), and its
-// normal (camera space) faces the camera.
+// depth test against the buffers (within `depth_tolerance` cm, plus the depth
+// the surface's slope spans over the vertex's distance to its pixel centre),
+// and its normal (camera space) faces the camera.
 std::vector<bool> vertex_visibility(const Positions& camera_points, const Positions& camera_normals,
                                     const PinholeCamera& camera, const RasterBuffers& buffers,
                                     float depth_tolerance = 0.15f);
