@@ -40,8 +40,8 @@ void erode_observations(VertexSamples& samples, const VertexAdjacency& adjacency
 // displacement along the normal moves the vertex's image point by a sizeable
 // part of itself while its colour is sampled where the base vertex projects,
 // and the bilinear sample spans a stretch of skin foreshortened by cos.
-void drop_oblique_observations(VertexSamples& samples, const Positions& camera_points,
-                               const Positions& camera_normals, float min_facing);
+void drop_oblique_observations(VertexSamples& samples, const Positions& camera_points, const Positions& camera_normals,
+                               float min_facing);
 
 // An 8-bit image pyramid: level 0 the frame, each next level half the size.
 // The refinement reads level k - 1 - l for mesh level l of k.
