@@ -17,6 +17,12 @@ using Mat3d = Eigen::Matrix3d;
 // Vertex positions of a mesh, one column per vertex; memory is x0 y0 z0 x1 ...
 using Positions = Eigen::Matrix3Xf;
 
+// Cosine of the angle between a camera-space surface normal and the ray from
+// the point back to the camera at the origin: 1 facing it, <= 0 facing away.
+inline float view_facing(const Vec3f& camera_point, const Vec3f& normal) {
+  return -normal.dot(camera_point) / std::max(1e-12f, normal.norm() * camera_point.norm());
+}
+
 // Rotation matrix of an axis-angle vector (direction = axis, norm = angle in radians).
 inline Mat3d rotation_from_axis_angle(const Vec3d& w) {
   const double angle = w.norm();

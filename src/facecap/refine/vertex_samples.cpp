@@ -48,9 +48,7 @@ void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int 
 void drop_oblique_observations(VertexSamples& s, const Positions& p, const Positions& n, float min_facing) {
   for (size_t i = 0; i < s.visible.size(); ++i) {
     if (!s.visible[i]) continue;
-    const Vec3f point = p.col(i), normal = n.col(i);
-    const float facing = -normal.dot(point) / std::max(1e-12f, normal.norm() * point.norm());
-    if (facing < min_facing) {
+    if (view_facing(p.col(i), n.col(i)) < min_facing) {
       s.visible[i] = false;
       --s.visible_count;
     }

@@ -115,9 +115,8 @@ std::vector<bool> vertex_visibility(const Positions& camera_points, const Positi
   for (int i = 0; i < n; ++i) {
     const Vec3f p = camera_points.col(i);
     if (p.z() <= 0) continue;
-    const Vec3f normal = camera_normals.col(i);
-    const float facing = -normal.dot(p) / std::max(1e-12f, normal.norm() * p.norm());  // cos of the view angle
-    if (facing <= 0.0f) continue;                                                      // faces away from the camera
+    const float facing = view_facing(p, camera_normals.col(i));
+    if (facing <= 0.0f) continue;  // faces away from the camera
     const Vec2f q = camera.project(p);
     const int x = int(std::lround(q.x()));
     const int y = int(std::lround(q.y()));

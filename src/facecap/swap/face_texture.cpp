@@ -43,7 +43,7 @@ FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, c
             if (map.triangle[i] < 0) continue;
             const Vec3f p = map.interpolate(triangles, camera_points, i);
             const Vec3f n = map.interpolate(triangles, normals, i).normalized();
-            const float facing = -n.dot(p.normalized());  // cosine between the normal and the view ray
+            const float facing = view_facing(p, n);
             if (!(facing > 0.2f)) continue;
             const Vec2f q = window.project(p);
             const int px = static_cast<int>(std::lround(q.x())), py = static_cast<int>(std::lround(q.y()));
