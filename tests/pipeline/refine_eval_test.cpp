@@ -13,21 +13,24 @@ TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
   FACECAP_REQUIRE_MODEL(model);
   RefineEvalOptions o;
   o.frames = 8;
-  o.seed = 1;
+  o.seed = 2;  // the seed whose lighting the eye and mouth rims threw furthest off
   o.quiet = true;
   const RefineEvalResult r = evaluate_refine_synthetic(*model, o);
   EXPECT_EQ(r.frames, 8);
   EXPECT_GE(r.levels, 2);
   EXPECT_GE(r.albedo_corr, 0.95);
   EXPECT_TRUE(std::isfinite(r.lighting_error_rel));
-  EXPECT_LT(r.lighting_error_rel, 0.5);
+  // With the rims of the eye and mouth holes among the lighting's samples
+  // (their colour is the eye white's, the teeth's) this was 0.39 (12 frames);
+  // now 0.21. The bar is 0.10.
+  EXPECT_LT(r.lighting_error_rel, 0.3);
   // Refined depth stays within a fraction of a millimetre of the truth.
   EXPECT_LT(r.vertex_error_mm, 0.2);
   EXPECT_TRUE(std::isfinite(r.normal_error_deg));
   // False detail stays bounded: with the observations at the silhouette and
   // the eye and mouth rims kept, this was 2.4 times the coarse error; with
   // every visible vertex in the displacement solve (not only those facing the
-  // camera within 45 degrees) 2.6 times; now 1.5 times.
+  // camera within 45 degrees) 2.6 times; now 1.5 (seed 1) and 1.3 (seed 2) times.
   EXPECT_LT(r.normal_error_deg, 1.7 * r.normal_error_coarse_deg);
 }
 

@@ -47,6 +47,38 @@ TEST(ErodeObservations, DropsTheRingsAroundAnUnobservedVertex) {
   }
 }
 
+TEST(ErodeObservations, DropsTheRingsAroundAHoleInTheMesh) {
+  // A 9 x 9 grid with the four cells around the centre vertex cut out: a hole
+  // with no vertex in it (as the eyes and the mouth are), every vertex observed.
+  const int n = 9;
+  const int centre = 4 * n + 4;
+  std::vector<Triangle> triangles;
+  for (const Triangle& t : grid_triangles(n)) {
+    const bool touches_centre = t[0] == centre || t[1] == centre || t[2] == centre;
+    if (!touches_centre) triangles.push_back(t);
+  }
+  const VertexAdjacency rings = vertex_adjacency(triangles, n * n);
+  std::vector<bool> open_boundary = boundary_vertices(triangles, n * n);
+  // Only the hole's rim: the grid's outer edge stands for skin that goes on.
+  for (int v = 0; v < n * n; ++v) {
+    const int x = v % n, y = v / n;
+    if (x == 0 || y == 0 || x == n - 1 || y == n - 1) open_boundary[v] = false;
+  }
+  for (int depth = 0; depth <= 2; ++depth) {
+    VertexSamples s;
+    s.visible.assign(n * n, true);
+    s.visible[centre] = false;  // in no triangle: nothing to observe
+    erode_observations(s, rings, depth, open_boundary);
+    for (int v = 0; v < n * n; ++v) {
+      if (v == centre) continue;
+      int from_hole = n * n;  // the rim (the centre's old one-ring) is at 1
+      for (int r = 0; r < n * n; ++r)
+        if (grid_distance(r, centre, n) == 1) from_hole = std::min(from_hole, 1 + grid_distance(v, r, n));
+      EXPECT_EQ(s.visible[v], from_hole > depth) << "vertex " << v << " at depth " << depth;
+    }
+  }
+}
+
 TEST(ErodeObservations, AFullyObservedMeshKeepsEverything) {
   const int n = 5;
   const VertexAdjacency rings = vertex_adjacency(grid_triangles(n), n * n);

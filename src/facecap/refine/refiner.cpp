@@ -65,6 +65,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   VertexSamples samples0 = sample_vertices(image_for(0), md, md_normals, masked_triangles(level0.triangles, data_mask_),
                                            camera_for(0), raster_[0]);
   apply_mask(samples0, data_mask_);
+  erode_observations(samples0, level0.rings, options_.shading_margin_rings, level0.boundary);
   if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
   const ShCoeffs lighting = estimate_lighting(samples0, md_normals, albedo_->albedo(), lighting_, options_.lighting);
   out.timings.lighting_ms = ms_since(t0);
@@ -122,7 +123,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
     problem.active = samples.visible;
-    erode_observations(samples, level.rings, options_.data_margin_rings);
+    erode_observations(samples, level.rings, options_.data_margin_rings, level.boundary);
     for (int grow = 0; grow < 2; ++grow) {
       std::vector<bool> next = problem.active;
       for (int i = 0; i < level.num_vertices; ++i) {

@@ -32,11 +32,13 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Po
   return s;
 }
 
-void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int rings) {
+void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int rings,
+                        const std::vector<bool>& open_boundary) {
   for (int r = 0; r < rings; ++r) {
     std::vector<bool> next = s.visible;
     for (size_t i = 0; i < s.visible.size(); ++i) {
       if (!s.visible[i]) continue;
+      if (r == 0 && !open_boundary.empty() && open_boundary[i]) next[i] = false;  // one ring from the hole
       for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && next[i]; ++k)
         next[i] = s.visible[adjacency.indices[k]];
     }

@@ -29,11 +29,15 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_poin
                               RasterBuffers& buffers);
 
 // Drops the observations within `rings` rings of a vertex that is not
-// observed (the silhouette, the rims of the eye and mouth holes, the edge of
-// the skin mask). There a vertex's bilinear sample mixes in the background,
-// the eyeball or the lips, and its normal depends on neighbours no pixel
-// constrains: the displacement solve bends the surface to explain them.
-void erode_observations(VertexSamples& samples, const VertexAdjacency& adjacency, int rings);
+// observed (the silhouette, the edge of the skin mask) or of a hole in the
+// mesh: vertices on `open_boundary` (the rims of the eye and mouth holes; none
+// when empty) are one ring from what shows through the hole. There a vertex's
+// bilinear sample mixes in the background, the eyeball or the teeth, and its
+// normal depends on neighbours no pixel constrains: the displacement solve
+// bends the surface to explain them, and the lighting and albedo take an eye
+// white for bright skin.
+void erode_observations(VertexSamples& samples, const VertexAdjacency& adjacency, int rings,
+                        const std::vector<bool>& open_boundary = {});
 
 // Drops the observations of vertices seen more obliquely than `min_facing`
 // (the cosine between the normal and the ray to the camera). There a
