@@ -66,7 +66,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      fs::path(source_photo).filename().string() + ".";
   mark.sources = {source_photo, target};
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
-                     {"warp_background", options.swap.warp_background ? "true" : "false"}};
+                     {"warp_background", options.swap.warp_background ? "true" : "false"},
+                     {"match_target_size", options.swap.match_target_size ? "true" : "false"}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(output, vo);

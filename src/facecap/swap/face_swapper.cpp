@@ -20,6 +20,7 @@
 #include "facecap/swap/background_warp.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/noise_matching.hpp"
+#include "facecap/swap/size_match.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 
 namespace facecap {
@@ -106,6 +107,18 @@ struct FaceSwapper::Impl {
   std::optional<ExpressionReference> reference;
   Positions reference_coating;      // xi_0^T
   std::vector<Triangle> fine_skin;  // the finest level's skin triangles
+  SizeMatch size;                   // SwapOptions::match_target_size
+  Eigen::VectorXf size_for;         // the target identity `size` was computed for
+
+  const SizeMatch& size_match_for(const Eigen::VectorXf& target_identity) {
+    if (size_for.size() != target_identity.size() || size_for != target_identity) {
+      const Eigen::VectorXf neutral = Eigen::VectorXf::Zero(model.num_expressions());
+      size = match_size(model.evaluate(source.identity, neutral, regions::kFace),
+                        model.evaluate(target_identity, neutral, regions::kFace));
+      size_for = target_identity;
+    }
+    return size;
+  }
 
   Impl(const FaceModel& m, const cv::Mat& photo, SourceFace s, SwapOptions o)
       : model(m), options(o), source(std::move(s)), skin(skin_mesh(m)), map(rasterize_uv(skin, o.texture_size)) {
@@ -260,8 +273,9 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   const Positions target_points =
       to_camera(m.model.evaluate(target.identity, target.expression, regions::kFace), target.pose);
   // §6.1.1: the source identity performing the target expression, under the target pose (eq. 6.6).
-  const Positions swapped_points =
-      to_camera(m.model.evaluate(m.source.identity, target.expression, regions::kFace), target.pose);
+  Positions source_shape = m.model.evaluate(m.source.identity, target.expression, regions::kFace);
+  if (m.options.match_target_size) source_shape = m.size_match_for(target.identity).apply(source_shape);
+  const Positions swapped_points = to_camera(source_shape, target.pose);
 
   auto t0 = std::chrono::steady_clock::now();
   if (m.appearance_seen < m.options.appearance_frames) {
