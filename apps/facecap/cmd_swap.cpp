@@ -14,6 +14,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     std::string source, target, output;
     SwapJobOptions options;
     bool no_warp = false;
+    bool photo_size = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source, "Portrait photo whose face is put in (the largest face is used)")->required();
@@ -27,9 +28,13 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--no-warp", a->no_warp, "Do not warp the target background to the new face outline");
   cmd->add_flag("--wrinkles", a->options.swap.wrinkles,
                 "Predict the target's expression wrinkles on the new face (§6.1.2; refines the target, slower)");
+  cmd->add_flag("--photo-size", a->photo_size,
+                "Keep the new face at the size the photo's fit gives it (default: the target face's size; a "
+                "single photo does not fix a face's absolute size)");
   cmd->callback([a, &global] {
     if (a->options.swap.appearance_frames < 1) throw Error("--appearance-frames must be at least 1");
     a->options.swap.warp_background = !a->no_warp;
+    a->options.swap.match_target_size = !a->photo_size;
     a->options.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
     const SwapSummary s = run_swap(model, a->source, a->target, a->output, a->options);
