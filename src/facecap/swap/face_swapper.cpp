@@ -112,9 +112,9 @@ struct FaceSwapper::Impl {
 
   const SizeMatch& size_match_for(const Eigen::VectorXf& target_identity) {
     if (size_for.size() != target_identity.size() || size_for != target_identity) {
-      const Eigen::VectorXf neutral = Eigen::VectorXf::Zero(model.num_expressions());
-      size = match_size(model.evaluate(source.identity, neutral, regions::kFace),
-                        model.evaluate(target_identity, neutral, regions::kFace));
+      // The identity shapes (no expression weights: the neutral face).
+      size = match_size(model.evaluate(source.identity, Eigen::VectorXf(), regions::kFace),
+                        model.evaluate(target_identity, Eigen::VectorXf(), regions::kFace));
       size_for = target_identity;
     }
     return size;
