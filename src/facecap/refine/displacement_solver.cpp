@@ -15,15 +15,78 @@ inline Vec3f sh_gradient(const ShCoeffs& l, const Vec3f& v) {
           float(l[3] + l[5] * v.x() + l[6] * v.y() + 6 * l[8] * v.z())};
 }
 
-// The linearisation of one Gauss-Newton step.
+// The solver's own numbering. Only the free vertices are unknowns, and only
+// the residuals of free vertices and of their rings depend on them, so every
+// pass runs over those "touched" vertices in a compact index space: free ones
+// first, [0, free), then the rest of the touched, [free, touched). A vector
+// of unknowns has `free` entries; d is zero everywhere else.
+struct LocalGraph {
+  int free = 0;
+  std::vector<int> global;        // local -> level vertex
+  std::vector<float> inv_degree;  // 1 / ring size (0 for an isolated vertex)
+  // Rows, per touched vertex: its free ring neighbours (local indices) and
+  // their slot in the level's ring. Other neighbours multiply a zero.
+  std::vector<int> row_offsets, row_cols, row_slots;
+  // Per level ring slot of a touched vertex: its row entry, or -1.
+  std::vector<int> slot_entry;
+  // Columns, per free vertex q: its ring neighbours t (local, all touched) and
+  // the row entry (t, q), or -1 where t's ring does not list q.
+  std::vector<int> col_offsets, col_rows, col_entries;
+
+  LocalGraph(const MeshLevel& lv, const std::vector<int>& free_vertices) {
+    const int n = lv.num_vertices;
+    const VertexAdjacency& r = lv.rings;
+    std::vector<int> local(n, -1);
+    free = static_cast<int>(free_vertices.size());
+    for (int i : free_vertices) {
+      local[i] = static_cast<int>(global.size());
+      global.push_back(i);
+    }
+    for (int i : free_vertices)
+      for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
+        const int j = r.indices[s];
+        if (local[j] < 0) {
+          local[j] = static_cast<int>(global.size());
+          global.push_back(j);
+        }
+      }
+    const int nt = static_cast<int>(global.size());
+    inv_degree.resize(nt);
+    slot_entry.assign(r.indices.size(), -1);
+    row_offsets.assign(1, 0);
+    for (int t = 0; t < nt; ++t) {
+      const int i = global[t];
+      inv_degree[t] = r.degree(i) > 0 ? 1.0f / float(r.degree(i)) : 0.0f;
+      for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
+        const int j = local[r.indices[s]];
+        if (j < 0 || j >= free) continue;
+        slot_entry[s] = static_cast<int>(row_cols.size());
+        row_cols.push_back(j);
+        row_slots.push_back(s - r.offsets[i]);
+      }
+      row_offsets.push_back(static_cast<int>(row_cols.size()));
+    }
+    col_offsets.assign(1, 0);
+    for (int a = 0; a < free; ++a) {
+      const int q = global[a];
+      for (int s = r.offsets[q]; s < r.offsets[q + 1]; ++s) {
+        const int back = lv.ring_transpose[s];
+        col_rows.push_back(local[r.indices[s]]);
+        col_entries.push_back(back >= 0 ? slot_entry[back] : -1);
+      }
+      col_offsets.push_back(static_cast<int>(col_rows.size()));
+    }
+  }
+  int touched() const { return static_cast<int>(global.size()); }
+};
+
+// The linearisation of one Gauss-Newton step, over the touched vertices.
 struct Linearisation {
-  Eigen::VectorXf shading;        // s_i
-  Eigen::VectorXf self;           // d s_i / d d_i
-  Eigen::VectorXf ring;           // d s_i / d d_q for the ring entries of i
-  Eigen::VectorXf weight;         // W_i = sum_c rho_ic^2 (0 when not visible)
-  Eigen::VectorXf data_residual;  // sum_c rho_ic (rho_ic s_i - I_ic)
-  Eigen::VectorXf vertex_cost;    // sum_c (rho_ic s_i - I_ic)^2
-  double data_cost = 0;
+  Eigen::VectorXf self;           // d s_t / d d_t
+  Eigen::VectorXf jac;            // d s_t / d d_q per row entry (t, q)
+  Eigen::VectorXf weight;         // W_t = sum_c rho_tc^2 (0 when not visible)
+  Eigen::VectorXf data_residual;  // sum_c rho_tc (rho_tc s_t - I_tc)
+  double data_cost = 0;           // sum of the (Huber) vertex costs
 };
 
 // The regularisers' weights for d in centimetres.
@@ -36,239 +99,159 @@ DisplacementOptions scaled(DisplacementOptions o) {
   return o;
 }
 
+std::vector<int> free_vertices(const DisplacementProblem& p) {
+  // Dirichlet: d = 0 on the boundary, and outside the active set.
+  std::vector<int> out;
+  const MeshLevel& lv = *p.level;
+  for (int i = 0; i < lv.num_vertices; ++i)
+    if (!lv.boundary[i] && (p.active.empty() || p.active[i])) out.push_back(i);
+  return out;
+}
+
 class Solver {
  public:
-  Solver(const DisplacementProblem& p, const DisplacementOptions& o) : p_(p), o_(scaled(o)), lv_(*p.level) {
-    n_ = lv_.num_vertices;
-    free_.resize(n_);
-    // Dirichlet: d = 0 on the boundary, and outside the active set.
-    for (int i = 0; i < n_; ++i) {
-      free_[i] = (lv_.boundary[i] || (!p.active.empty() && !p.active[i])) ? 0.0f : 1.0f;
-      if (free_[i] > 0) active_.push_back(i);
-    }
-    // Residuals that involve a free vertex: the free vertices and their rings.
-    std::vector<bool> touched(n_, false);
-    for (int i : active_) {
-      touched[i] = true;
-      for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) touched[lv_.rings.indices[s]] = true;
-    }
-    for (int i = 0; i < n_; ++i)
-      if (touched[i]) touched_.push_back(i);
-    diag_const_ = float(o.weights.coarse + (p.previous.size() ? o.weights.temporal : 0.0) +
-                        (p.prolonged.size() ? o.weights.hierarchy : 0.0));
+  Solver(const DisplacementProblem& p, const DisplacementOptions& o)
+      : p_(p), o_(scaled(o)), lv_(*p.level), g_(lv_, free_vertices(p)) {
+    d_full_.setZero(lv_.num_vertices);
+    const int nf = g_.free;
+    // The fixed vertices' share of E_hier and E_temp (d = 0 there): constant,
+    // kept so that the reported energies are the whole energy.
+    const auto free_part = [&](const Eigen::VectorXf& full, Eigen::VectorXf& part, double& fixed_cost) {
+      if (full.size() == 0) return;
+      part.resize(nf);
+      for (int a = 0; a < nf; ++a) part[a] = full[g_.global[a]];
+      fixed_cost = double(full.squaredNorm()) - double(part.squaredNorm());
+    };
+    free_part(p.prolonged, prolonged_, prolonged_fixed_);
+    free_part(p.previous, previous_, previous_fixed_);
+    diag_const_ = float(o_.weights.coarse + (p.previous.size() ? o_.weights.temporal : 0.0) +
+                        (p.prolonged.size() ? o_.weights.hierarchy : 0.0));
   }
 
-  void linearise(const Eigen::VectorXf& d, Linearisation& lin) const {
-    lin.shading.resize(n_);
-    lin.self.resize(n_);
-    lin.ring.resize(lv_.rings.indices.size());
-    lin.weight.resize(n_);
-    lin.data_residual.resize(n_);
-    lin.vertex_cost.setZero(n_);
-    lin.shading.setZero();
-    lin.self.setZero();
-    lin.ring.setZero();
-    lin.weight.setZero();
-    lin.data_residual.setZero();
-    const Positions pos = displaced_positions(p_.base, p_.base_normals, d);
-    const int nt = static_cast<int>(touched_.size());
+  void linearise(const Eigen::VectorXf& d, Linearisation& lin) {
+    const int nt = g_.touched();
+    lin.self.resize(nt);
+    lin.jac.resize(static_cast<Eigen::Index>(g_.row_cols.size()));
+    lin.weight.resize(nt);
+    lin.data_residual.resize(nt);
+    vertex_cost_.resize(nt);
+    for (int a = 0; a < g_.free; ++a) d_full_[g_.global[a]] = d[a];
+    const auto position = [&](int i) -> Vec3f { return p_.base.col(i) + d_full_[i] * p_.base_normals.col(i); };
     parallel_for(
         nt,
         [&](int b, int e) {
-          for (int ti = b; ti < e; ++ti) {
-            const int i = touched_[ti];
-            const Vec3f pi = pos.col(i);
-            Vec3f m = Vec3f::Zero();
-            Vec3f dm_self = Vec3f::Zero();
-            const int ro = lv_.rings.offsets[i];
-            const int deg = lv_.rings.degree(i);
-            Vec3f dm_ring[32];
-            for (int s = 0; s < std::min(deg, 32); ++s) dm_ring[s] = Vec3f::Zero();
-            for (int c = lv_.corner_offsets[i]; c < lv_.corner_offsets[i + 1]; ++c) {
-              const auto& [j, k] = lv_.corners[c];
-              const auto& [sj, sk] = lv_.corner_slots[c];
-              const Vec3f a = pos.col(j) - pi, bvec = pos.col(k) - pi;
-              m += a.cross(bvec);
-              // d/dd_i (a x b) = n_i x (a - b); d/dd_j = n_j x b; d/dd_k = a x n_k.
-              dm_self += Vec3f(p_.base_normals.col(i)).cross(a - bvec);
-              if (sj >= 0 && sj < 32) dm_ring[sj] += Vec3f(p_.base_normals.col(j)).cross(bvec);
-              if (sk >= 0 && sk < 32) dm_ring[sk] += a.cross(Vec3f(p_.base_normals.col(k)));
-            }
-            const float len = m.norm();
-            const bool visible = p_.samples->visible[i] && len > 0;
-            if (len <= 0) {
-              lin.shading[i] = 0;
-              lin.self[i] = 0;
-              for (int s = 0; s < deg; ++s) lin.ring[ro + s] = 0;
-              lin.weight[i] = 0;
-              lin.data_residual[i] = 0;
-              continue;
-            }
-            const Vec3f nhat = m / len;
-            const Vec3f v(nhat.x(), -nhat.y(), -nhat.z());  // viewer frame for SH
-            const Vec3f gv = sh_gradient(p_.lighting, v);
-            const Vec3f g(gv.x(), -gv.y(), -gv.z());  // back to the camera frame
-            // ds/dm = g^T (I - n n^T) / |m|
-            const Vec3f dsdm = (g - nhat * nhat.dot(g)) / len;
-            const float s = float(sh_shade(p_.lighting, double(v.x()), double(v.y()), double(v.z())));
-            lin.shading[i] = s;
-            lin.self[i] = dsdm.dot(dm_self);
-            for (int sl = 0; sl < deg; ++sl) lin.ring[ro + sl] = sl < 32 ? dsdm.dot(dm_ring[sl]) : 0.0f;
-            if (visible) {
-              float w = 0, r = 0, e2 = 0;
-              for (int c = 0; c < 3; ++c) {
-                const float rho = p_.albedo(c, i);
-                const float res = rho * s - p_.samples->colour(c, i);
-                w += rho * rho;
-                r += rho * res;
-                e2 += res * res;
-              }
-              // Huber on the vertex's residual, as reweighted least squares.
-              const float k = float(o_.data_huber);
-              float robust = 1.0f;
-              if (k > 0 && e2 > k * k) {
-                const float e = std::sqrt(e2);
-                robust = k / e;
-                lin.vertex_cost[i] = 2 * k * e - k * k;
-              } else {
-                lin.vertex_cost[i] = e2;
-              }
-              lin.weight[i] = robust * w;
-              lin.data_residual[i] = robust * r;
-            } else {
-              lin.weight[i] = 0;
-              lin.data_residual[i] = 0;
-            }
-          }
+          for (int t = b; t < e; ++t) linearise_vertex(t, position, lin);
         },
         512);
-    lin.data_cost = lin.vertex_cost.cast<double>().sum();
+    lin.data_cost = vertex_cost_.cast<double>().sum();
   }
 
   // The row products over the touched vertices: lx = L x for the uniform
-  // graph Laplacian L = I - A / r and, given a linearisation, wgx = W G x
-  // (G_iq = d s_i / d d_q). Entries elsewhere are left as they were.
+  // graph Laplacian L = I - A / r and, with data, wgx = W G x
+  // (G_tq = d s_t / d d_q).
   template <bool kWithData>
   void apply_rows(const Linearisation* lin, const Eigen::VectorXf& x, Eigen::VectorXf* wgx, Eigen::VectorXf& lx) const {
-    const int nt = static_cast<int>(touched_.size());
+    const int nt = g_.touched();
+    lx.resize(nt);
+    if constexpr (kWithData) wgx->resize(nt);
     parallel_for(
         nt,
         [&](int b, int e) {
-          for (int ti = b; ti < e; ++ti) {
-            const int i = touched_[ti];
-            const int deg = lv_.rings.degree(i);
-            float g = 0;
-            if constexpr (kWithData) g = lin->self[i] * x[i];
-            float mean = 0;
-            for (int s = lv_.rings.offsets[i]; s < lv_.rings.offsets[i + 1]; ++s) {
-              const float xs = x[lv_.rings.indices[s]];
-              if constexpr (kWithData) g += lin->ring[s] * xs;
-              mean += xs;
+          for (int t = b; t < e; ++t) {
+            const float xt = t < g_.free ? x[t] : 0.0f;
+            float g = 0, sum = 0;
+            if constexpr (kWithData) g = lin->self[t] * xt;
+            for (int k = g_.row_offsets[t]; k < g_.row_offsets[t + 1]; ++k) {
+              const float xs = x[g_.row_cols[k]];
+              if constexpr (kWithData) g += lin->jac[k] * xs;
+              sum += xs;
             }
-            if constexpr (kWithData) (*wgx)[i] = g * lin->weight[i];
-            lx[i] = deg > 0 ? x[i] - mean / deg : 0.0f;
+            if constexpr (kWithData) (*wgx)[t] = g * lin->weight[t];
+            lx[t] = g_.inv_degree[t] > 0 ? xt - sum * g_.inv_degree[t] : 0.0f;
           }
         },
         1024);
   }
-  // y = L x, zero where no free vertex reaches.
-  void apply_l(const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    y.setZero(n_);
-    apply_rows<false>(nullptr, x, nullptr, y);
-  }
-  // The column products over the free vertices, zero elsewhere:
+  // The column products over the free vertices:
   //   y = G^T u + (w3 L^T v + c x)
   // (gathers: entry q collects from q and its ring).
   void apply_columns(const Linearisation& lin, const Eigen::VectorXf& u, const Eigen::VectorXf& v, float c,
                      const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    y.setZero(n_);
+    const int nf = g_.free;
+    y.resize(nf);
     const float smooth = float(o_.weights.smooth);
-    const int na = static_cast<int>(active_.size());
     parallel_for(
-        na,
+        nf,
         [&](int b, int e) {
-          for (int ai = b; ai < e; ++ai) {
-            const int q = active_[ai];
-            float data = lin.self[q] * u[q];
-            float lap = lv_.rings.degree(q) > 0 ? v[q] : 0.0f;
-            for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-              const int i = lv_.rings.indices[s];
-              const int back = lv_.ring_transpose[s];
-              if (back >= 0) data += lin.ring[back] * u[i];
-              lap -= v[i] / lv_.rings.degree(i);
+          for (int a = b; a < e; ++a) {
+            float data = lin.self[a] * u[a];
+            float lap = g_.inv_degree[a] > 0 ? v[a] : 0.0f;
+            for (int k = g_.col_offsets[a]; k < g_.col_offsets[a + 1]; ++k) {
+              const int t = g_.col_rows[k];
+              const int entry = g_.col_entries[k];
+              if (entry >= 0) data += lin.jac[entry] * u[t];
+              lap -= v[t] * g_.inv_degree[t];
             }
-            y[q] = data + (smooth * lap + c * x[q]);
+            y[a] = data + (smooth * lap + c * x[a]);
           }
         },
         1024);
   }
 
-  // (J^T J) x restricted to free vertices: the row pass, then the column pass
-  // (one wake of the workers each).
-  void apply_normal(const Linearisation& lin, const Eigen::VectorXf& x, Eigen::VectorXf& y, Eigen::VectorXf& wgx,
-                    Eigen::VectorXf& lx) const {
-    wgx.resize(n_);  // read only at touched vertices, which the row pass writes
-    lx.resize(n_);
-    apply_rows<true>(&lin, x, &wgx, lx);
-    apply_columns(lin, wgx, lx, diag_const_, x, y);
-  }
-
-  double cost(const Eigen::VectorXf& d, const Linearisation& lin) const {
-    Eigen::VectorXf ld;
-    apply_l(d, ld);
-    double c = lin.data_cost + o_.weights.smooth * ld.squaredNorm() + o_.weights.coarse * d.squaredNorm();
-    if (p_.prolonged.size()) c += o_.weights.hierarchy * (d - p_.prolonged).squaredNorm();
-    if (p_.previous.size()) c += o_.weights.temporal * (d - p_.previous).squaredNorm();
+  double cost(const Eigen::VectorXf& d, const Linearisation& lin) {
+    apply_rows<false>(nullptr, d, nullptr, scratch_lx_);
+    double c = lin.data_cost + o_.weights.smooth * scratch_lx_.squaredNorm() + o_.weights.coarse * d.squaredNorm();
+    if (prolonged_.size()) c += o_.weights.hierarchy * ((d - prolonged_).squaredNorm() + prolonged_fixed_);
+    if (previous_.size()) c += o_.weights.temporal * ((d - previous_).squaredNorm() + previous_fixed_);
     return c;
   }
 
-  DisplacementReport run(Eigen::VectorXf& d) const {
+  // Jacobi preconditioner: diag(J^T J).
+  void diagonal(const Linearisation& lin, Eigen::VectorXf& diag) const {
+    const int nf = g_.free;
+    diag.resize(nf);
+    const float smooth = float(o_.weights.smooth);
+    for (int a = 0; a < nf; ++a) {
+      float dd = lin.weight[a] * lin.self[a] * lin.self[a];
+      float lap = g_.inv_degree[a] > 0 ? 1.0f : 0.0f;
+      for (int k = g_.col_offsets[a]; k < g_.col_offsets[a + 1]; ++k) {
+        const int t = g_.col_rows[k];
+        const int entry = g_.col_entries[k];
+        if (entry >= 0) dd += lin.weight[t] * lin.jac[entry] * lin.jac[entry];
+        lap += g_.inv_degree[t] * g_.inv_degree[t];
+      }
+      diag[a] = dd + smooth * lap + diag_const_;
+    }
+  }
+
+  DisplacementReport run(Eigen::VectorXf& d_level) {
     DisplacementReport rep;
-    d.array() *= free_.array();
+    const int nf = g_.free;
+    Eigen::VectorXf d(nf);
+    for (int a = 0; a < nf; ++a) d[a] = d_level[g_.global[a]];
     Linearisation lin;
     linearise(d, lin);
     double current = cost(d, lin);
     rep.initial_cost = current;
-    Eigen::VectorXf grad, t1, t2, r, z, p, ap, x;
+    Eigen::VectorXf grad, diag, lx, wgx, r, z, p, ap, x, trial;
+    Linearisation trial_lin;
     for (rep.steps = 0; rep.steps < o_.gauss_newton_steps; ++rep.steps) {
       // Gradient J^T r of the whole energy.
-      apply_l(d, t1);
-      apply_columns(lin, lin.data_residual, t1, float(o_.weights.coarse), d, grad);
-      if (p_.prolonged.size()) grad += float(o_.weights.hierarchy) * (d - p_.prolonged);
-      if (p_.previous.size()) grad += float(o_.weights.temporal) * (d - p_.previous);
-      grad.array() *= free_.array();
-      // Jacobi preconditioner: diag(J^T J).
-      Eigen::VectorXf diag = Eigen::VectorXf::Ones(n_);
-      const int na = static_cast<int>(active_.size());
-      parallel_for(
-          na,
-          [&](int b, int e) {
-            for (int ai = b; ai < e; ++ai) {
-              const int q = active_[ai];
-              float dd = lin.weight[q] * lin.self[q] * lin.self[q];
-              float lap = lv_.rings.degree(q) > 0 ? 1.0f : 0.0f;
-              for (int s = lv_.rings.offsets[q]; s < lv_.rings.offsets[q + 1]; ++s) {
-                const int i = lv_.rings.indices[s];
-                const int back = lv_.ring_transpose[s];
-                if (back >= 0) {
-                  const float g = lin.ring[back];
-                  dd += lin.weight[i] * g * g;
-                }
-                const float deg = float(lv_.rings.degree(i));
-                lap += 1.0f / (deg * deg);
-              }
-              diag[q] = dd + float(o_.weights.smooth) * lap + diag_const_;
-            }
-          },
-          1024);
-      // Algorithm 2: PCG from x0 = 0 on (J^T J) x = -J^T r.
-      x.setZero(n_);
+      apply_rows<false>(nullptr, d, nullptr, lx);
+      apply_columns(lin, lin.data_residual, lx, float(o_.weights.coarse), d, grad);
+      if (prolonged_.size()) grad += float(o_.weights.hierarchy) * (d - prolonged_);
+      if (previous_.size()) grad += float(o_.weights.temporal) * (d - previous_);
+      diagonal(lin, diag);
+      // Algorithm 2: PCG from x0 = 0 on (J^T J) x = -J^T r. One product
+      // (J^T J) p is a row pass, then a column pass.
+      x.setZero(nf);
       r = -grad;
       z = r.cwiseQuotient(diag);
       p = z;
       double rz = r.dot(z);
       for (int k = 0; k < o_.pcg_iterations && rz > 1e-30; ++k) {
-        apply_normal(lin, p, ap, t1, t2);
+        apply_rows<true>(&lin, p, &wgx, lx);
+        apply_columns(lin, wgx, lx, diag_const_, p, ap);
         const double pap = p.dot(ap);
         if (pap <= 0) break;
         const float alpha = float(rz / pap);
@@ -280,8 +263,6 @@ class Solver {
         rz = rz_new;
       }
       // Gauss-Newton step; halved if it does not lower the energy.
-      Eigen::VectorXf trial;
-      Linearisation trial_lin;
       double trial_cost = current;
       float scale = 1.0f;
       for (int h = 0; h < 4; ++h, scale *= 0.5f) {
@@ -291,22 +272,98 @@ class Solver {
         if (trial_cost < current) break;
       }
       if (!(trial_cost < current)) break;
-      d = trial;
-      lin = std::move(trial_lin);
+      d.swap(trial);
+      std::swap(lin, trial_lin);
       current = trial_cost;
     }
     rep.final_cost = current;
+    d_level.setZero(lv_.num_vertices);
+    for (int a = 0; a < nf; ++a) d_level[g_.global[a]] = d[a];
     return rep;
   }
 
  private:
+  // Shading, its derivatives and the data residual of touched vertex t.
+  template <typename PositionOf>
+  void linearise_vertex(int t, const PositionOf& position, Linearisation& lin) {
+    constexpr int kMaxRing = 32;
+    const int i = g_.global[t];
+    const Vec3f pi = position(i);
+    const Vec3f ni = p_.base_normals.col(i);
+    Vec3f m = Vec3f::Zero();
+    Vec3f dm_self = Vec3f::Zero();
+    Vec3f dm_ring[kMaxRing];
+    const int deg = std::min(lv_.rings.degree(i), kMaxRing);
+    for (int s = 0; s < deg; ++s) dm_ring[s] = Vec3f::Zero();
+    for (int c = lv_.corner_offsets[i]; c < lv_.corner_offsets[i + 1]; ++c) {
+      const auto& [j, k] = lv_.corners[c];
+      const auto& [sj, sk] = lv_.corner_slots[c];
+      const Vec3f a = position(j) - pi, bvec = position(k) - pi;
+      m += a.cross(bvec);
+      // d/dd_i (a x b) = n_i x (a - b); d/dd_j = n_j x b; d/dd_k = a x n_k.
+      dm_self += ni.cross(a - bvec);
+      if (sj >= 0 && sj < kMaxRing) dm_ring[sj] += Vec3f(p_.base_normals.col(j)).cross(bvec);
+      if (sk >= 0 && sk < kMaxRing) dm_ring[sk] += a.cross(Vec3f(p_.base_normals.col(k)));
+    }
+    const int rb = g_.row_offsets[t], re = g_.row_offsets[t + 1];
+    const float len = m.norm();
+    if (!(len > 0)) {
+      lin.self[t] = 0;
+      for (int e = rb; e < re; ++e) lin.jac[e] = 0;
+      lin.weight[t] = 0;
+      lin.data_residual[t] = 0;
+      vertex_cost_[t] = 0;
+      return;
+    }
+    const Vec3f nhat = m / len;
+    const Vec3f v(nhat.x(), -nhat.y(), -nhat.z());  // viewer frame for SH
+    const Vec3f gv = sh_gradient(p_.lighting, v);
+    const Vec3f g(gv.x(), -gv.y(), -gv.z());  // back to the camera frame
+    // ds/dm = g^T (I - n n^T) / |m|
+    const Vec3f dsdm = (g - nhat * nhat.dot(g)) / len;
+    lin.self[t] = dsdm.dot(dm_self);
+    for (int e = rb; e < re; ++e) {
+      const int slot = g_.row_slots[e];
+      lin.jac[e] = slot < kMaxRing ? dsdm.dot(dm_ring[slot]) : 0.0f;
+    }
+    if (!p_.samples->visible[i]) {
+      lin.weight[t] = 0;
+      lin.data_residual[t] = 0;
+      vertex_cost_[t] = 0;
+      return;
+    }
+    const float s = float(sh_shade(p_.lighting, double(v.x()), double(v.y()), double(v.z())));
+    float w = 0, r = 0, e2 = 0;
+    for (int c = 0; c < 3; ++c) {
+      const float rho = p_.albedo(c, i);
+      const float res = rho * s - p_.samples->colour(c, i);
+      w += rho * rho;
+      r += rho * res;
+      e2 += res * res;
+    }
+    // Huber on the vertex's residual, as reweighted least squares.
+    const float k = float(o_.data_huber);
+    float robust = 1.0f;
+    if (k > 0 && e2 > k * k) {
+      const float e = std::sqrt(e2);
+      robust = k / e;
+      vertex_cost_[t] = 2 * k * e - k * k;
+    } else {
+      vertex_cost_[t] = e2;
+    }
+    lin.weight[t] = robust * w;
+    lin.data_residual[t] = robust * r;
+  }
+
   const DisplacementProblem& p_;
   const DisplacementOptions o_;
   const MeshLevel& lv_;
-  int n_ = 0;
-  Eigen::VectorXf free_;
-  std::vector<int> active_;   // free vertices
-  std::vector<int> touched_;  // free vertices and their rings
+  const LocalGraph g_;
+  Eigen::VectorXf d_full_;  // d on the whole level, for positions (zero where fixed)
+  Eigen::VectorXf vertex_cost_;
+  Eigen::VectorXf scratch_lx_;
+  Eigen::VectorXf prolonged_, previous_;  // pd and d_prev at the free vertices
+  double prolonged_fixed_ = 0, previous_fixed_ = 0;
   float diag_const_ = 0;
 };
 
@@ -320,7 +377,7 @@ Positions displaced_positions(const Positions& base, const Positions& normals, c
 
 DisplacementReport solve_displacements(const DisplacementProblem& problem, Eigen::VectorXf& d,
                                        const DisplacementOptions& options) {
-  const Solver solver(problem, options);
+  Solver solver(problem, options);
   return solver.run(d);
 }
 
