@@ -9,7 +9,11 @@ AlbedoEstimator::AlbedoEstimator(const MeshLevel& level, AlbedoOptions options)
       options_(options),
       data_diag_(Eigen::VectorXd::Zero(level.num_vertices)),
       data_rhs_(Eigen::Matrix3Xd::Zero(3, level.num_vertices)),
-      albedo_(Positions::Constant(3, level.num_vertices, 0.5f)) {}
+      albedo_(Positions::Constant(3, level.num_vertices, 0.5f)),
+      inv_degree_(level.num_vertices) {
+  for (int i = 0; i < level.num_vertices; ++i)
+    inv_degree_[i] = level.rings.degree(i) > 0 ? 1.0 / level.rings.degree(i) : 0.0;
+}
 
 void AlbedoEstimator::initialise_uniform(const VertexSamples& samples) {
   Vec3f mean = Vec3f::Zero();
@@ -40,58 +44,64 @@ void AlbedoEstimator::add_frame(const VertexSamples& samples, const Positions& n
   ++frames_;
 }
 
-AlbedoEstimator::Channels AlbedoEstimator::laplacian_normal(const Channels& x) const {
-  // L = I - A / r (uniform graph Laplacian); returns L^T (L x).
+void AlbedoEstimator::laplacian_normal(const Channels& x, Channels& lx, Channels& out) const {
+  // L = I - A / r (uniform graph Laplacian); out = L^T (L x). The second
+  // product gathers over each ring (the rings are symmetric): entry i
+  // collects lx_j / r_j from its neighbours j.
   const VertexAdjacency& r = level_.rings;
   const int n = level_.num_vertices;
-  Channels lx(n, 3);
+  lx.resize(n, 3);
+  out.resize(n, 3);
   for (int i = 0; i < n; ++i) {
-    Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
-    const int deg = r.degree(i);
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) mean += x.row(r.indices[s]);
-    lx.row(i) = deg > 0 ? Eigen::RowVector3d(x.row(i) - mean / deg) : Eigen::RowVector3d::Zero();
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) sum += x.row(r.indices[s]);
+    lx.row(i) = inv_degree_[i] > 0 ? Eigen::RowVector3d(x.row(i) - sum * inv_degree_[i]) : Eigen::RowVector3d::Zero();
   }
-  Channels out = lx;
   for (int i = 0; i < n; ++i) {
-    const int deg = r.degree(i);
-    if (deg == 0) continue;
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) out.row(r.indices[s]) -= lx.row(i) / deg;
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
+      const int j = r.indices[s];
+      sum += lx.row(j) * inv_degree_[j];
+    }
+    out.row(i) = lx.row(i) - sum;
   }
-  return out;
 }
 
 AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd& d, const Channels& b, double w,
                                                           const Channels& prior, Channels x) const {
   const int n = level_.num_vertices;
   // Jacobi preconditioner: diag(D + w L^T L) = D_i + w (1 + sum_{j in ring(i)} 1/r_j^2).
-  Eigen::VectorXd diag = d;
+  Eigen::VectorXd inv_diag(n);
   const VertexAdjacency& r = level_.rings;
   for (int i = 0; i < n; ++i) {
     double s = 1.0;
-    for (int k = r.offsets[i]; k < r.offsets[i + 1]; ++k) {
-      const int deg = r.degree(r.indices[k]);
-      if (deg > 0) s += 1.0 / (double(deg) * deg);
-    }
-    diag[i] += w * s;
+    for (int k = r.offsets[i]; k < r.offsets[i + 1]; ++k) s += inv_degree_[r.indices[k]] * inv_degree_[r.indices[k]];
+    inv_diag[i] = 1.0 / (d[i] + w * s);
   }
-  const auto apply = [&](const Channels& v) -> Channels {
-    return Channels(d.asDiagonal() * v) + w * laplacian_normal(v);
+  Channels lx, llx;
+  // ap = (D + w L^T L) v, in place.
+  const auto apply = [&](const Channels& v, Channels& ap) {
+    laplacian_normal(v, lx, llx);
+    ap = d.asDiagonal() * v;
+    ap += w * llx;
   };
-  const auto precondition = [&](const Channels& v) -> Channels { return v.array().colwise() / diag.array(); };
-  const Channels rhs = b + w * laplacian_normal(prior);
-  Channels res = rhs - apply(x);
-  Channels z = precondition(res);
+  laplacian_normal(prior, lx, llx);
+  Channels res = b + w * llx;
+  Channels ap;
+  apply(x, ap);
+  res -= ap;
+  Channels z = inv_diag.asDiagonal() * res;
   Channels p = z;
   Eigen::Array3d rz = (res.array() * z.array()).colwise().sum().transpose();
   for (int k = 0; k < options_.pcg_iterations && (rz > 1e-20).any(); ++k) {
-    const Channels ap = apply(p);
+    apply(p, ap);
     Eigen::Array3d alpha = Eigen::Array3d::Zero();
     for (int c = 0; c < 3; ++c) {
       if (rz[c] > 1e-20) alpha[c] = rz[c] / p.col(c).dot(ap.col(c));  // converged columns hold still
     }
-    x += p * alpha.matrix().asDiagonal();
-    res -= ap * alpha.matrix().asDiagonal();
-    z = precondition(res);
+    x.noalias() += p * alpha.matrix().asDiagonal();
+    res.noalias() -= ap * alpha.matrix().asDiagonal();
+    z.noalias() = inv_diag.asDiagonal() * res;
     for (int c = 0; c < 3; ++c) {
       if (!(rz[c] > 1e-20)) continue;
       const double rz_new = res.col(c).dot(z.col(c));

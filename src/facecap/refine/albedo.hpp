@@ -48,13 +48,15 @@ class AlbedoEstimator {
   // PCG per column, with its own step sizes, sharing each pass over the mesh.
   Channels solve_channels(const Eigen::VectorXd& d, const Channels& b, double w, const Channels& prior,
                           Channels x) const;
-  Channels laplacian_normal(const Channels& x) const;  // L^T L x, per column
+  // out = L^T L x, per column (lx: scratch for L x).
+  void laplacian_normal(const Channels& x, Channels& lx, Channels& out) const;
 
   const MeshLevel& level_;
   AlbedoOptions options_;
   Eigen::VectorXd data_diag_;  // sum over frames of s_i^2
   Eigen::Matrix3Xd data_rhs_;  // sum over frames of s_i I_ic
   Positions albedo_;
+  Eigen::VectorXd inv_degree_;  // 1 / ring size (0 for an isolated vertex)
   int frames_ = 0;
 };
 
