@@ -18,17 +18,15 @@ inline Vec3f sh_gradient(const ShCoeffs& l, const Vec3f& v) {
 // The solver's own numbering. Only the free vertices are unknowns, and only
 // the residuals of free vertices and of their rings depend on them, so every
 // pass runs over those "touched" vertices in a compact index space: free ones
-// first, [0, free), then the rest of the touched, [free, touched). A vector
-// of unknowns has `free` entries; d is zero everywhere else.
+// first, [0, num_free), then the rest of the touched, [num_free, touched).
+// A vector of unknowns has `num_free` entries; d is zero everywhere else.
 struct LocalGraph {
-  int free = 0;
+  int num_free = 0;
   std::vector<int> global;        // local -> level vertex
   std::vector<float> inv_degree;  // 1 / ring size (0 for an isolated vertex)
   // Rows, per touched vertex: its free ring neighbours (local indices) and
   // their slot in the level's ring. Other neighbours multiply a zero.
   std::vector<int> row_offsets, row_cols, row_slots;
-  // Per level ring slot of a touched vertex: its row entry, or -1.
-  std::vector<int> slot_entry;
   // Columns, per free vertex q: its ring neighbours t (local, all touched) and
   // the row entry (t, q), or -1 where t's ring does not list q.
   std::vector<int> col_offsets, col_rows, col_entries;
@@ -37,7 +35,7 @@ struct LocalGraph {
     const int n = lv.num_vertices;
     const VertexAdjacency& r = lv.rings;
     std::vector<int> local(n, -1);
-    free = static_cast<int>(free_vertices.size());
+    num_free = static_cast<int>(free_vertices.size());
     for (int i : free_vertices) {
       local[i] = static_cast<int>(global.size());
       global.push_back(i);
@@ -52,14 +50,15 @@ struct LocalGraph {
       }
     const int nt = static_cast<int>(global.size());
     inv_degree.resize(nt);
-    slot_entry.assign(r.indices.size(), -1);
+    // Per level ring slot of a touched vertex: its row entry, or -1.
+    std::vector<int> slot_entry(r.indices.size(), -1);
     row_offsets.assign(1, 0);
     for (int t = 0; t < nt; ++t) {
       const int i = global[t];
       inv_degree[t] = r.degree(i) > 0 ? 1.0f / float(r.degree(i)) : 0.0f;
       for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
         const int j = local[r.indices[s]];
-        if (j < 0 || j >= free) continue;
+        if (j < 0 || j >= num_free) continue;
         slot_entry[s] = static_cast<int>(row_cols.size());
         row_cols.push_back(j);
         row_slots.push_back(s - r.offsets[i]);
@@ -67,7 +66,7 @@ struct LocalGraph {
       row_offsets.push_back(static_cast<int>(row_cols.size()));
     }
     col_offsets.assign(1, 0);
-    for (int a = 0; a < free; ++a) {
+    for (int a = 0; a < num_free; ++a) {
       const int q = global[a];
       for (int s = r.offsets[q]; s < r.offsets[q + 1]; ++s) {
         const int back = lv.ring_transpose[s];
@@ -113,7 +112,7 @@ class Solver {
   Solver(const DisplacementProblem& p, const DisplacementOptions& o)
       : p_(p), o_(scaled(o)), lv_(*p.level), g_(lv_, free_vertices(p)) {
     d_full_.setZero(lv_.num_vertices);
-    const int nf = g_.free;
+    const int nf = g_.num_free;
     // The fixed vertices' share of E_hier and E_temp (d = 0 there): constant,
     // kept so that the reported energies are the whole energy.
     const auto free_part = [&](const Eigen::VectorXf& full, Eigen::VectorXf& part, double& fixed_cost) {
@@ -135,7 +134,7 @@ class Solver {
     lin.weight.resize(nt);
     lin.data_residual.resize(nt);
     vertex_cost_.resize(nt);
-    for (int a = 0; a < g_.free; ++a) d_full_[g_.global[a]] = d[a];
+    for (int a = 0; a < g_.num_free; ++a) d_full_[g_.global[a]] = d[a];
     const auto position = [&](int i) -> Vec3f { return p_.base.col(i) + d_full_[i] * p_.base_normals.col(i); };
     parallel_for(
         nt,
@@ -158,7 +157,7 @@ class Solver {
         nt,
         [&](int b, int e) {
           for (int t = b; t < e; ++t) {
-            const float xt = t < g_.free ? x[t] : 0.0f;
+            const float xt = t < g_.num_free ? x[t] : 0.0f;
             float g = 0, sum = 0;
             if constexpr (kWithData) g = lin->self[t] * xt;
             for (int k = g_.row_offsets[t]; k < g_.row_offsets[t + 1]; ++k) {
@@ -177,7 +176,7 @@ class Solver {
   // (gathers: entry q collects from q and its ring).
   void apply_columns(const Linearisation& lin, const Eigen::VectorXf& u, const Eigen::VectorXf& v, float c,
                      const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
-    const int nf = g_.free;
+    const int nf = g_.num_free;
     y.resize(nf);
     const float smooth = float(o_.weights.smooth);
     parallel_for(
@@ -208,7 +207,7 @@ class Solver {
 
   // Jacobi preconditioner: diag(J^T J).
   void diagonal(const Linearisation& lin, Eigen::VectorXf& diag) const {
-    const int nf = g_.free;
+    const int nf = g_.num_free;
     diag.resize(nf);
     const float smooth = float(o_.weights.smooth);
     for (int a = 0; a < nf; ++a) {
@@ -226,7 +225,7 @@ class Solver {
 
   DisplacementReport run(Eigen::VectorXf& d_level) {
     DisplacementReport rep;
-    const int nf = g_.free;
+    const int nf = g_.num_free;
     Eigen::VectorXf d(nf);
     for (int a = 0; a < nf; ++a) d[a] = d_level[g_.global[a]];
     Linearisation lin;
