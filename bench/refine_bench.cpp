@@ -68,6 +68,27 @@ void BM_RefineFrame720p(benchmark::State& state) {
 }
 BENCHMARK(BM_RefineFrame720p)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
+// The albedo phase of a video's first frames: lighting and albedo estimated
+// jointly over 8 albedo frames (4 lighting/albedo rounds at each, 100 PCG
+// iterations per solve), without the displacement solve.
+void BM_AlbedoPhase(benchmark::State& state) {
+  const Scene& s = scene();
+  RefineOptions options;
+  options.displacements = false;
+  options.albedo.frames = static_cast<int>(s.images.size());
+  options.albedo.interval = 1;
+  double albedo_ms = 0;
+  long phases = 0;
+  for (auto _ : state) {
+    Refiner refiner = make_face_refiner(s.model, options);
+    for (size_t f = 0; f < s.images.size(); ++f)
+      albedo_ms += refiner.refine(s.images[f], s.coarse[f], s.performance.camera).timings.albedo_ms;
+    ++phases;
+  }
+  state.counters["albedo_ms"] = albedo_ms / double(std::max(1L, phases));
+}
+BENCHMARK(BM_AlbedoPhase)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
 }  // namespace
 
 }  // namespace facecap

@@ -4,7 +4,8 @@
 
 namespace facecap {
 
-// Number of worker threads parallel_for uses (hardware concurrency, at least 1).
+// Number of threads parallel_for uses: FACECAP_THREADS when set to a positive
+// number, else the hardware concurrency (at least 1).
 int worker_count();
 
 // Calls body(begin, end) on disjoint chunks that cover [0, n), in parallel.

@@ -1,5 +1,6 @@
 #include "facecap/refine/albedo.hpp"
 
+#include "facecap/core/parallel.hpp"
 #include "facecap/render/shading.hpp"
 
 namespace facecap {
@@ -52,19 +53,30 @@ void AlbedoEstimator::laplacian_normal(const Channels& x, Channels& lx, Channels
   const int n = level_.num_vertices;
   lx.resize(n, 3);
   out.resize(n, 3);
-  for (int i = 0; i < n; ++i) {
-    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) sum += x.row(r.indices[s]);
-    lx.row(i) = inv_degree_[i] > 0 ? Eigen::RowVector3d(x.row(i) - sum * inv_degree_[i]) : Eigen::RowVector3d::Zero();
-  }
-  for (int i = 0; i < n; ++i) {
-    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
-      const int j = r.indices[s];
-      sum += lx.row(j) * inv_degree_[j];
-    }
-    out.row(i) = lx.row(i) - sum;
-  }
+  parallel_for(
+      n,
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+          for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) sum += x.row(r.indices[s]);
+          lx.row(i) =
+              inv_degree_[i] > 0 ? Eigen::RowVector3d(x.row(i) - sum * inv_degree_[i]) : Eigen::RowVector3d::Zero();
+        }
+      },
+      1024);
+  parallel_for(
+      n,
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+          for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
+            const int j = r.indices[s];
+            sum += lx.row(j) * inv_degree_[j];
+          }
+          out.row(i) = lx.row(i) - sum;
+        }
+      },
+      1024);
 }
 
 AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd& d, const Channels& b, double w,
