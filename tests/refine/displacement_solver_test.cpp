@@ -138,10 +138,33 @@ TEST(DisplacementSolver, PaperIterationsReachTheEnergysMinimum) {
   DisplacementOptions o;
   o.gauss_newton_steps = 60;
   o.pcg_iterations = 60;
+  o.function_tolerance = 0;  // to the end
   c.solve(o, d_long, before, longer, true);
   EXPECT_LT(longer.final_cost, paper.initial_cost);
   EXPECT_LT(paper.final_cost - longer.final_cost, 0.01 * (paper.initial_cost - longer.final_cost));
   EXPECT_LT((d_paper - d_long).norm(), 0.05 * d_long.norm());
+}
+
+// The convergence test stops Gauss-Newton once its model promises less than
+// function_tolerance of the energy: here after fewer steps than 60, at the
+// energy of running all 60 (a wrong predicted decrease would stop at once, or
+// never).
+TEST(DisplacementSolver, ConvergenceTestStopsAtTheSameEnergy) {
+  const BumpCase c;
+  Eigen::VectorXf d_tol, d_all;
+  double before = 0;
+  DisplacementReport tol, all;
+  DisplacementOptions o;
+  o.gauss_newton_steps = 60;
+  o.function_tolerance = 1e-6;
+  c.solve(o, d_tol, before, tol, true);
+  o.function_tolerance = 0;
+  c.solve(o, d_all, before, all, true);
+  EXPECT_TRUE(tol.converged);
+  EXPECT_GE(tol.steps, 2);
+  EXPECT_LT(tol.steps, 60);
+  EXPECT_LT(tol.final_cost - all.final_cost, 1e-4 * (all.initial_cost - all.final_cost));
+  EXPECT_LT((d_tol - d_all).norm(), 0.01 * d_all.norm());
 }
 
 }  // namespace facecap

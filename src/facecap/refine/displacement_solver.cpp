@@ -261,6 +261,14 @@ class Solver {
         p = z + float(rz_new / rz) * p;
         rz = rz_new;
       }
+      // PCG from x0 = 0 keeps its residual -grad - H x orthogonal to x, so
+      // x^T H x = -grad^T x and the quadratic model's decrease is
+      // -grad^T x - x^T H x / 2 = -grad^T x / 2.
+      const double predicted_decrease = -0.5 * double(grad.dot(x));
+      if (predicted_decrease < o_.function_tolerance * current) {
+        rep.converged = true;
+        break;
+      }
       // Gauss-Newton step; halved if it does not lower the energy.
       double trial_cost = current;
       float scale = 1.0f;
