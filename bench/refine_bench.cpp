@@ -11,6 +11,7 @@
 #include "facecap/model/model_cache.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/render/rasterizer.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 
 namespace facecap {
@@ -67,6 +68,33 @@ void BM_RefineFrame720p(benchmark::State& state) {
   for (size_t l = 0; l < level_ms.size(); ++l) state.counters["level" + std::to_string(l) + "_ms"] = level_ms[l] / n;
 }
 BENCHMARK(BM_RefineFrame720p)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// Rasterising the finest level at 1280x720 (depth, triangle and barycentric
+// buffers reused across frames), as the displacement solve's vertex sampling
+// does every frame.
+void BM_RasterizeFinestLevel720p(benchmark::State& state) {
+  const Scene& s = scene();
+  Refiner refiner = make_face_refiner(s.model, RefineOptions{});
+  refiner.refine(s.images[0], s.coarse[0], s.performance.camera);
+  const MeshHierarchy& h = refiner.hierarchy();
+  const int finest = h.num_levels() - 1;
+  std::vector<Positions> frames;
+  for (const Positions& c : s.coarse) {
+    Positions p = c;
+    for (int l = 1; l <= finest; ++l) p = h.prolong(p, l);
+    frames.push_back(p);
+  }
+  RasterBuffers buffers;
+  buffers.resize(s.images[0].cols, s.images[0].rows);
+  size_t frame = 0;
+  for (auto _ : state) {
+    rasterize(frames[frame], h.level(finest).triangles, s.performance.camera, buffers);
+    benchmark::DoNotOptimize(buffers.depth.data());
+    frame = (frame + 1) % frames.size();
+  }
+  state.counters["triangles"] = double(h.level(finest).triangles.size());
+}
+BENCHMARK(BM_RasterizeFinestLevel720p)->Unit(benchmark::kMillisecond);
 
 // The albedo phase of a video's first frames: lighting and albedo estimated
 // jointly over 8 albedo frames (4 lighting/albedo rounds at each, 100 PCG

@@ -79,7 +79,9 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   ++frame_count_;
   if (albedo_frame) {
     albedo_frames_.push_back({samples0, md_normals, lighting});
-    for (int round = 0; round < options_.albedo_rounds; ++round) {
+    const bool fixing_frame = static_cast<int>(albedo_frames_.size()) >= options_.albedo.frames;
+    const int rounds = fixing_frame ? options_.albedo_rounds : options_.albedo_rounds_interim;
+    for (int round = 0; round < rounds; ++round) {
       albedo_->clear_data();
       for (AlbedoFrame& f : albedo_frames_) {
         if (round > 0)
