@@ -31,8 +31,13 @@ inline void cpu_relax() {
 // How long an idle worker keeps polling for the next job before it sleeps on
 // the condition variable. The refinement's solver issues jobs of 30-100 us
 // back to back; a condition-variable wake-up costs 10-20 us on a VM, as much
-// as the work it would share, so workers spin through those gaps.
-constexpr auto kSpin = std::chrono::microseconds(200);
+// as the work it would share, so workers spin through those gaps. Not much
+// longer: a spinning worker takes CPU from the tracking stage running beside
+// the refinement. `bench track --refine` on address_720p_a, 3 runs each:
+// 20 / 50 / 200 us gave 17.7-18.1 / 19.5-22.6 / 16.4-19.0 fps.
+constexpr auto kSpin = std::chrono::microseconds(50);
+// Reading the clock costs more than a pause: read it every this many polls.
+constexpr int kSpinsPerClockRead = 64;
 
 // A fixed set of worker threads that share one job at a time. A job is a
 // range cut into chunks. Its state is one 64-bit word, (generation << 32) |
@@ -70,11 +75,13 @@ class ThreadPool {
     run_chunks(generation_);
     // Wait for the chunks that workers took.
     const auto start = std::chrono::steady_clock::now();
-    for (int spins = 0; done_chunks_.load(std::memory_order_acquire) < chunks; ++spins) {
-      if (spins < 64 || std::chrono::steady_clock::now() - start < kSpin)
-        cpu_relax();
-      else
+    bool yielding = false;
+    for (int spins = 1; done_chunks_.load(std::memory_order_acquire) < chunks; ++spins) {
+      if (!yielding && spins % kSpinsPerClockRead == 0) yielding = std::chrono::steady_clock::now() - start > kSpin;
+      if (yielding)
         std::this_thread::yield();
+      else
+        cpu_relax();
     }
     return true;
   }
@@ -107,8 +114,8 @@ class ThreadPool {
     for (;;) {
       // Poll for a new job for a while, then sleep until one is published.
       const auto start = std::chrono::steady_clock::now();
-      for (int spins = 0; uint32_t(state_.load() >> 32) == seen && !stop_.load(); ++spins) {
-        if (spins >= 64 && std::chrono::steady_clock::now() - start > kSpin) {
+      for (int spins = 1; uint32_t(state_.load() >> 32) == seen && !stop_.load(); ++spins) {
+        if (spins % kSpinsPerClockRead == 0 && std::chrono::steady_clock::now() - start > kSpin) {
           std::unique_lock lock(mutex_);
           sleepers_.fetch_add(1);
           wake_.wait(lock, [&] { return stop_.load() || uint32_t(state_.load() >> 32) != seen; });
