@@ -297,20 +297,23 @@ class Solver {
     const int i = g_.global[t];
     const Vec3f pi = position(i);
     const Vec3f ni = p_.base_normals.col(i);
+    // m = sum over corners (j, k) of a x b, a = p_j - p_i, b = p_k - p_i.
+    // d/dd_i (a x b) = n_i x (a - b), d/dd_j = n_j x b, d/dd_k = a x n_k =
+    // n_k x (-a): so dm/dd_i = n_i x sum (a - b), and a ring vertex's
+    // dm/dd_s = n_s x u_s with u_s its corners' summed b (as j) and -a (as k).
     Vec3f m = Vec3f::Zero();
-    Vec3f dm_self = Vec3f::Zero();
-    Vec3f dm_ring[kMaxRing];
+    Vec3f sum_a_minus_b = Vec3f::Zero();
+    Vec3f u[kMaxRing];
     const int deg = std::min(lv_.rings.degree(i), kMaxRing);
-    for (int s = 0; s < deg; ++s) dm_ring[s] = Vec3f::Zero();
+    for (int s = 0; s < deg; ++s) u[s] = Vec3f::Zero();
     for (int c = lv_.corner_offsets[i]; c < lv_.corner_offsets[i + 1]; ++c) {
       const auto& [j, k] = lv_.corners[c];
       const auto& [sj, sk] = lv_.corner_slots[c];
       const Vec3f a = position(j) - pi, bvec = position(k) - pi;
       m += a.cross(bvec);
-      // d/dd_i (a x b) = n_i x (a - b); d/dd_j = n_j x b; d/dd_k = a x n_k.
-      dm_self += ni.cross(a - bvec);
-      if (sj >= 0 && sj < kMaxRing) dm_ring[sj] += Vec3f(p_.base_normals.col(j)).cross(bvec);
-      if (sk >= 0 && sk < kMaxRing) dm_ring[sk] += a.cross(Vec3f(p_.base_normals.col(k)));
+      sum_a_minus_b += a - bvec;
+      if (sj >= 0 && sj < kMaxRing) u[sj] += bvec;
+      if (sk >= 0 && sk < kMaxRing) u[sk] -= a;
     }
     const int rb = g_.row_offsets[t], re = g_.row_offsets[t + 1];
     const float len = m.norm();
@@ -328,10 +331,11 @@ class Solver {
     const Vec3f g(gv.x(), -gv.y(), -gv.z());  // back to the camera frame
     // ds/dm = g^T (I - n n^T) / |m|
     const Vec3f dsdm = (g - nhat * nhat.dot(g)) / len;
-    lin.self[t] = dsdm.dot(dm_self);
+    // dsdm . (n x w) = w . (dsdm x n)
+    lin.self[t] = sum_a_minus_b.dot(dsdm.cross(ni));
     for (int e = rb; e < re; ++e) {
       const int slot = g_.row_slots[e];
-      lin.jac[e] = slot < kMaxRing ? dsdm.dot(dm_ring[slot]) : 0.0f;
+      lin.jac[e] = slot < kMaxRing ? u[slot].dot(dsdm.cross(Vec3f(p_.base_normals.col(g_.global[g_.row_cols[e]])))) : 0.0f;
     }
     if (!p_.samples->visible[i]) {
       lin.weight[t] = 0;
