@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <type_traits>
 #include <unordered_map>
 
 #include "facecap/core/error.hpp"
@@ -245,11 +246,28 @@ Eigen::MatrixXf MeshHierarchy::prolong(const Eigen::MatrixXf& coarser, int l) co
   const int before = levels_[l - 1].num_vertices;
   Eigen::MatrixXf out(coarser.rows(), level.num_vertices);
   out.leftCols(before) = coarser;
-  for (int v = before; v < level.num_vertices; ++v) {
-    const VertexStencil& s = level.new_vertices[v - before];
-    out.col(v).setZero();
-    for (int k = 0; k < s.size; ++k) out.col(v) += s.weights[k] * out.col(s.parents[k]);
-  }
+  // New vertices in order (a stencil may read earlier new vertices), on the
+  // raw column-major data, with the common row counts (positions, scalars)
+  // known at compile time.
+  float* data = out.data();
+  const auto fill = [&](auto rows_constant) {
+    const int rows = rows_constant > 0 ? int(rows_constant) : int(out.rows());
+    for (int v = before; v < level.num_vertices; ++v) {
+      const VertexStencil& s = level.new_vertices[v - before];
+      float* dst = data + size_t(v) * rows;
+      for (int r = 0; r < rows; ++r) dst[r] = 0.0f;
+      for (int k = 0; k < s.size; ++k) {
+        const float* src = data + size_t(s.parents[k]) * rows;
+        for (int r = 0; r < rows; ++r) dst[r] += s.weights[k] * src[r];
+      }
+    }
+  };
+  if (out.rows() == 3)
+    fill(std::integral_constant<int, 3>{});
+  else if (out.rows() == 1)
+    fill(std::integral_constant<int, 1>{});
+  else
+    fill(std::integral_constant<int, 0>{});
   return out;
 }
 
