@@ -44,4 +44,23 @@ TEST(ParallelFor, EmptyRangeCallsNothing) {
   EXPECT_FALSE(called);
 }
 
+TEST(ParallelSum, CoversEveryIndexOnceAndAddsTheBlocks) {
+  const int n = 100003;
+  std::vector<int> calls(n, 0);
+  const double sum = parallel_sum(
+      n,
+      [&](int b, int e) {
+        double s = 0;
+        for (int i = b; i < e; ++i) {
+          ++calls[i];
+          s += i;
+        }
+        return s;
+      },
+      1000);
+  EXPECT_EQ(sum, double(n) * (n - 1) / 2);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(calls[i], 1) << i;
+  EXPECT_EQ(parallel_sum(0, [](int, int) { return 1.0; }), 0.0);
+}
+
 }  // namespace facecap

@@ -12,4 +12,10 @@ int worker_count();
 // Small ranges (n < min_chunk) run on the calling thread.
 void parallel_for(int n, const std::function<void(int, int)>& body, int min_chunk = 256);
 
+// Sum over [0, n) of block(begin, end), which returns its range's partial sum:
+// the range is cut into fixed blocks of `block_size` that run in parallel, and
+// their sums are added in order, so the result does not depend on the number
+// of threads.
+double parallel_sum(int n, const std::function<double(int, int)>& block, int block_size = 4096);
+
 }  // namespace facecap

@@ -107,6 +107,10 @@ std::vector<int> free_vertices(const DisplacementProblem& p) {
   return out;
 }
 
+// Vertices per block of the PCG's parallel passes and their sums (fixed, so
+// that the sums do not depend on the thread count).
+constexpr int kBlock = 2048;
+
 class Solver {
  public:
   Solver(const DisplacementProblem& p, const DisplacementOptions& o)
@@ -173,15 +177,16 @@ class Solver {
   }
   // The column products over the free vertices:
   //   y = G^T u + (w3 L^T v + c x)
-  // (gathers: entry q collects from q and its ring).
-  void apply_columns(const Linearisation& lin, const Eigen::VectorXf& u, const Eigen::VectorXf& v, float c,
-                     const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
+  // (gathers: entry q collects from q and its ring). Returns x . y.
+  double apply_columns(const Linearisation& lin, const Eigen::VectorXf& u, const Eigen::VectorXf& v, float c,
+                       const Eigen::VectorXf& x, Eigen::VectorXf& y) const {
     const int nf = g_.num_free;
     y.resize(nf);
     const float smooth = float(o_.weights.smooth);
-    parallel_for(
+    return parallel_sum(
         nf,
         [&](int b, int e) {
+          double xy = 0;
           for (int a = b; a < e; ++a) {
             float data = lin.self[a] * u[a];
             float lap = g_.inv_degree[a] > 0 ? v[a] : 0.0f;
@@ -192,9 +197,11 @@ class Solver {
               lap -= v[t] * g_.inv_degree[t];
             }
             y[a] = data + (smooth * lap + c * x[a]);
+            xy += double(x[a]) * y[a];
           }
+          return xy;
         },
-        1024);
+        kBlock);
   }
 
   double cost(const Eigen::VectorXf& d, const Linearisation& lin) {
@@ -250,15 +257,30 @@ class Solver {
       double rz = r.dot(z);
       for (int k = 0; k < o_.pcg_iterations && rz > 1e-30; ++k) {
         apply_rows<true>(&lin, p, &wgx, lx);
-        apply_columns(lin, wgx, lx, diag_const_, p, ap);
-        const double pap = p.dot(ap);
+        const double pap = apply_columns(lin, wgx, lx, diag_const_, p, ap);
         if (pap <= 0) break;
         const float alpha = float(rz / pap);
-        x += alpha * p;
-        r -= alpha * ap;
-        z = r.cwiseQuotient(diag);
-        const double rz_new = r.dot(z);
-        p = z + float(rz_new / rz) * p;
+        // x += alpha p, r -= alpha ap, z = M^-1 r and r . z in one pass.
+        const double rz_new = parallel_sum(
+            nf,
+            [&](int b, int e) {
+              double sum = 0;
+              for (int a = b; a < e; ++a) {
+                x[a] += alpha * p[a];
+                r[a] -= alpha * ap[a];
+                z[a] = r[a] / diag[a];
+                sum += double(r[a]) * z[a];
+              }
+              return sum;
+            },
+            kBlock);
+        const float beta = float(rz_new / rz);
+        parallel_for(
+            nf,
+            [&](int b, int e) {
+              for (int a = b; a < e; ++a) p[a] = z[a] + beta * p[a];
+            },
+            kBlock);
         rz = rz_new;
       }
       // PCG from x0 = 0 keeps its residual -grad - H x orthogonal to x, so
@@ -335,7 +357,8 @@ class Solver {
     lin.self[t] = sum_a_minus_b.dot(dsdm.cross(ni));
     for (int e = rb; e < re; ++e) {
       const int slot = g_.row_slots[e];
-      lin.jac[e] = slot < kMaxRing ? u[slot].dot(dsdm.cross(Vec3f(p_.base_normals.col(g_.global[g_.row_cols[e]])))) : 0.0f;
+      lin.jac[e] =
+          slot < kMaxRing ? u[slot].dot(dsdm.cross(Vec3f(p_.base_normals.col(g_.global[g_.row_cols[e]])))) : 0.0f;
     }
     if (!p_.samples->visible[i]) {
       lin.weight[t] = 0;
