@@ -26,12 +26,17 @@ ShCoeffs estimate_lighting(const VertexSamples& samples, const Positions& normal
     Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
     Eigen::Matrix<double, 9, 1> atb = Eigen::Matrix<double, 9, 1>::Zero();
     for (int r = 0; r < n; ++r) {
+      // The three channels' rows share SH(n_i): one rank-1 update with their
+      // summed weights.
       const int i = index[r];
+      double rho2 = 0, rho_colour = 0;
       for (int c = 0; c < 3; ++c) {
         const double rho = albedo(c, i);
-        ata.noalias() += (weight[r] * rho * rho) * (basis[r] * basis[r].transpose());
-        atb.noalias() += (weight[r] * rho * samples.colour(c, i)) * basis[r];
+        rho2 += rho * rho;
+        rho_colour += rho * samples.colour(c, i);
       }
+      ata.noalias() += (weight[r] * rho2) * (basis[r] * basis[r].transpose());
+      atb.noalias() += (weight[r] * rho_colour) * basis[r];
     }
     const double data_weight = ata(0, 0);  // sum of the rows' rho^2
     for (int k = 4; k < 9; ++k) ata(k, k) += options.band2_ridge * data_weight;

@@ -36,43 +36,91 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
                RasterBuffers& out, const RasterOptions& options) {
   const int width = out.width;
   const int height = out.height;
-  std::fill(out.depth.begin(), out.depth.end(), std::numeric_limits<float>::infinity());
-  std::fill(out.triangle.begin(), out.triangle.end(), -1);
+  if (width <= 0 || height <= 0) return;
 
-  // Project and cull once.
-  std::vector<ProjectedTriangle> tris;
-  tris.reserve(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const Triangle& tri = triangles[t];
-    const Vec3f a = camera_points.col(tri[0]);
-    const Vec3f b = camera_points.col(tri[1]);
-    const Vec3f c = camera_points.col(tri[2]);
-    if (a.z() < options.near_z || b.z() < options.near_z || c.z() < options.near_z) continue;
-    if (options.cull_back_faces && (b - a).cross(c - a).dot(a) >= 0.0f) continue;
-    ProjectedTriangle pt;
-    pt.p[0] = camera.project(a);
-    pt.p[1] = camera.project(b);
-    pt.p[2] = camera.project(c);
-    pt.inv_z[0] = 1.0f / a.z();
-    pt.inv_z[1] = 1.0f / b.z();
-    pt.inv_z[2] = 1.0f / c.z();
-    pt.index = static_cast<int>(t);
-    pt.min_y = std::min({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
-    pt.max_y = std::max({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
-    if (pt.max_y < 0 || pt.min_y > height - 1) continue;
-    tris.push_back(pt);
-  }
+  // Project every vertex once (a vertex is a corner of about six triangles).
+  const int num_points = static_cast<int>(camera_points.cols());
+  std::vector<Vec2f> screen(num_points);
+  std::vector<float> inv_z(num_points);
+  parallel_for(
+      num_points,
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          const Vec3f p = camera_points.col(i);
+          screen[i] = camera.project(p);
+          inv_z[i] = 1.0f / p.z();
+        }
+      },
+      4096);
+
+  // Set up and cull each triangle.
+  const int num_triangles = static_cast<int>(triangles.size());
+  std::vector<ProjectedTriangle> setup(num_triangles);
+  std::vector<char> kept(num_triangles, 0);
+  parallel_for(
+      num_triangles,
+      [&](int b, int e) {
+        for (int t = b; t < e; ++t) {
+          const Triangle& tri = triangles[t];
+          const Vec3f a = camera_points.col(tri[0]);
+          const Vec3f bv = camera_points.col(tri[1]);
+          const Vec3f c = camera_points.col(tri[2]);
+          if (a.z() < options.near_z || bv.z() < options.near_z || c.z() < options.near_z) continue;
+          if (options.cull_back_faces && (bv - a).cross(c - a).dot(a) >= 0.0f) continue;
+          ProjectedTriangle& pt = setup[t];
+          for (int k = 0; k < 3; ++k) {
+            pt.p[k] = screen[tri[k]];
+            pt.inv_z[k] = inv_z[tri[k]];
+          }
+          pt.index = t;
+          pt.min_y = std::min({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
+          pt.max_y = std::max({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
+          kept[t] = !(pt.max_y < 0 || pt.min_y > height - 1);
+        }
+      },
+      2048);
 
   // Each worker owns a band of rows, so no two threads write the same pixel.
+  // Triangles are binned by band first (a counting sort that keeps their
+  // order, so equal depths resolve as before), and a band visits only the
+  // triangles that reach it.
   const int bands = std::max(1, std::min(height, worker_count() * 4));
+  std::vector<int> band_of_row(height);
+  for (int band = 0; band < bands; ++band)
+    for (int y = height * band / bands; y < height * (band + 1) / bands; ++y) band_of_row[y] = band;
+  const auto band_span = [&](const ProjectedTriangle& pt) {
+    const int y0 = std::clamp(int(std::ceil(pt.min_y)), 0, height - 1);
+    const int y1 = std::clamp(int(std::floor(pt.max_y)), 0, height - 1);
+    return std::pair{band_of_row[y0], band_of_row[y1]};
+  };
+  std::vector<int> bin_offsets(bands + 1, 0);
+  for (int t = 0; t < num_triangles; ++t) {
+    if (!kept[t]) continue;
+    const auto [b0, b1] = band_span(setup[t]);
+    for (int band = b0; band <= b1; ++band) ++bin_offsets[band + 1];
+  }
+  for (int band = 0; band < bands; ++band) bin_offsets[band + 1] += bin_offsets[band];
+  std::vector<int> bins(bin_offsets[bands]);
+  {
+    std::vector<int> next(bin_offsets.begin(), bin_offsets.end() - 1);
+    for (int t = 0; t < num_triangles; ++t) {
+      if (!kept[t]) continue;
+      const auto [b0, b1] = band_span(setup[t]);
+      for (int band = b0; band <= b1; ++band) bins[next[band]++] = t;
+    }
+  }
+
   parallel_for(
       bands,
       [&](int band_begin, int band_end) {
         for (int band = band_begin; band < band_end; ++band) {
           const int y_lo = height * band / bands;
           const int y_hi = height * (band + 1) / bands - 1;
-          for (const ProjectedTriangle& pt : tris) {
-            if (pt.max_y < y_lo || pt.min_y > y_hi) continue;
+          const size_t first = size_t(y_lo) * width, last = size_t(y_hi + 1) * width;
+          std::fill(out.depth.begin() + first, out.depth.begin() + last, std::numeric_limits<float>::infinity());
+          std::fill(out.triangle.begin() + first, out.triangle.begin() + last, -1);
+          for (int k = bin_offsets[band]; k < bin_offsets[band + 1]; ++k) {
+            const ProjectedTriangle& pt = setup[bins[k]];
             const Vec2f& p0 = pt.p[0];
             const Vec2f& p1 = pt.p[1];
             const Vec2f& p2 = pt.p[2];
