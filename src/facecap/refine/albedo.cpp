@@ -1,9 +1,37 @@
 #include "facecap/refine/albedo.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "facecap/core/parallel.hpp"
 #include "facecap/render/shading.hpp"
 
 namespace facecap {
+
+namespace {
+
+// Vertices per block of the albedo PCG's parallel passes.
+constexpr int kBlock = 1024;
+
+// Sum over [0, n) of block(begin, end) (three channels): fixed blocks run on
+// the pool and their sums are added in order, so the result does not depend
+// on the number of threads.
+template <typename Block>
+Eigen::Array3d channel_sums(int n, const Block& block) {
+  const int blocks = (n + kBlock - 1) / kBlock;
+  std::vector<Eigen::Array3d> partial(blocks, Eigen::Array3d::Zero());
+  parallel_for(
+      blocks,
+      [&](int b, int e) {
+        for (int k = b; k < e; ++k) partial[k] = block(k * kBlock, std::min(n, (k + 1) * kBlock));
+      },
+      1);
+  Eigen::Array3d sum = Eigen::Array3d::Zero();
+  for (const Eigen::Array3d& s : partial) sum += s;
+  return sum;
+}
+
+}  // namespace
 
 AlbedoEstimator::AlbedoEstimator(const MeshLevel& level, AlbedoOptions options)
     : level_(level),
@@ -105,21 +133,51 @@ AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd&
   Channels z = inv_diag.asDiagonal() * res;
   Channels p = z;
   Eigen::Array3d rz = (res.array() * z.array()).colwise().sum().transpose();
+  // Each iteration: the Laplacian passes, then two fused passes over the
+  // vertices (ap and p.ap; x, res, z and res.z) and the update of p, all on
+  // the pool. Raw row-major data: entry (i, c) at 3 i + c.
+  double* const xd = x.data();
+  double* const rd = res.data();
+  double* const zd = z.data();
+  double* const pd = p.data();
+  double* const apd = ap.data();
   for (int k = 0; k < options_.pcg_iterations && (rz > 1e-20).any(); ++k) {
-    apply(p, ap);
-    Eigen::Array3d alpha = Eigen::Array3d::Zero();
-    for (int c = 0; c < 3; ++c) {
-      if (rz[c] > 1e-20) alpha[c] = rz[c] / p.col(c).dot(ap.col(c));  // converged columns hold still
-    }
-    x.noalias() += p * alpha.matrix().asDiagonal();
-    res.noalias() -= ap * alpha.matrix().asDiagonal();
-    z.noalias() = inv_diag.asDiagonal() * res;
-    for (int c = 0; c < 3; ++c) {
-      if (!(rz[c] > 1e-20)) continue;
-      const double rz_new = res.col(c).dot(z.col(c));
-      p.col(c) = z.col(c) + (rz_new / rz[c]) * p.col(c);
-      rz[c] = rz_new;
-    }
+    laplacian_normal(p, lx, llx);
+    const double* const lld = llx.data();
+    const Eigen::Array3d pap = channel_sums(n, [&](int b, int e) {
+      Eigen::Array3d sum = Eigen::Array3d::Zero();
+      for (int i = b; i < e; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const int q = 3 * i + c;
+          apd[q] = d[i] * pd[q] + w * lld[q];
+          sum[c] += pd[q] * apd[q];
+        }
+      return sum;
+    });
+    // Converged columns hold still (alpha 0).
+    const Eigen::Array3d alpha = (rz > 1e-20).select(rz / pap, 0.0);
+    const Eigen::Array3d rz_new = channel_sums(n, [&](int b, int e) {
+      Eigen::Array3d sum = Eigen::Array3d::Zero();
+      for (int i = b; i < e; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const int q = 3 * i + c;
+          xd[q] += alpha[c] * pd[q];
+          rd[q] -= alpha[c] * apd[q];
+          zd[q] = inv_diag[i] * rd[q];
+          sum[c] += rd[q] * zd[q];
+        }
+      return sum;
+    });
+    const Eigen::Array3d beta = (rz > 1e-20).select(rz_new / rz, 0.0);
+    parallel_for(
+        n,
+        [&](int b, int e) {
+          for (int i = b; i < e; ++i)
+            for (int c = 0; c < 3; ++c)
+              if (rz[c] > 1e-20) pd[3 * i + c] = zd[3 * i + c] + beta[c] * pd[3 * i + c];
+        },
+        kBlock);
+    rz = (rz > 1e-20).select(rz_new, rz);
   }
   return x;
 }
