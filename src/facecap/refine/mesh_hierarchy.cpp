@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/parallel.hpp"
 
 namespace facecap {
 
@@ -295,16 +296,21 @@ std::vector<bool> MeshHierarchy::prolong_mask(const std::vector<bool>& coarse, i
 
 Positions level_normals(const MeshLevel& level, const Positions& p) {
   Positions n(3, level.num_vertices);
-  for (int i = 0; i < level.num_vertices; ++i) {
-    Vec3f m = Vec3f::Zero();
-    const Vec3f pi = p.col(i);
-    for (int c = level.corner_offsets[i]; c < level.corner_offsets[i + 1]; ++c) {
-      const auto& [j, k] = level.corners[c];
-      m += (p.col(j) - pi).cross(p.col(k) - pi);
-    }
-    const float len = m.norm();
-    n.col(i) = len > 0 ? Vec3f(m / len) : Vec3f::Zero();
-  }
+  parallel_for(
+      level.num_vertices,
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          Vec3f m = Vec3f::Zero();
+          const Vec3f pi = p.col(i);
+          for (int c = level.corner_offsets[i]; c < level.corner_offsets[i + 1]; ++c) {
+            const auto& [j, k] = level.corners[c];
+            m += (p.col(j) - pi).cross(p.col(k) - pi);
+          }
+          const float len = m.norm();
+          n.col(i) = len > 0 ? Vec3f(m / len) : Vec3f::Zero();
+        }
+      },
+      4096);
   return n;
 }
 

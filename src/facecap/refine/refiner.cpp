@@ -42,6 +42,12 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo);
     previous_.assign(hierarchy_.num_levels(), Eigen::VectorXf());
     raster_.assign(hierarchy_.num_levels(), RasterBuffers());
+    level_masks_.clear();
+    level_skin_.clear();
+    for (int l = 0; l < hierarchy_.num_levels(); ++l) {
+      level_masks_.push_back(hierarchy_.prolong_mask(data_mask_, l));
+      level_skin_.push_back(masked_triangles(hierarchy_.level(l).triangles, level_masks_.back()));
+    }
   }
   const int levels = hierarchy_.num_levels();
   Refinement out;
@@ -62,8 +68,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   Positions md = coarse;
   if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, normals0, previous_[0]);
   const Positions md_normals = level_normals(level0, md);
-  VertexSamples samples0 = sample_vertices(image_for(0), md, md_normals, masked_triangles(level0.triangles, data_mask_),
-                                           camera_for(0), raster_[0]);
+  VertexSamples samples0 = sample_vertices(image_for(0), md, md_normals, level_skin_[0], camera_for(0), raster_[0]);
   apply_mask(samples0, data_mask_);
   erode_observations(samples0, level0.rings, options_.shading_margin_rings, level0.boundary);
   if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
@@ -117,8 +122,8 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     problem.base_normals = level_normals(level, problem.base);
     problem.albedo = albedo;
     problem.lighting = lighting_used;
-    const std::vector<bool> mask = hierarchy_.prolong_mask(data_mask_, l);
-    const std::vector<Triangle> skin = masked_triangles(level.triangles, mask);
+    const std::vector<bool>& mask = level_masks_[l];
+    const std::vector<Triangle>& skin = level_skin_[l];
     VertexSamples samples =
         sample_vertices(image_for(l), problem.base, problem.base_normals, skin, camera_for(l), raster_[l]);
     apply_mask(samples, mask);

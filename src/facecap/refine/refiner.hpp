@@ -122,6 +122,9 @@ class Refiner {
   std::vector<AlbedoFrame> albedo_frames_;
   int frame_count_ = 0;
   std::vector<RasterBuffers> raster_;  // per level, reused across frames
+  // Per level, fixed with the hierarchy: the data mask and its triangles.
+  std::vector<std::vector<bool>> level_masks_;
+  std::vector<std::vector<Triangle>> level_skin_;
 };
 
 }  // namespace facecap
