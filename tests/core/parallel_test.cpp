@@ -57,10 +57,12 @@ TEST(ParallelSum, CoversEveryIndexOnceAndAddsTheBlocks) {
         }
         return s;
       },
-      1000);
+      1000, 0.0);
   EXPECT_EQ(sum, double(n) * (n - 1) / 2);
   for (int i = 0; i < n; ++i) ASSERT_EQ(calls[i], 1) << i;
-  EXPECT_EQ(parallel_sum(0, [](int, int) { return 1.0; }), 0.0);
+  EXPECT_EQ(parallel_sum(
+                0, [](int, int) { return 1.0; }, 1000, 0.0),
+            0.0);
 }
 
 }  // namespace facecap

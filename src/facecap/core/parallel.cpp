@@ -168,20 +168,4 @@ void parallel_for(int n, const std::function<void(int, int)>& body, int min_chun
   }
 }
 
-double parallel_sum(int n, const std::function<double(int, int)>& block, int block_size) {
-  if (n <= 0) return 0.0;
-  block_size = std::max(1, block_size);
-  const int blocks = (n + block_size - 1) / block_size;
-  std::vector<double> partial(blocks);
-  parallel_for(
-      blocks,
-      [&](int b, int e) {
-        for (int k = b; k < e; ++k) partial[k] = block(k * block_size, std::min(n, (k + 1) * block_size));
-      },
-      1);
-  double sum = 0.0;
-  for (double v : partial) sum += v;
-  return sum;
-}
-
 }  // namespace facecap

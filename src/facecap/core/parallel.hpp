@@ -1,6 +1,7 @@
 #pragma once
 // Data-parallel loop over an index range on the machine's cores.
 #include <functional>
+#include <vector>
 
 namespace facecap {
 
@@ -12,10 +13,28 @@ int worker_count();
 // Small ranges (n < min_chunk) run on the calling thread.
 void parallel_for(int n, const std::function<void(int, int)>& body, int min_chunk = 256);
 
-// Sum over [0, n) of block(begin, end), which returns its range's partial sum:
-// the range is cut into fixed blocks of `block_size` that run in parallel, and
-// their sums are added in order, so the result does not depend on the number
-// of threads.
-double parallel_sum(int n, const std::function<double(int, int)>& block, int block_size = 4096);
+// Sum over [0, n) of block(begin, end), which returns its range's partial sum
+// (a double, an Eigen array: anything with += and a zero): the range is cut
+// into fixed blocks of `block_size` that run in parallel, and their sums are
+// added in order, so the result does not depend on the number of threads.
+template <typename T, typename Block>
+T parallel_sum(int n, const Block& block, int block_size, const T& zero) {
+  if (n <= 0) return zero;
+  block_size = block_size > 0 ? block_size : 1;
+  const int blocks = (n + block_size - 1) / block_size;
+  std::vector<T> partial(blocks, zero);
+  parallel_for(
+      blocks,
+      [&](int b, int e) {
+        for (int k = b; k < e; ++k) {
+          const int end = n - k * block_size < block_size ? n : (k + 1) * block_size;
+          partial[k] = block(k * block_size, end);
+        }
+      },
+      1);
+  T sum = zero;
+  for (const T& p : partial) sum += p;
+  return sum;
+}
 
 }  // namespace facecap

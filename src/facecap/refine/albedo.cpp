@@ -1,8 +1,5 @@
 #include "facecap/refine/albedo.hpp"
 
-#include <algorithm>
-#include <vector>
-
 #include "facecap/core/parallel.hpp"
 #include "facecap/render/shading.hpp"
 
@@ -12,24 +9,6 @@ namespace {
 
 // Vertices per block of the albedo PCG's parallel passes.
 constexpr int kBlock = 1024;
-
-// Sum over [0, n) of block(begin, end) (three channels): fixed blocks run on
-// the pool and their sums are added in order, so the result does not depend
-// on the number of threads.
-template <typename Block>
-Eigen::Array3d channel_sums(int n, const Block& block) {
-  const int blocks = (n + kBlock - 1) / kBlock;
-  std::vector<Eigen::Array3d> partial(blocks, Eigen::Array3d::Zero());
-  parallel_for(
-      blocks,
-      [&](int b, int e) {
-        for (int k = b; k < e; ++k) partial[k] = block(k * kBlock, std::min(n, (k + 1) * kBlock));
-      },
-      1);
-  Eigen::Array3d sum = Eigen::Array3d::Zero();
-  for (const Eigen::Array3d& s : partial) sum += s;
-  return sum;
-}
 
 }  // namespace
 
@@ -141,33 +120,40 @@ AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd&
   double* const zd = z.data();
   double* const pd = p.data();
   double* const apd = ap.data();
+  const Eigen::Array3d zero = Eigen::Array3d::Zero();
   for (int k = 0; k < options_.pcg_iterations && (rz > 1e-20).any(); ++k) {
     laplacian_normal(p, lx, llx);
     const double* const lld = llx.data();
-    const Eigen::Array3d pap = channel_sums(n, [&](int b, int e) {
-      Eigen::Array3d sum = Eigen::Array3d::Zero();
-      for (int i = b; i < e; ++i)
-        for (int c = 0; c < 3; ++c) {
-          const int q = 3 * i + c;
-          apd[q] = d[i] * pd[q] + w * lld[q];
-          sum[c] += pd[q] * apd[q];
-        }
-      return sum;
-    });
+    const Eigen::Array3d pap = parallel_sum(
+        n,
+        [&](int b, int e) {
+          Eigen::Array3d sum = Eigen::Array3d::Zero();
+          for (int i = b; i < e; ++i)
+            for (int c = 0; c < 3; ++c) {
+              const int q = 3 * i + c;
+              apd[q] = d[i] * pd[q] + w * lld[q];
+              sum[c] += pd[q] * apd[q];
+            }
+          return sum;
+        },
+        kBlock, zero);
     // Converged columns hold still (alpha 0).
     const Eigen::Array3d alpha = (rz > 1e-20).select(rz / pap, 0.0);
-    const Eigen::Array3d rz_new = channel_sums(n, [&](int b, int e) {
-      Eigen::Array3d sum = Eigen::Array3d::Zero();
-      for (int i = b; i < e; ++i)
-        for (int c = 0; c < 3; ++c) {
-          const int q = 3 * i + c;
-          xd[q] += alpha[c] * pd[q];
-          rd[q] -= alpha[c] * apd[q];
-          zd[q] = inv_diag[i] * rd[q];
-          sum[c] += rd[q] * zd[q];
-        }
-      return sum;
-    });
+    const Eigen::Array3d rz_new = parallel_sum(
+        n,
+        [&](int b, int e) {
+          Eigen::Array3d sum = Eigen::Array3d::Zero();
+          for (int i = b; i < e; ++i)
+            for (int c = 0; c < 3; ++c) {
+              const int q = 3 * i + c;
+              xd[q] += alpha[c] * pd[q];
+              rd[q] -= alpha[c] * apd[q];
+              zd[q] = inv_diag[i] * rd[q];
+              sum[c] += rd[q] * zd[q];
+            }
+          return sum;
+        },
+        kBlock, zero);
     const Eigen::Array3d beta = (rz > 1e-20).select(rz_new / rz, 0.0);
     parallel_for(
         n,

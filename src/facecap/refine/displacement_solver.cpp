@@ -201,7 +201,7 @@ class Solver {
           }
           return xy;
         },
-        kBlock);
+        kBlock, 0.0);
   }
 
   double cost(const Eigen::VectorXf& d, const Linearisation& lin) {
@@ -273,7 +273,7 @@ class Solver {
               }
               return sum;
             },
-            kBlock);
+            kBlock, 0.0);
         const float beta = float(rz_new / rz);
         parallel_for(
             nf,
