@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace facecap {
 
 namespace {
@@ -132,6 +135,34 @@ TEST(Rasterizer, VerticesOnASteepSlopeAreVisibleAndThoseBehindItAreNot) {
   for (int k = 0; k < kSide * kSide; ++k) seen += vis[k];
   EXPECT_EQ(seen, kSide * kSide);
   EXPECT_FALSE(vis[kSide * kSide]);
+}
+
+// Buffers are reused across frames: a second call leaves no trace of the
+// first. The first call's triangle is larger than the image (it reaches past
+// every band of rows) and covers every pixel at its depth.
+TEST(Rasterizer, ReusedBuffersHoldOnlyTheLatestCall) {
+  Positions big(3, 3);
+  big << -2, 4, -2, -2, -2, 4, 1.5f, 1.5f, 1.5f;  // projects to (-83, -83), (317, -83), (-83, 317)
+  RasterBuffers b;
+  b.resize(100, 100);
+  rasterize(big, {{0, 1, 2}}, kCamera, b, {.cull_back_faces = false});
+  EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 0);
+  for (float z : b.depth) ASSERT_NEAR(z, 1.5f, 1e-4f);
+
+  Positions p(3, 0);
+  std::vector<Triangle> t;
+  square(p, t, 10.0f);
+  rasterize(p, t, kCamera, b);
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 100; ++x) {
+      if (x >= 40 && x <= 60 && y >= 40 && y <= 60) continue;
+      ASSERT_FALSE(b.covered(x, y)) << x << "," << y;
+      ASSERT_TRUE(std::isinf(b.depth[y * 100 + x])) << x << "," << y;
+    }
+  }
+
+  rasterize(p, {}, kCamera, b);
+  EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 100 * 100);
 }
 
 }  // namespace facecap
