@@ -165,4 +165,18 @@ TEST(Rasterizer, ReusedBuffersHoldOnlyTheLatestCall) {
   EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 100 * 100);
 }
 
+// Two triangles sharing an edge cover every pixel on it: a square that fills
+// the image leaves no pixel of its diagonal uncovered (7 of them were, before
+// the edge functions were evaluated in a canonical order).
+TEST(Rasterizer, SharedEdgesLeaveNoCracks) {
+  Positions p(3, 0);
+  std::vector<Triangle> t;
+  square(p, t, 1.5f);  // [-1, 1] at z 1.5 spans [-16.7, 116.7] px
+  RasterBuffers b;
+  b.resize(100, 100);
+  rasterize(p, t, kCamera, b);
+  EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 0);
+  for (float z : b.depth) ASSERT_NEAR(z, 1.5f, 1e-4f);
+}
+
 }  // namespace facecap

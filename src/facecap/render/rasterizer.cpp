@@ -23,6 +23,25 @@ namespace {
 // grazing vertices beyond it get no extra slack.
 constexpr float kMaxVisibilitySlope = 4.0f;
 
+// The edge function (a - p) x (b - p) of the edge a -> b, evaluated with the
+// endpoints in a canonical order and the sign restored. Two triangles sharing
+// an edge then get exactly opposite values at every pixel (whatever the
+// compiler's rounding or FMA contraction), so a pixel on the edge is inside
+// at least one of them: no cracks.
+class CanonicalEdge {
+ public:
+  CanonicalEdge(const Vec2f& a, const Vec2f& b)
+      : flip_(b.x() < a.x() || (b.x() == a.x() && b.y() < a.y())), u_(flip_ ? b : a), v_(flip_ ? a : b) {}
+  float operator()(float px, float py) const {
+    const float e = (u_.x() - px) * (v_.y() - py) - (u_.y() - py) * (v_.x() - px);
+    return flip_ ? -e : e;
+  }
+
+ private:
+  bool flip_;
+  Vec2f u_, v_;
+};
+
 struct ProjectedTriangle {
   Vec2f p[3];
   float inv_z[3];
@@ -131,14 +150,15 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
             const int x1 = std::min(width - 1, int(std::floor(std::max({p0.x(), p1.x(), p2.x()}))));
             const int y0 = std::max(y_lo, int(std::ceil(pt.min_y)));
             const int y1 = std::min(y_hi, int(std::floor(pt.max_y)));
+            const CanonicalEdge e0(p1, p2), e1(p2, p0), e2(p0, p1);
             for (int y = y0; y <= y1; ++y) {
               const float py = float(y);
               for (int x = x0; x <= x1; ++x) {
                 const float px = float(x);
                 // Screen-space barycentrics from edge functions.
-                float w0 = ((p1.x() - px) * (p2.y() - py) - (p1.y() - py) * (p2.x() - px)) * inv_area;
-                float w1 = ((p2.x() - px) * (p0.y() - py) - (p2.y() - py) * (p0.x() - px)) * inv_area;
-                float w2 = 1.0f - w0 - w1;
+                const float w0 = e0(px, py) * inv_area;
+                const float w1 = e1(px, py) * inv_area;
+                const float w2 = e2(px, py) * inv_area;
                 if (w0 < 0 || w1 < 0 || w2 < 0) continue;
                 // Perspective-correct: interpolate 1/z linearly in screen space.
                 const float iz = w0 * pt.inv_z[0] + w1 * pt.inv_z[1] + w2 * pt.inv_z[2];
