@@ -10,6 +10,23 @@ namespace {
 // Vertices per block of the albedo PCG's parallel passes.
 constexpr int kBlock = 1024;
 
+// Per channel c, the sum over the vertices i of entry(i, c, q), q = 3 i + c
+// (the entry's index in row-major n x 3 data); entry may also write there.
+// Runs on the pool in fixed blocks (parallel_sum: independent of the thread
+// count).
+template <typename Entry>
+Eigen::Array3d sum_over_entries(int n, const Entry& entry) {
+  return parallel_sum(
+      n,
+      [&](int b, int e) {
+        Eigen::Array3d sum = Eigen::Array3d::Zero();
+        for (int i = b; i < e; ++i)
+          for (int c = 0; c < 3; ++c) sum[c] += entry(i, c, 3 * i + c);
+        return sum;
+      },
+      kBlock, Eigen::Array3d::Zero().eval());
+}
+
 }  // namespace
 
 AlbedoEstimator::AlbedoEstimator(const MeshLevel& level, AlbedoOptions options)
@@ -120,40 +137,21 @@ AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd&
   double* const zd = z.data();
   double* const pd = p.data();
   double* const apd = ap.data();
-  const Eigen::Array3d zero = Eigen::Array3d::Zero();
   for (int k = 0; k < options_.pcg_iterations && (rz > 1e-20).any(); ++k) {
     laplacian_normal(p, lx, llx);
     const double* const lld = llx.data();
-    const Eigen::Array3d pap = parallel_sum(
-        n,
-        [&](int b, int e) {
-          Eigen::Array3d sum = Eigen::Array3d::Zero();
-          for (int i = b; i < e; ++i)
-            for (int c = 0; c < 3; ++c) {
-              const int q = 3 * i + c;
-              apd[q] = d[i] * pd[q] + w * lld[q];
-              sum[c] += pd[q] * apd[q];
-            }
-          return sum;
-        },
-        kBlock, zero);
+    const Eigen::Array3d pap = sum_over_entries(n, [&](int i, int, int q) {
+      apd[q] = d[i] * pd[q] + w * lld[q];
+      return pd[q] * apd[q];
+    });
     // Converged columns hold still (alpha 0).
     const Eigen::Array3d alpha = (rz > 1e-20).select(rz / pap, 0.0);
-    const Eigen::Array3d rz_new = parallel_sum(
-        n,
-        [&](int b, int e) {
-          Eigen::Array3d sum = Eigen::Array3d::Zero();
-          for (int i = b; i < e; ++i)
-            for (int c = 0; c < 3; ++c) {
-              const int q = 3 * i + c;
-              xd[q] += alpha[c] * pd[q];
-              rd[q] -= alpha[c] * apd[q];
-              zd[q] = inv_diag[i] * rd[q];
-              sum[c] += rd[q] * zd[q];
-            }
-          return sum;
-        },
-        kBlock, zero);
+    const Eigen::Array3d rz_new = sum_over_entries(n, [&](int i, int c, int q) {
+      xd[q] += alpha[c] * pd[q];
+      rd[q] -= alpha[c] * apd[q];
+      zd[q] = inv_diag[i] * rd[q];
+      return rd[q] * zd[q];
+    });
     const Eigen::Array3d beta = (rz > 1e-20).select(rz_new / rz, 0.0);
     parallel_for(
         n,
