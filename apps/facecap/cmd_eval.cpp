@@ -119,6 +119,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"vertex_error_mm", r.vertex_error_mm},
                 {"vertex_error_similarity_mm", r.vertex_error_similarity_mm},
                 {"rotation_error_deg", r.rotation_error_deg},
+                {"yaw_gain", r.yaw_gain},
                 {"translation_error_cm", r.translation_error_cm},
                 {"focal", r.focal},
                 {"focal_true", r.focal_true},

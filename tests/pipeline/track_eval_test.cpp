@@ -31,6 +31,10 @@ TEST(TrackEval, TrueLandmarksWithNoiseGivePoseFocalAndSteadyShape) {
     EXPECT_EQ(r.frames, 90);
     EXPECT_EQ(r.lost_frames, 0);
     EXPECT_LE(r.rotation_error_deg, 1.0) << "seed " << seed;
+    // Head turns at their true size (0.98-1.02 on seeds 1-4). dlib's
+    // landmarks on the same renders give 0.88-1.22 (README); this guards the
+    // fit itself against such a bias.
+    EXPECT_NEAR(r.yaw_gain, 1.0, 0.05) << "seed " << seed;
     EXPECT_LE(r.focal_error_rel, 0.10) << "seed " << seed;
     EXPECT_LE(r.jitter_mm, 0.2) << "seed " << seed;
     // The bar of 1.0 mm after a rigid alignment is not met (the

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <random>
 
+#include "facecap/core/geometry.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/core/rigid_alignment.hpp"
 #include "facecap/core/temp_dir.hpp"
@@ -56,6 +57,26 @@ std::vector<CoarseFit> fit_performance(const FaceModel& model, const SynthPerfor
   return fits;
 }
 
+// Least-squares slope of y on x (with an intercept); 0 when x spans less
+// than kMinYawSpreadDeg.
+double regression_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() < 2) return 0.0;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  if (*hi - *lo < kMinYawSpreadDeg) return 0.0;
+  const double n = double(x.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) * (x[i] - mx);
+  }
+  return sxy / sxx;
+}
+
 Positions fitted_shape(const FaceModel& model, const IdentityEstimate& id, const Eigen::VectorXf& w) {
   return model.evaluate(id.identity.cast<float>(), w, regions::kFace);
 }
@@ -77,6 +98,7 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   r.focal_error_rel = std::abs(id.focal - perf.camera.focal) / perf.camera.focal;
   r.identity_error = (id.identity - perf.identity.head(id.identity.size()).cast<double>()).norm();
   int valid = 0;
+  std::vector<double> true_yaw, fitted_yaw;
   for (const CoarseFit& fit : fits) {
     ++r.frames;
     if (!fit.valid) {
@@ -90,6 +112,8 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     r.vertex_error_mm += 10.0 * aligned_mean_distance(fitted, true_shape);
     r.vertex_error_similarity_mm += 10.0 * aligned_mean_distance(fitted, true_shape, true);
     r.rotation_error_deg += rotation_angle_deg(fit.pose.rotation_matrix(), truth.pose.rotation_matrix());
+    true_yaw.push_back(yaw_pitch_roll_deg(truth.pose.rotation_matrix()).x());
+    fitted_yaw.push_back(yaw_pitch_roll_deg(fit.pose.rotation_matrix()).x());
     r.translation_error_cm += (fit.pose.translation - truth.pose.translation).norm();
     r.weights_mae += (fit.expression - truth.expression).cwiseAbs().mean();
   }
@@ -100,6 +124,7 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     r.translation_error_cm /= valid;
     r.weights_mae /= valid;
   }
+  r.yaw_gain = regression_slope(true_yaw, fitted_yaw);
   r.fit_ms_per_frame = r.frames > 0 ? fit_ms / r.frames : 0.0;
 
   if (options.still_frames > 1) {

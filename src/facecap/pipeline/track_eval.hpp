@@ -26,12 +26,20 @@ struct TrackEvalOptions {
   CaptureOptions capture;
 };
 
+// The least spread of true yaw over which TrackEvalResult::yaw_gain is measured.
+inline constexpr double kMinYawSpreadDeg = 10.0;
+
 struct TrackEvalResult {
   int frames = 0;
   int lost_frames = 0;
   double vertex_error_mm = 0;             // face region, model space, after rigid alignment; mean over frames
   double vertex_error_similarity_mm = 0;  // the same after a similarity alignment (scale removed)
   double rotation_error_deg = 0;          // mean over frames
+  // Slope of the fitted yaw against the true yaw over the frames (least
+  // squares with an intercept): 1 when head turns are measured at their size,
+  // above 1 when the fit exaggerates them. 0 when the truth turns less than
+  // kMinYawSpreadDeg (no slope to measure).
+  double yaw_gain = 0;
   double translation_error_cm = 0;
   double focal = 0, focal_true = 0;
   double focal_error_rel = 0;
