@@ -88,6 +88,28 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
 }
 
+TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
+  FACECAP_REQUIRE_MODEL(model);
+  TempDir dir;
+  const auto image = dir.path() / "grey.ppm";
+  {
+    std::ofstream f(image, std::ios::binary);
+    f << "P6 320 240 255\n" << std::string(320 * 240 * 3, char(128));
+  }
+  std::filesystem::create_directories(dir.path() / "out");
+  std::ofstream(dir.path() / "out" / "identity.json") << "{}";  // an earlier run's
+  const RunResult r = run("track " + image.string() + " -o " + (dir.path() / "out").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("no face found in " + image.string()), std::string::npos) << r.out;
+  // The per-frame record is complete: one frame, lost.
+  std::ifstream csv(dir.path() / "out" / "frames.csv");
+  std::string header, row;
+  ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
+  EXPECT_EQ(row.rfind("0,0,lost,", 0), 0u) << row;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "identity.json"));  // no identity was seen here
+}
+
 TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");

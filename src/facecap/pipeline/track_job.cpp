@@ -154,7 +154,14 @@ class FrameWriter {
         {"lighting",
          "l^T SH(n), SH(n) = (1, x, y, z, xy, xz, yz, x^2 - y^2, 3 z^2 - 1), n in the viewer frame "
          "(x right, y up, z toward the viewer), intensities in [0, 1]"}};
-    write_text_file(dir_ / "identity.json", j.dump(2) + "\n");
+    // No face in any frame: there is no identity to report, only the lost rows
+    // (and an identity.json of an earlier run in this folder would belie them).
+    if (id.frames_used > 0) {
+      write_text_file(dir_ / "identity.json", j.dump(2) + "\n");
+    } else {
+      std::error_code ec;
+      fs::remove(dir_ / "identity.json", ec);
+    }
     if (refiner != nullptr && refiner->initialised()) {
       const cv::Mat tex = bake_uv_texture(face_mesh_, refiner->coarse_albedo());
       AtomicFile file(dir_ / "albedo.png");
