@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -108,6 +109,26 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
   ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
   EXPECT_EQ(row.rfind("0,0,lost,", 0), 0u) << row;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "identity.json"));  // no identity was seen here
+}
+
+TEST(Cli, EditsOfAVideoWithNoFaceWriteNothingAndSaySo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
+  TempDir dir;
+  const std::string video = (dir.path() / "grey.mp4").string();
+  ASSERT_EQ(std::system(("ffmpeg -loglevel error -y -f lavfi -i color=gray:s=160x120:d=0.4 -pix_fmt yuv420p " + video)
+                            .c_str()),
+            0);
+  const std::string out = (dir.path() / "out.mp4").string();
+  for (const std::string& args : {"transform " + video + " --to happiness -o " + out,
+                                  "swap --source " + photo.string() + " --target " + video + " -o " + out}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find("no face found in any frame of " + video), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+    EXPECT_FALSE(std::filesystem::exists(out + ".json")) << args;
+  }
 }
 
 TEST(Cli, TransformRejectsBadRequestsWithOneLine) {

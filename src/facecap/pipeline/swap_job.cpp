@@ -110,6 +110,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     if (options.on_frame) options.on_frame(f, result);
   });
   if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
+  // A copy of the input marked as a swap would be neither: nothing is written.
+  if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
   write_synthetic_sidecar(output, mark);
   return summary;

@@ -1,5 +1,6 @@
 #include "facecap/pipeline/transform_job.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
@@ -109,6 +110,9 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   emit(transformer.finish());
   summary.timings.frames = static_cast<int>(summary.frames.size());
   if (summary.frames.empty()) throw Error("no frames could be read from " + input);
+  // A copy of the input marked as transformed would be neither: nothing is written.
+  if (std::none_of(summary.frames.begin(), summary.frames.end(), [](const TransformedFrame& t) { return t.valid; }))
+    throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
   write_synthetic_sidecar(output, mark);
   if (!options.plot.empty()) write_weight_plot(options.plot, summary.frames, model.expression_names);
