@@ -42,8 +42,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     const TrackSummary s = run_track(model, a->input, a->out, a->options);
     if (s.capture.identity.frames_used == 0) {
       // frames.csv is still written (every frame "lost"), but there is nothing else to give.
-      throw Error("no face found in " + a->input + ": all " + std::to_string(s.capture.frames) + " frame(s) are lost in " +
-                  (std::filesystem::path(a->out) / "frames.csv").string());
+      throw Error("no face found in " + a->input + ": all " + std::to_string(s.capture.frames) +
+                  " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string());
     }
     const StageTimings& t = s.capture.timings;
     const double n = std::max(1, t.frames);

@@ -116,8 +116,8 @@ TEST(Cli, EditsOfAVideoWithNoFaceWriteNothingAndSaySo) {
   FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
   TempDir dir;
   const std::string video = (dir.path() / "grey.mp4").string();
-  ASSERT_EQ(std::system(("ffmpeg -loglevel error -y -f lavfi -i color=gray:s=160x120:d=0.4 -pix_fmt yuv420p " + video)
-                            .c_str()),
+  ASSERT_EQ(std::system(
+                ("ffmpeg -loglevel error -y -f lavfi -i color=gray:s=160x120:d=0.4 -pix_fmt yuv420p " + video).c_str()),
             0);
   const std::string out = (dir.path() / "out.mp4").string();
   for (const std::string& args : {"transform " + video + " --to happiness -o " + out,
