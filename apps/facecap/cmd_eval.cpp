@@ -239,9 +239,14 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   struct Args {
     std::string self, source, target, output;
     SwapJobOptions options;
+    int self_source_frames = 1;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--self", a->self, "Video: its first frame is the source, the rest the target");
+  cmd->add_option("--source-frames", a->self_source_frames,
+                  "--self: the source is the video's first N frames as photos (identity from all N, appearance "
+                  "from the first); 1 is the single photo of the paper's experiment")
+      ->capture_default_str();
   cmd->add_option("--source", a->source, "Source portrait photo");
   cmd->add_option("--target", a->target, "Target video");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
@@ -255,10 +260,11 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     if (self) {
-      const SwapSelfEval r = evaluate_swap_self(model, a->self, a->options);
+      const SwapSelfEval r = evaluate_swap_self(model, a->self, a->options, a->self_source_frames);
       const double n = std::max(1, r.timings.swapped);
       print_json({{"video", a->self},
                   {"mode", "self"},
+                  {"source_frames", r.source_frames_used},
                   {"frames", r.frames},
                   {"photometric_median", r.photometric_median},
                   {"photometric_mean", r.photometric_mean},

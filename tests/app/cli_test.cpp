@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "facecap/core/temp_dir.hpp"
@@ -155,9 +156,10 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   TempDir dir;
   std::ofstream(dir.path() / "text.jpg") << "not an image";
   const std::string out = (dir.path() / "out.mp4").string();
-  // A corrupt image, a missing file, and a video where a photo belongs.
+  // A corrupt image, a missing file, and a folder with no photos in it.
+  std::filesystem::create_directories(dir.path() / "empty");
   for (const std::string& photo :
-       {(dir.path() / "text.jpg").string(), (dir.path() / "missing.jpg").string(), video.string()}) {
+       {(dir.path() / "text.jpg").string(), (dir.path() / "missing.jpg").string(), (dir.path() / "empty").string()}) {
     const RunResult r = run("swap --source " + photo + " --target " + video.string() + " -o " + out);
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_EQ(lines(r.out), 1) << r.out;
@@ -165,6 +167,26 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
     EXPECT_FALSE(std::filesystem::exists(out));
   }
   EXPECT_NE(run("swap --target " + video.string() + " -o " + out).code, 0);  // --source is required
+}
+
+TEST(Cli, SwapTakesItsSourceFromAVideo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(source, "talking_webcam2_400x300.mp4");
+  FACECAP_REQUIRE_DATA(target, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const std::string out = (dir.path() / "out.mp4").string();
+  const RunResult r = run("swap --source " + source.string() + " --source-frames 8 --target " + target.string() +
+                          " --max-frames 4 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  std::ifstream sidecar(out + ".json");
+  const std::string mark((std::istreambuf_iterator<char>(sidecar)), std::istreambuf_iterator<char>());
+  EXPECT_NE(mark.find("\"source_frames_used\": \"8\""), std::string::npos) << mark;
+  const RunResult bad =
+      run("swap --source " + source.string() + " --source-frames 0 --target " + target.string() + " -o " + out);
+  EXPECT_EQ(bad.code, 1) << bad.out;
+  EXPECT_NE(bad.out.find("--source-frames"), std::string::npos) << bad.out;
+  EXPECT_TRUE(std::filesystem::exists(out));  // the good output of the first run is kept
 }
 
 TEST(Cli, ProbeDescribesAVideoAsJson) {

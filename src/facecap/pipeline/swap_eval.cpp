@@ -1,6 +1,7 @@
 #include "facecap/pipeline/swap_eval.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -62,18 +63,32 @@ double seam_ratio(const cv::Mat& image, const cv::Mat& alpha) {
   return within > 1e-6 ? on_edge / within : 0;
 }
 
-SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options) {
+SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options,
+                                int source_frames) {
   const TempDir temp("facecap-eval-swap");
-  // The first frame, as the source photo.
+  // The first frame as the source photo, or the first frames as a folder of photos.
+  if (source_frames < 1) throw Error("--source-frames must be at least 1");
   auto input = open_input(video);
-  Frame first;
-  if (!input->read(first) || first.image.empty()) throw Error("cannot read the first frame of " + video);
-  const fs::path photo = temp.path() / "first_frame.png";
-  if (!cv::imwrite(photo.string(), first.image)) throw Error("cannot write " + photo.string());
+  const fs::path folder = temp.path() / "source";
+  fs::create_directories(folder);
+  fs::path photo;
+  for (int i = 0; i < source_frames; ++i) {
+    Frame frame;
+    if (!input->read(frame) || frame.image.empty()) {
+      if (i == 0) throw Error("cannot read the first frame of " + video);
+      break;
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.png", i);
+    photo = folder / name;
+    if (!cv::imwrite(photo.string(), frame.image)) throw Error("cannot write " + photo.string());
+  }
+  if (source_frames > 1) photo = folder;
 
   SwapSelfEval r;
   ErrorHistogram errors;
   SwapJobOptions o = options;
+  o.source_frames = source_frames;
   o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& result) {
     if (target.index == 0 || result.alpha.empty()) return;
     const cv::Mat truth = target.image(result.window), made = result.image(result.window);
@@ -89,6 +104,7 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
     ++r.frames;
   };
   const SwapSummary s = run_swap(model, photo.string(), video, temp.path() / "self_swap.mp4", o);
+  r.source_frames_used = s.source.frames_used;
   r.photometric_median = errors.median();
   r.photometric_mean = errors.mean();
   r.face_pixels_per_frame = r.frames > 0 ? errors.count / r.frames : 0;

@@ -17,14 +17,18 @@
 namespace facecap {
 
 struct SwapSelfEval {
-  int frames = 0;  // target frames measured (all but the first)
+  int frames = 0;              // target frames measured (all but the first)
+  int source_frames_used = 0;  // source frames the identity was solved from
   double photometric_median = 0;
   double photometric_mean = 0;
   double face_pixels_per_frame = 0;
   SwapJobTimings timings;
 };
 
-SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options);
+// The video's first frame is the source photo (source_frames > 1: its first
+// frames, as a folder of photos) and the whole video the target.
+SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options,
+                                int source_frames = 1);
 
 struct SwapPairEval {
   int frames = 0;

@@ -15,31 +15,38 @@ namespace facecap {
 
 namespace fs = std::filesystem;
 
-SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& photo, bool quiet) {
+SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& source, bool quiet,
+                                        int source_frames) {
   SourceReconstruction r;
-  if (!fs::is_regular_file(photo)) throw Error("source photo not found: " + photo);
-  // One decode and one capture of the photo: the detector's full-frame search
-  // (which counts the faces), the landmarks of the largest, the still-image fit.
+  if (!fs::exists(source)) throw Error("source not found: " + source);
+  // One decode and one capture of the source: the detector's full-frame search
+  // (which counts the faces), the landmarks of the largest, the fit (a still
+  // image's, or a video's identity over the burst).
   std::unique_ptr<FrameSource> input;
   try {
-    input = open_input(photo);
+    input = open_input(source);
   } catch (const Error&) {
   }
-  if (!input || input->info().kind != InputKind::kImage)
-    throw Error("cannot read the source photo " + photo + " (not an image, or corrupt)");
+  if (!input || input->info().kind == InputKind::kCamera)
+    throw Error("cannot read the source " + source + " (not a photo, a video or a folder of photos, or corrupt)");
+  const bool still = input->info().kind == InputKind::kImage;
+  if (!still && source_frames < 1) throw Error("--source-frames must be at least 1");
   CaptureOptions capture;
   capture.quiet = true;
   capture.keep_images = true;
+  if (!still) capture.max_frames = source_frames;
   std::optional<CapturedFrame> fit;
-  run_capture(model, *input, capture, [&](const CapturedFrame& f) {
+  const CaptureSummary summary = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
     r.faces_found = std::max(r.faces_found, f.faces_seen);
     if (!fit && f.status != TrackStatus::kLost) fit = f;
   });
-  if (r.faces_found == 0) throw Error("no face found in the source photo " + photo);
+  const std::string what = still ? "the source photo " : "the source ";
+  if (r.faces_found == 0) throw Error("no face found in " + what + source);
   if (r.faces_found > 1 && !quiet) {
-    std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, photo.c_str());
+    std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, source.c_str());
   }
-  if (!fit) throw Error("no face could be fitted in the source photo " + photo);
+  if (!fit) throw Error("no face could be fitted in " + what + source);
+  r.frames_used = summary.identity.frames_used;
   r.photo = fit->image;
   SourceFace& s = r.face;
   s.identity = fit->identity.identity.cast<float>();
@@ -55,7 +62,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      const fs::path& output, const SwapJobOptions& options) {
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();
-  summary.source = reconstruct_source(model, source_photo, options.capture.quiet);
+  summary.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames);
   summary.timings.source_ms = ms_since(t0);
   auto input = open_input(target);
   const InputInfo info = input->info();
@@ -67,7 +74,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   mark.sources = {source_photo, target};
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
                      {"warp_background", options.swap.warp_background ? "true" : "false"},
-                     {"match_target_size", options.swap.match_target_size ? "true" : "false"}};
+                     {"match_target_size", options.swap.match_target_size ? "true" : "false"},
+                     {"source_frames_used", std::to_string(summary.source.frames_used)}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(output, vo);

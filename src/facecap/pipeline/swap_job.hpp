@@ -15,17 +15,24 @@
 namespace facecap {
 
 struct SourceReconstruction {
-  cv::Mat photo;
+  cv::Mat photo;        // the image the appearance comes from
+  int frames_used = 1;  // frames the source identity was solved from
   SourceFace face;
   int faces_found = 0;  // faces the detector saw in the photo (the largest is used)
 };
 
-// Throws facecap::Error naming the file when it cannot be read or holds no face.
-SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& photo, bool quiet = false);
+// The source is a photo, or a short video or a folder of photos of one face
+// (a burst): then the identity is solved jointly over its first
+// `source_frames` frames, as a video's is, and the appearance comes from its
+// first frame with a face. Throws facecap::Error naming the file when it
+// cannot be read or holds no face.
+SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& source, bool quiet = false,
+                                        int source_frames = 30);
 
 struct SwapJobOptions {
   CaptureOptions capture;
   SwapOptions swap;
+  int source_frames = 30;  // frames of a source video or folder the identity is solved from
   // Called with each output frame (and the target frame it came from).
   std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
 };
