@@ -71,7 +71,6 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
   auto input = open_input(video);
   const fs::path folder = temp.path() / "source";
   fs::create_directories(folder);
-  fs::path photo;
   for (int i = 0; i < source_frames; ++i) {
     Frame frame;
     if (!input->read(frame) || frame.image.empty()) {
@@ -80,10 +79,10 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
     }
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", i);
-    photo = folder / name;
-    if (!cv::imwrite(photo.string(), frame.image)) throw Error("cannot write " + photo.string());
+    const fs::path file = folder / name;
+    if (!cv::imwrite(file.string(), frame.image)) throw Error("cannot write " + file.string());
   }
-  if (source_frames > 1) photo = folder;
+  const fs::path source = source_frames > 1 ? folder : folder / "frame_000000.png";
 
   SwapSelfEval r;
   ErrorHistogram errors;
@@ -103,7 +102,7 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
     }
     ++r.frames;
   };
-  const SwapSummary s = run_swap(model, photo.string(), video, temp.path() / "self_swap.mp4", o);
+  const SwapSummary s = run_swap(model, source.string(), video, temp.path() / "self_swap.mp4", o);
   r.source_frames_used = s.source.frames_used;
   r.photometric_median = errors.median();
   r.photometric_mean = errors.mean();
