@@ -65,6 +65,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     std::string landmarks = "truth";
     std::string size = "1280x720";
     bool true_focal = false;
+    bool map_size = false;
     TrackEvalOptions options;
   };
   auto a = std::make_shared<Args>();
@@ -82,6 +83,8 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--init-frames", a->options.capture.fit.init_frames, "Frames for the identity and focal solve")
       ->capture_default_str();
   cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
+  cmd->add_flag("--map-size", a->map_size,
+                "Keep the identity solve's own face size, without the size correction (diagnostic)");
   cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
@@ -111,6 +114,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       a->options.capture.fit.focal_guess =
           (a->options.synth.focal > 0 ? a->options.synth.focal : 1.1 * a->options.synth.width);
     }
+    a->options.capture.fit.unbiased_size = !a->map_size;
     const TrackEvalResult r = evaluate_track_synthetic(model, a->options);
     print_json({{"frames", r.frames},
                 {"seed", a->options.seed},
@@ -128,6 +132,9 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"jitter_mm", r.jitter_mm},
                 {"jitter_camera_mm", r.jitter_camera_mm},
                 {"identity_error", r.identity_error},
+                {"size_ratio", r.size_ratio},
+                {"size_factor", r.size_factor},
+                {"identity_modes_determined", r.effective_modes},
                 {"fit_ms_per_frame", r.fit_ms_per_frame}});
   });
 }

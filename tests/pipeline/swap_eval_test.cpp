@@ -118,7 +118,7 @@ TEST(SwapEval, ObamaIntoTheSecondAddressHasNoSeam) {
 
 TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {
   FACECAP_REQUIRE_MODEL(model);
-  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
   TempDir dir;
   SwapJobOptions o = short_run(12);
@@ -140,7 +140,9 @@ TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {
   cv::Mat d;
   cv::absdiff(plain.back(), wrinkled.back(), d);
   EXPECT_EQ(cv::norm(d, cv::NORM_INF, outside), 0.0);
-  // Inside, the refined target lighting and the predicted motion change the face, boundedly.
+  // Inside, the refined target lighting and the predicted motion change the
+  // face, boundedly. At 720p (mean 0.08, up to 10 grey levels); on a 400x300
+  // clip the change is at the rounding level (up to 1 grey level).
   const double inside = cv::mean(d(window))[1];
   EXPECT_GT(inside, 0.05);
   EXPECT_LT(inside, 20.0);

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 
+#include "facecap/fit/identity_size.hpp"
+
 namespace facecap {
 
 CoarseTracker::CoarseTracker(const FaceModel& model, const CoarseFitOptions& options, int width, int height)
-    : fitter_(model, options, width, height) {
+    : model_(model), fitter_(model, options, width, height) {
   identity_.identity = Eigen::VectorXd::Zero(fitter_.identity_modes());
   identity_.focal_guess = fitter_.focal_guess();
   identity_.focal = identity_.focal_guess;
@@ -53,7 +55,7 @@ void CoarseTracker::initialize() {
     fitter_.initialize_frame(observed[i], identity, focal, frames[i]);
     fitter_.fit_frame(observed[i], identity, focal, nullptr, frames[i]);
   }
-  fitter_.fit_identity(observed, frames, identity, focal);
+  IdentitySolveReport solve = fitter_.fit_identity(observed, frames, identity, focal);
 
   // Frames whose landmarks the joint model cannot explain (a detector
   // failure) must not shape the identity: drop them and solve again.
@@ -66,10 +68,16 @@ void CoarseTracker::initialize() {
     }
   }
   if (!kept.empty() && kept.size() < observed.size()) {
-    fitter_.fit_identity(kept, kept_frames, identity, focal);
+    solve = fitter_.fit_identity(kept, kept_frames, identity, focal);
+  }
+  if (fitter_.options().unbiased_size) {
+    const IdentitySizeCorrection size(model_, fitter_.identity_modes(), fitter_.landmark_vertices());
+    identity_.size_factor = size.factor(identity, solve.effective_modes);
+    identity = size.apply(identity, solve.effective_modes);
   }
   identity_.identity = identity;
   identity_.focal = focal;
+  identity_.effective_modes = solve.effective_modes;
   identity_.frames_used = static_cast<int>(kept.empty() ? observed.size() : kept.size());
   initialized_ = true;
   identity_.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -4,7 +4,8 @@
 // motion makes the focal length observable) and then held fixed; every frame's
 // pose and expression follow by block coordinate descent with temporal terms
 // to the previous frame. A still image is the one-frame case with a stronger
-// focal prior.
+// focal prior. The identity's size is then moved from the joint solve's
+// mode to where its posterior mass lies (identity_size.hpp).
 //
 // Frames go in as they arrive; fits come out in frame order once they are
 // final (the first ones after the identity solve, then one per frame).
@@ -34,7 +35,9 @@ struct IdentityEstimate {
   double focal = 0.0;
   int frames_used = 0;
   double focal_guess = 0.0;
-  double solve_ms = 0.0;  // time of the joint identity and focal solve
+  double solve_ms = 0.0;         // time of the joint identity and focal solve
+  double effective_modes = 0.0;  // identity directions the landmarks determined (identity_solver.hpp)
+  double size_factor = 1.0;      // how much larger the size correction made the face (identity_size.hpp)
 };
 
 class CoarseTracker {
@@ -59,6 +62,7 @@ class CoarseTracker {
   void initialize();
   CoarseFit track(const Pending& frame);
 
+  const FaceModel& model_;
   FaceFitter fitter_;
   IdentityEstimate identity_;
   bool initialized_ = false;

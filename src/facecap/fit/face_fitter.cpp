@@ -97,8 +97,9 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
   return report;
 }
 
-void FaceFitter::fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
-                              Eigen::VectorXd& identity, double& focal) const {
+IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& observed,
+                                             std::vector<FrameParameters>& frames, Eigen::VectorXd& identity,
+                                             double& focal) const {
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
   FitWeights weights = options_.weights;
   weights.sigma_landmark *= weights.identity_sigma_factor;
@@ -130,7 +131,7 @@ void FaceFitter::fit_identity(const std::vector<Landmarks>& observed, std::vecto
                                                             camera(current_focal), observed[i], slide_jaw()));
     }
   };
-  solve_identity_joint(energies, frames, identity, focal, o);
+  return solve_identity_joint(energies, frames, identity, focal, o);
 }
 
 }  // namespace facecap

@@ -15,6 +15,7 @@
 #include "facecap/detect/landmarks.hpp"
 #include "facecap/fit/fit_options.hpp"
 #include "facecap/fit/frame_block.hpp"
+#include "facecap/fit/identity_solver.hpp"
 #include "facecap/fit/landmark_basis.hpp"
 
 namespace facecap {
@@ -35,6 +36,8 @@ class FaceFitter {
   double focal_guess() const;
   PinholeCamera camera(double focal) const { return {focal, 0.5 * width_, 0.5 * height_}; }
   bool slide_jaw() const { return options_.jaw == JawCorrespondence::kSlide; }
+  // The model vertices the landmarks are fitted to (the 68 and the jaw outline's candidates).
+  const std::vector<int>& landmark_vertices() const { return basis_.vertices; }
 
   // A starting pose for a frame with no history: translation from the face's
   // size and position, rotation from the best of a few yaw guesses.
@@ -46,8 +49,8 @@ class FaceFitter {
                            const FrameParameters* previous, FrameParameters& params) const;
 
   // Fits identity and focal jointly with every frame's pose and expression.
-  void fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
-                    Eigen::VectorXd& identity, double& focal) const;
+  IdentitySolveReport fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
+                                   Eigen::VectorXd& identity, double& focal) const;
 
   // The model's 68 landmarks for a fit, projected; the jaw landmarks are the
   // outline points nearest to the observed ones (jaw_contour.hpp).

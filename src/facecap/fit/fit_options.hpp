@@ -72,6 +72,11 @@ struct CoarseFitOptions {
   double lost_landmark_error = 0.1;  // NME of the fit against its landmarks above which a frame counts as lost
   bool still = false;                // a single image: one frame, stronger focal prior
   JawCorrespondence jaw = JawCorrespondence::kSlide;
+  // Move the solved identity's size from the joint posterior's mode to where
+  // its mass lies (identity_size.hpp). Synthetic sweeps (`eval track
+  // --synthetic 90`, seeds 1-12): size 0.957-0.994 of the truth -> 0.980-1.018,
+  // rigid vertex error 2.17 -> 1.30 mm on average.
+  bool unbiased_size = true;
 
   void check() const;
 };

@@ -1,6 +1,7 @@
 #include "facecap/fit/identity_solver.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "facecap/core/parallel.hpp"
@@ -42,6 +43,28 @@ double total_cost(const std::vector<std::unique_ptr<FrameEnergy>>& energies, con
   double total = shared_prior_cost(identity, focal, o);
   for (double c : costs) total += c;
   return total;
+}
+
+// Posterior precision of the identity from one linearisation (Gauss-Newton,
+// no damping): every frame's own unknowns and the focal length eliminated
+// (Schur complements, i.e. marginalised), the N(0, 1) prior included. Returns
+// ni - trace(P^-1): how many identity directions the landmarks determine,
+// each counted by its data precision over its total precision.
+double effective_identity_modes(const std::vector<FrameSystem>& sys, const Eigen::MatrixXd& shared_precision, int ni) {
+  Eigen::MatrixXd p = shared_precision;
+  for (const FrameSystem& s : sys) {
+    Eigen::MatrixXd a = s.a;
+    a.diagonal() += 1e-9 * a.diagonal().cwiseMax(1.0);  // unexcited weights: no information, not a singular solve
+    p.noalias() -= s.b.transpose() * a.ldlt().solve(s.b);
+  }
+  if (p.rows() > ni) {  // the focal length
+    const double pff = p(ni, ni);
+    if (pff > 0) p.topLeftCorner(ni, ni).noalias() -= p.topRightCorner(ni, 1) * p.bottomLeftCorner(1, ni) / pff;
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> f(p.topLeftCorner(ni, ni));
+  if (f.info() != Eigen::Success) return 0.0;
+  const double trace = f.solve(Eigen::MatrixXd::Identity(ni, ni)).trace();
+  return std::clamp(ni - trace, 0.0, static_cast<double>(ni));
 }
 
 }  // namespace
@@ -160,12 +183,14 @@ IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<Frame
         if (decrease < 1e-7 * (1.0 + cost)) {
           ++rep.iterations;
           rep.final_cost = cost;
+          rep.effective_modes = effective_identity_modes(sys, u, ni);
           return rep;
         }
       } else {
         lambda *= 4.0;
       }
     }
+    if (!accepted || rep.iterations + 1 == o.max_iterations) rep.effective_modes = effective_identity_modes(sys, u, ni);
     if (!accepted) break;
   }
   rep.final_cost = cost;

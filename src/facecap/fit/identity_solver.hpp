@@ -33,6 +33,10 @@ struct IdentitySolveReport {
   double initial_cost = 0;
   double final_cost = 0;
   int iterations = 0;
+  // Identity directions the landmarks determine, each counted by its data
+  // precision over its posterior precision (0..modes), at the last
+  // linearisation: what identity_size.hpp needs.
+  double effective_modes = 0;
 };
 
 IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<FrameEnergy>>& energies,

@@ -97,6 +97,11 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   r.focal_true = perf.camera.focal;
   r.focal_error_rel = std::abs(id.focal - perf.camera.focal) / perf.camera.focal;
   r.identity_error = (id.identity - perf.identity.head(id.identity.size()).cast<double>()).norm();
+  r.size_factor = id.size_factor;
+  r.effective_modes = id.effective_modes;
+  r.size_ratio = align_rigid(model.evaluate(perf.identity, Eigen::VectorXf(), regions::kFace),
+                             fitted_shape(model, id, Eigen::VectorXf()), true)
+                     .scale;
   int valid = 0;
   std::vector<double> true_yaw, fitted_yaw;
   for (const CoarseFit& fit : fits) {

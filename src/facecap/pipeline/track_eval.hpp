@@ -47,6 +47,12 @@ struct TrackEvalResult {
   double jitter_mm = 0;         // RMS frame-to-frame motion of the face shape (model space), still head
   double jitter_camera_mm = 0;  // the same in camera space (adds pose jitter, mostly depth)
   double identity_error = 0;    // ||a - a_true|| over the fitted modes
+  // Size of the fitted neutral face over the true one (the scale of the
+  // similarity that best maps the true face region onto it): 1 when the size,
+  // which landmarks hardly show, is right.
+  double size_ratio = 0;
+  double size_factor = 1;      // the size correction the tracker applied (identity_size.hpp)
+  double effective_modes = 0;  // identity directions the landmarks determined (of 50)
   double fit_ms_per_frame = 0;
 };
 
