@@ -9,6 +9,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/input.hpp"
 
 namespace facecap {
 
@@ -35,6 +36,17 @@ struct ErrorHistogram {
     return 0;
   }
 };
+
+// The identity of one frame fitted as a photo (as the source is), or nothing
+// when no face is found in it.
+std::optional<Eigen::VectorXf> photo_identity(const FaceModel& model, const cv::Mat& image, const fs::path& file) {
+  if (!cv::imwrite(file.string(), image)) throw Error("cannot write " + file.string());
+  try {
+    return reconstruct_source(model, file.string(), true, 1).face.identity;
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
 
 }  // namespace
 
@@ -151,6 +163,31 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
   r.identity_distance_output_source = (id_out - id_src).norm();
   r.identity_distance_output_target = (id_out - id_tgt).norm();
   r.identity_distance_source_target = (id_src - id_tgt).norm();
+
+  // The same with every image fitted alike (one frame as a photo).
+  {
+    const TempDir alike("facecap-eval-alike");
+    auto output_frames = open_input(out.string());
+    auto target_frames = open_input(video);
+    Frame o_frame, t_frame;
+    for (int i = 0;
+         r.identity_alike_frames < kAlikeIdentityFrames && output_frames->read(o_frame) && target_frames->read(t_frame);
+         ++i) {
+      if (i % 10 != 5) continue;
+      const auto o_id = photo_identity(model, o_frame.image, alike.path() / "output.png");
+      const auto t_id = photo_identity(model, t_frame.image, alike.path() / "target.png");
+      if (!o_id || !t_id) continue;
+      r.identity_alike_output_source += (*o_id - id_src).norm();
+      r.identity_alike_output_target += (*o_id - *t_id).norm();
+      r.identity_alike_source_target += (*t_id - id_src).norm();
+      ++r.identity_alike_frames;
+    }
+    if (r.identity_alike_frames > 0) {
+      r.identity_alike_output_source /= r.identity_alike_frames;
+      r.identity_alike_output_target /= r.identity_alike_frames;
+      r.identity_alike_source_target /= r.identity_alike_frames;
+    }
+  }
 
   const size_t n = std::min(target_weights.size(), output_weights.size());
   r.frames = static_cast<int>(n);

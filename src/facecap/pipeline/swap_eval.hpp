@@ -35,7 +35,17 @@ struct SwapPairEval {
   double identity_distance_output_source = 0;  // |alpha_out - alpha_S|
   double identity_distance_output_target = 0;  // |alpha_out - alpha_T|
   double identity_distance_source_target = 0;  // |alpha_S - alpha_T|
-  double expression_correlation = 0;           // mean over the weights the target moves of corr(out, target)
+  // The same three with every image fitted alike, each frame as a photo
+  // (frames 5, 15, ... of the output and of the target, at most
+  // kAlikeIdentityFrames of them), averaged: a video's identity comes from 30
+  // frames of one pose and lighting, the photo's from one, and images taken
+  // alike land near each other whoever they show (the output and its target:
+  // same video, pose and expression). 0 with identity_alike_frames 0.
+  double identity_alike_output_source = 0;
+  double identity_alike_output_target = 0;
+  double identity_alike_source_target = 0;
+  int identity_alike_frames = 0;
+  double expression_correlation = 0;  // mean over the weights the target moves of corr(out, target)
   int expression_weights_compared = 0;
   double seam_ratio = 0;  // mean over frames
   // The same measure on the untouched target frames: the face's outline
@@ -44,6 +54,8 @@ struct SwapPairEval {
   int faces_in_source = 0;
   SwapJobTimings timings;
 };
+
+inline constexpr int kAlikeIdentityFrames = 6;
 
 SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo, const std::string& video,
                                 const SwapJobOptions& options, const std::filesystem::path& output = {});
