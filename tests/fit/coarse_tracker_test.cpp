@@ -45,6 +45,37 @@ TEST(CoarseTracker, RejectsLandmarksNoFaceCanExplainAndRecovers) {
   EXPECT_EQ(tracker.identity().frames_used, 10);
 }
 
+// The identity solve weighs its landmarks as identity_evidence_frames
+// frames' however many frames it has: a detector's systematic error repeats
+// in every frame, so repeating frames must not move the identity.
+TEST(CoarseTracker, RepeatedFramesAddNoEvidenceAboutTheIdentity) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 40;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  auto solve = [&](int copies) {
+    CoarseFitOptions o;
+    o.init_frames = so.frames * copies;
+    CoarseTracker tracker(*model, o, so.width, so.height);
+    std::mt19937 rng(7);
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    int index = 0;
+    for (const SynthFrame& f : perf.frames) {
+      Landmarks lm = renderer.landmarks(f);
+      for (Vec2f& p : lm) p += Vec2f(noise(rng), noise(rng));
+      for (int c = 0; c < copies; ++c) tracker.push(index++, f.time, lm);
+    }
+    tracker.finish();
+    EXPECT_EQ(tracker.identity().frames_used, so.frames * copies);
+    return tracker.identity();
+  };
+  const IdentityEstimate once = solve(1), thrice = solve(3);
+  EXPECT_GT(once.identity.norm(), 1.0);
+  EXPECT_LT((once.identity - thrice.identity).norm(), 0.02 * once.identity.norm());
+  EXPECT_NEAR(once.focal, thrice.focal, 1e-3 * once.focal);
+}
+
 TEST(CoarseTracker, ShortInputsAreSolvedAtTheEnd) {
   FACECAP_REQUIRE_MODEL(model);
   SynthOptions so;

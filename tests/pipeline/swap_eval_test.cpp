@@ -58,7 +58,7 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   // the photo's expression prior as weak as one video frame's against its 30
   // frames' worth of landmarks, 6.0 / 9.7 with the photo's face at the photo
   // fit's own size as well (match_target_size off), 8.7 / 12.7 when the
-  // photo's identity weighed as one video frame (still_identity_frames).
+  // photo's identity weighed as one video frame (identity_evidence_frames).
   EXPECT_LT(r.photometric_median, 4.8);
   EXPECT_LT(r.photometric_mean, 7.2);
 }

@@ -103,19 +103,18 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
   FitWeights weights = options_.weights;
   weights.sigma_landmark *= weights.identity_sigma_factor;
-  // The landmarks weigh as at least N video frames' (still_identity_frames),
-  // however few frames there are: a photo's as N frames', each of K < N
-  // frames (a short clip, a burst of source photos) as N / K frames'. A frame
-  // that stands for several of one expression carries the expression prior as
-  // many times, or the identity solve explains the face's shape by
-  // expression. For a photo: self-swap (`eval swap --self`) median / mean
-  // 5.0 / 7.6 -> 4.7 / 6.6 (address_720p_a), 7.3 / 11.1 -> 6.7 / 10.0 (_b);
-  // the portraits' landmark NME 0.0149 / 0.0126 -> 0.0142 / 0.0124.
-  const double frame_weight = weights.still_identity_frames / double(std::max<size_t>(1, observed.size()));
-  if (frame_weight > 1.0) {
-    weights.sigma_landmark /= std::sqrt(frame_weight);
-    weights.sigma_expression /= std::sqrt(frame_weight);
-  }
+  // The landmarks weigh as N video frames' (identity_evidence_frames) however
+  // many frames there are: each of K frames (a photo, a burst of source
+  // photos, a long start of a video) as N / K frames'. A frame's whole energy
+  // is scaled, its expression prior included: a frame that stands for several
+  // of one expression carries the prior as many times, or the identity solve
+  // explains the face's shape by expression. For a photo: self-swap (`eval
+  // swap --self`) median / mean 5.0 / 7.6 -> 4.7 / 6.6 (address_720p_a),
+  // 7.3 / 11.1 -> 6.7 / 10.0 (_b); the portraits' landmark NME
+  // 0.0149 / 0.0126 -> 0.0142 / 0.0124.
+  const double frame_weight = weights.identity_evidence_frames / double(std::max<size_t>(1, observed.size()));
+  weights.sigma_landmark /= std::sqrt(frame_weight);
+  weights.sigma_expression /= std::sqrt(frame_weight);
   std::vector<std::unique_ptr<FrameEnergy>> energies;
   for (const Landmarks& lm : observed) {
     energies.push_back(std::make_unique<FrameEnergy>(basis_, weights, lm, pp, identity, focal, nullptr));

@@ -14,7 +14,7 @@ void FitWeights::check() const {
   positive(sigma_landmark, "sigma_landmark");
   positive(jaw_sigma_factor, "jaw_sigma_factor");
   positive(identity_sigma_factor, "identity_sigma_factor");
-  positive(still_identity_frames, "still_identity_frames");
+  positive(identity_evidence_frames, "identity_evidence_frames");
   positive(sigma_expression, "sigma_expression");
   positive(sigma_temporal_expression, "sigma_temporal_expression");
   positive(sigma_temporal_rotation_deg, "sigma_temporal_rotation_deg");

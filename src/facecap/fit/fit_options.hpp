@@ -31,16 +31,25 @@ struct FitWeights {
   // the identity (identity norms of 16 instead of about 7 were measured on
   // real footage). The identity solve therefore uses sigma x this factor.
   double identity_sigma_factor = 3.0;
-  // A still image's landmarks weigh in the identity solve as much as this
-  // many video frames' (the default init_frames). The systematic part of a
-  // detector's error is the same in a photo and in a video, so a photo of a
-  // face should reach the identity a video of it reaches; with one frame's
-  // weight the prior pulled the photo's identity to a third of the video's
-  // size (photo vs video identity of the same speaker, address_720p_a frame 0:
-  // distance 7.1 with one frame's weight, 3.9 with 30), and a swap's face
-  // toward the mean face (self-swap median 8.0 -> 5.7 grey levels with 30;
-  // the still fit's landmark NME on the two portraits 0.023 / 0.019 -> 0.015 / 0.013).
-  double still_identity_frames = 30.0;
+  // The landmarks weigh in the identity solve as much as this many video
+  // frames', however many frames it has: a photo's as these many frames', each
+  // of 90 frames' as a third of one. The systematic part of a detector's error
+  // is the same in every frame, so more frames show more head poses but no
+  // more evidence about the shape.
+  //  - Fewer frames (a photo): with one frame's weight the prior pulled a
+  //    photo's identity to a third of the video's size (photo vs video
+  //    identity of the same speaker, address_720p_a frame 0: distance 7.1
+  //    with one frame's weight, 3.9 with 30), and a swap's face toward the
+  //    mean face (self-swap median 8.0 -> 5.7 grey levels with 30; the still
+  //    fit's landmark NME on the two portraits 0.023 / 0.019 -> 0.015 / 0.013).
+  //  - More frames: weighed in full, 90 frames of dlib's landmarks bent the
+  //    identity further (synthetic renders, seeds 1-4: vertex error
+  //    4.8 / 7.5 / 10.9 / 4.3 mm with 30 frames, 7.0 / 10.6 / 12.5 / 5.5 with 90;
+  //    identity norm on address_720p_a 8.3 -> 11.3); 90 frames weighed as 30
+  //    frames' give 4.7 / 8.0 / 9.6 / 4.2 mm, and the identities of
+  //    address_720p_a and _b (the same speaker) 2.1 apart (3.4 from 30 frames,
+  //    3.35 from 90 weighed in full).
+  double identity_evidence_frames = 30.0;
   double sigma_expression = 0.6;  // prior on each weight (mean 0)
   double expression_l1 = 0.0;     // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
   double sigma_temporal_expression = 0.1;
