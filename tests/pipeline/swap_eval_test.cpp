@@ -88,6 +88,13 @@ TEST(SwapEval, PortraitIntoVideoTakesTheSourceShapeAndTheTargetExpression) {
   // Tracked again, the output's identity has left the target's toward the source's.
   EXPECT_LT(r.identity_distance_output_source, r.identity_distance_source_target);
   EXPECT_GT(r.identity_distance_output_target, 0.25 * r.identity_distance_source_target);
+  // Fitted alike (frames 5, 15, 25, 35 as photos), the output's shape with its
+  // size removed is nearer the source's (1.94 mm) than the target's (2.22 mm;
+  // source to target 3.25 mm); the identity vectors, which count the size the
+  // swap takes from the target, are not (3.90 against 3.77).
+  EXPECT_EQ(r.identity_alike_frames, 4);
+  EXPECT_LT(r.shape_alike_output_source_mm, r.shape_alike_output_target_mm);
+  EXPECT_LT(r.shape_alike_output_source_mm, 0.75 * r.shape_alike_source_target_mm);
   EXPECT_GT(r.expression_correlation, 0.5);
   EXPECT_GE(r.expression_weights_compared, 10);
   EXPECT_GT(r.seam_ratio, 0.0);
@@ -115,9 +122,10 @@ TEST(SwapEval, ObamaIntoTheSecondAddressHasNoSeam) {
   EXPECT_LT(r.seam_ratio, 1.5);
   EXPECT_LT(r.identity_distance_output_source, r.identity_distance_output_target);
   // Also with every image fitted alike, one frame as a photo (frames 5, 15, 25):
-  // 3.77 to the source, 5.23 to the target.
+  // 3.77 to the source, 5.23 to the target; shapes 1.58 and 2.63 mm.
   EXPECT_EQ(r.identity_alike_frames, 3);
   EXPECT_LT(r.identity_alike_output_source, r.identity_alike_output_target);
+  EXPECT_LT(r.shape_alike_output_source_mm, r.shape_alike_output_target_mm);
 }
 
 TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {

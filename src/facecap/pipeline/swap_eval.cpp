@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/rigid_alignment.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
@@ -39,6 +40,14 @@ struct ErrorHistogram {
 
 // The identity of one frame fitted as a photo (as the source is), or nothing
 // when no face is found in it.
+// Mean distance in mm between two identities' neutral face regions after a
+// similarity alignment.
+double shape_distance_mm(const FaceModel& model, const Eigen::VectorXf& a, const Eigen::VectorXf& b) {
+  const Eigen::VectorXf neutral;
+  return 10.0 * aligned_mean_distance(model.evaluate(a, neutral, regions::kFace),
+                                      model.evaluate(b, neutral, regions::kFace), true);
+}
+
 std::optional<Eigen::VectorXf> photo_identity(const FaceModel& model, const cv::Mat& image, const fs::path& file) {
   if (!cv::imwrite(file.string(), image)) throw Error("cannot write " + file.string());
   try {
@@ -180,12 +189,18 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
       r.identity_alike_output_source += (*o_id - id_src).norm();
       r.identity_alike_output_target += (*o_id - *t_id).norm();
       r.identity_alike_source_target += (*t_id - id_src).norm();
+      r.shape_alike_output_source_mm += shape_distance_mm(model, *o_id, id_src);
+      r.shape_alike_output_target_mm += shape_distance_mm(model, *o_id, *t_id);
+      r.shape_alike_source_target_mm += shape_distance_mm(model, *t_id, id_src);
       ++r.identity_alike_frames;
     }
     if (r.identity_alike_frames > 0) {
       r.identity_alike_output_source /= r.identity_alike_frames;
       r.identity_alike_output_target /= r.identity_alike_frames;
       r.identity_alike_source_target /= r.identity_alike_frames;
+      r.shape_alike_output_source_mm /= r.identity_alike_frames;
+      r.shape_alike_output_target_mm /= r.identity_alike_frames;
+      r.shape_alike_source_target_mm /= r.identity_alike_frames;
     }
   }
 

@@ -45,6 +45,13 @@ struct SwapPairEval {
   double identity_alike_output_target = 0;
   double identity_alike_source_target = 0;
   int identity_alike_frames = 0;
+  // The alike fits' neutral face regions against each other after a
+  // similarity alignment, mean vertex distance in mm: the shapes alone. The
+  // identity distances also count the face's size, which a photo does not fix
+  // and the swap takes from the target (SwapOptions::match_target_size).
+  double shape_alike_output_source_mm = 0;
+  double shape_alike_output_target_mm = 0;
+  double shape_alike_source_target_mm = 0;
   double expression_correlation = 0;  // mean over the weights the target moves of corr(out, target)
   int expression_weights_compared = 0;
   double seam_ratio = 0;  // mean over frames
