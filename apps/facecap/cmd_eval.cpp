@@ -37,7 +37,12 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
                   {"detection_rate", r.detection_rate},
                   {"nme_median", r.nme_median},
                   {"nme_mean", r.nme_mean},
-                  {"nme_inner_median", r.nme_inner_median}});
+                  {"nme_inner_median", r.nme_inner_median},
+                  {"nme_jaw", r.nme_jaw},
+                  {"nme_brows", r.nme_brows},
+                  {"nme_nose", r.nme_nose},
+                  {"nme_eyes", r.nme_eyes},
+                  {"nme_mouth", r.nme_mouth}});
       return;
     }
     if (a->image.empty() || a->pts.empty()) throw Error("eval landmarks needs IMAGE and PTS, or --synthetic N");

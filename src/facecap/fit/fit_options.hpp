@@ -43,7 +43,8 @@ struct FitWeights {
   //    mean face (self-swap median 8.0 -> 5.7 grey levels with 30; the still
   //    fit's landmark NME on the two portraits 0.023 / 0.019 -> 0.015 / 0.013).
   //  - More frames: weighed in full, 90 frames of dlib's landmarks bent the
-  //    identity further (synthetic renders, seeds 1-4: vertex error
+  //    identity further (synthetic renders with brows centred on their
+  //    landmarks, seeds 1-4: vertex error
   //    4.8 / 7.5 / 10.9 / 4.3 mm with 30 frames, 7.0 / 10.6 / 12.5 / 5.5 with 90;
   //    identity norm on address_720p_a 8.3 -> 11.3); 90 frames weighed as 30
   //    frames' give 4.7 / 8.0 / 9.6 / 4.2 mm, and the identities of

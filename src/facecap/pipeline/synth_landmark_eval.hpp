@@ -12,6 +12,9 @@ struct SynthLandmarkEval {
   double nme_median = 0;      // against the silhouette-aware truth landmarks
   double nme_mean = 0;
   double nme_inner_median = 0;  // landmarks 17-67 only (no jaw)
+  // Per-region NME (iBUG ranges), mean over the detected frames: comparable
+  // with `eval landmarks IMAGE PTS` on an annotated photo.
+  double nme_jaw = 0, nme_brows = 0, nme_nose = 0, nme_eyes = 0, nme_mouth = 0;
 };
 
 SynthLandmarkEval evaluate_synthetic_landmarks(const FaceModel& model, const SynthOptions& options, bool quiet = false);

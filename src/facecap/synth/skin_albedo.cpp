@@ -61,8 +61,19 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   const Vec3f brow = tone.cwiseProduct(Vec3f(0.30f, 0.26f, 0.24f));
   const Vec3f lip = tone.cwiseProduct(Vec3f(0.95f, 0.62f, 0.62f));
   const Vec3f lid = tone.cwiseProduct(Vec3f(0.35f, 0.3f, 0.3f));
-  polyline(17, 21, false, brow, 0.07f * eye_px);
-  polyline(22, 26, false, brow, 0.07f * eye_px);
+  // The 300-W annotation puts the brow points on the brow's upper edge, so
+  // the brow is painted below its landmark vertices, toward the eye.
+  const float brow_width = 0.07f * eye_px;
+  for (int side : {0, 1}) {
+    cv::Point2f eye(0, 0);
+    for (int i = 36 + 6 * side; i < 42 + 6 * side; ++i) eye += landmark_px(i) / 6.0f;
+    std::vector<cv::Point> pts;
+    for (int i = 17 + 5 * side; i <= 21 + 5 * side; ++i) {
+      const cv::Point2f p = landmark_px(i), d = eye - p;
+      pts.push_back(p + d * (0.5f * brow_width / std::max(1.0f, float(cv::norm(d)))));
+    }
+    cv::polylines(tex, pts, false, bgr(brow), std::max(1, int(brow_width)), cv::LINE_AA);
+  }
   fill(48, 59, lip);
   polyline(48, 59, true, lip * 0.9f, 0.02f * eye_px);
   polyline(36, 41, true, lid, 0.025f * eye_px);
