@@ -38,8 +38,6 @@ struct ErrorHistogram {
   }
 };
 
-// The identity of one frame fitted as a photo (as the source is), or nothing
-// when no face is found in it.
 // Mean distance in mm between two identities' neutral face regions after a
 // similarity alignment.
 double shape_distance_mm(const FaceModel& model, const Eigen::VectorXf& a, const Eigen::VectorXf& b) {
@@ -48,6 +46,8 @@ double shape_distance_mm(const FaceModel& model, const Eigen::VectorXf& a, const
                                       model.evaluate(b, neutral, regions::kFace), true);
 }
 
+// The identity of one frame fitted as a photo (as the source is), or nothing
+// when no face is found in it.
 std::optional<Eigen::VectorXf> photo_identity(const FaceModel& model, const cv::Mat& image, const fs::path& file) {
   if (!cv::imwrite(file.string(), image)) throw Error("cannot write " + file.string());
   try {

@@ -38,6 +38,11 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   cv::merge(ch, tex);
 
   const float eye_px = float(cv::norm(landmark_px(36) - landmark_px(45)));
+  auto eye_centre = [&](int side) {  // 0: landmarks 36-41, 1: 42-47
+    cv::Point2f c(0, 0);
+    for (int i = 36 + 6 * side; i < 42 + 6 * side; ++i) c += landmark_px(i) / 6.0f;
+    return c;
+  };
   const auto polyline = [&](int from, int to, bool closed, const Vec3f& colour, float width) {
     std::vector<cv::Point> pts;
     for (int i = from; i <= to; ++i) pts.push_back(landmark_px(i));
@@ -50,10 +55,9 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   };
   // Soft shading around the eyes, cheeks with a touch of red.
   cv::Mat soft(size, size, CV_32FC3, cv::Scalar::all(0));
-  for (int eye : {0, 1}) {
-    cv::Point2f c(0, 0);
-    for (int i = 36 + 6 * eye; i < 42 + 6 * eye; ++i) c += landmark_px(i) / 6.0f;
-    cv::ellipse(soft, c, cv::Size2f(0.3f * eye_px, 0.17f * eye_px), 0, 0, 360, cv::Scalar::all(-0.18), -1);
+  for (int side : {0, 1}) {
+    cv::ellipse(soft, eye_centre(side), cv::Size2f(0.3f * eye_px, 0.17f * eye_px), 0, 0, 360, cv::Scalar::all(-0.18),
+                -1);
   }
   cv::GaussianBlur(soft, soft, cv::Size(0, 0), 0.05 * eye_px);
   tex = tex.mul(cv::Scalar::all(1.0) + soft);
@@ -65,8 +69,7 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   // the brow is painted below its landmark vertices, toward the eye.
   const float brow_width = 0.07f * eye_px;
   for (int side : {0, 1}) {
-    cv::Point2f eye(0, 0);
-    for (int i = 36 + 6 * side; i < 42 + 6 * side; ++i) eye += landmark_px(i) / 6.0f;
+    const cv::Point2f eye = eye_centre(side);
     std::vector<cv::Point> pts;
     for (int i = 17 + 5 * side; i <= 21 + 5 * side; ++i) {
       const cv::Point2f p = landmark_px(i), d = eye - p;
