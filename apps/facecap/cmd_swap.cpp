@@ -28,6 +28,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("-o,--output", a->output, "Output video (.mp4); OUT.mp4.json is its synthetic-media sidecar")
       ->required();
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held")
       ->capture_default_str();

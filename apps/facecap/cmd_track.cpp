@@ -30,9 +30,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--focal", a->options.capture.fit.focal_guess,
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
-  cmd->add_option("--init-frames", a->options.capture.fit.init_frames,
-                  "Frames with a face used to solve identity and focal length")
-      ->capture_default_str();
+  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   cmd->callback([a, &global] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;

@@ -30,6 +30,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->callback([a, &global] {
     const auto to = parse_emotion(a->to), from = parse_emotion(a->from);
     if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");

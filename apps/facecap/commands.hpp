@@ -21,6 +21,9 @@ FaceModel load_model(const GlobalOptions& global);
 void print_json(const nlohmann::json& j);
 // Parses "WxH"; throws facecap::Error naming --size otherwise.
 void parse_size(const std::string& s, int& width, int& height);
+// --init-frames: the frames the identity and focal length are solved from
+// (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
+void add_init_frames_option(CLI::App& cmd, int& init_frames);
 
 void register_probe(CLI::App& app, GlobalOptions& global);
 void register_model(CLI::App& app, GlobalOptions& global);

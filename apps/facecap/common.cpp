@@ -30,4 +30,11 @@ void parse_size(const std::string& s, int& w, int& h) {
   }
 }
 
+void add_init_frames_option(CLI::App& cmd, int& init_frames) {
+  cmd.add_option("--init-frames", init_frames,
+                 "Frames with a face the identity and focal length are solved from, before the first output; more "
+                 "frames show more head poses, and weigh together as much as 30")
+      ->capture_default_str();
+}
+
 }  // namespace facecap::cli

@@ -142,6 +142,7 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
         "transform " + video.string() + " --to anger --intensity 2 -o " + out,
         "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
+        "transform " + video.string() + " --to happiness --init-frames 0 -o " + out,
         "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out}) {
     const RunResult r = run(args);
     EXPECT_EQ(r.code, 1) << args << ": " << r.out;
@@ -167,6 +168,13 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
     EXPECT_FALSE(std::filesystem::exists(out));
   }
   EXPECT_NE(run("swap --target " + video.string() + " -o " + out).code, 0);  // --source is required
+  FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
+  const RunResult r =
+      run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + " --init-frames 0");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(Cli, SwapTakesItsSourceFromAVideo) {
