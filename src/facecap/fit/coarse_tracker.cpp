@@ -73,7 +73,7 @@ void CoarseTracker::initialize() {
   if (fitter_.options().unbiased_size) {
     const IdentitySizeCorrection size(model_, fitter_.identity_modes(), fitter_.landmark_vertices());
     identity_.size_factor = size.factor(identity, solve.effective_modes);
-    identity = size.apply(identity, solve.effective_modes);
+    identity = size.scale(identity, identity_.size_factor);
   }
   identity_.identity = identity;
   identity_.focal = focal;

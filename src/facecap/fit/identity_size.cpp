@@ -57,10 +57,13 @@ double IdentitySizeCorrection::factor(const Eigen::VectorXd& identity, double de
   return peak_of_mass / along;
 }
 
-Eigen::VectorXd IdentitySizeCorrection::apply(const Eigen::VectorXd& identity, double determined) const {
-  const double c = factor(identity, determined);
+Eigen::VectorXd IdentitySizeCorrection::scale(const Eigen::VectorXd& identity, double c) const {
   if (c == 1.0) return identity;
   return c * (identity + fitted_mean_) - fitted_mean_;
+}
+
+Eigen::VectorXd IdentitySizeCorrection::apply(const Eigen::VectorXd& identity, double determined) const {
+  return scale(identity, factor(identity, determined));
 }
 
 }  // namespace facecap

@@ -49,6 +49,8 @@ class IdentitySizeCorrection {
   // above; at most modes - 1).
   double factor(const Eigen::VectorXd& identity, double determined) const;
   // c (a + m) - m: the same shape, c times larger.
+  Eigen::VectorXd scale(const Eigen::VectorXd& identity, double c) const;
+  // scale(identity, factor(identity, determined)).
   Eigen::VectorXd apply(const Eigen::VectorXd& identity, double determined) const;
 
   const Eigen::VectorXd& mean_coefficients() const { return mean_; }

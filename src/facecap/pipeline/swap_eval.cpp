@@ -38,13 +38,13 @@ struct ErrorHistogram {
   }
 };
 
-// Mean distance in mm between two identities' neutral face regions after a
-// similarity alignment.
-double shape_distance_mm(const FaceModel& model, const Eigen::VectorXf& a, const Eigen::VectorXf& b) {
-  const Eigen::VectorXf neutral;
-  return 10.0 * aligned_mean_distance(model.evaluate(a, neutral, regions::kFace),
-                                      model.evaluate(b, neutral, regions::kFace), true);
+// An identity's neutral face region.
+Positions neutral_face(const FaceModel& model, const Eigen::VectorXf& identity) {
+  return model.evaluate(identity, Eigen::VectorXf(), regions::kFace);
 }
+
+// Mean distance in mm between two face regions after a similarity alignment.
+double shape_distance_mm(const Positions& a, const Positions& b) { return 10.0 * aligned_mean_distance(a, b, true); }
 
 // The identity of one frame fitted as a photo (as the source is), or nothing
 // when no face is found in it.
@@ -178,6 +178,7 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
     const TempDir alike("facecap-eval-alike");
     auto output_frames = open_input(out.string());
     auto target_frames = open_input(video);
+    const Positions src_face = neutral_face(model, id_src);
     Frame o_frame, t_frame;
     for (int i = 0;
          r.identity_alike_frames < kAlikeIdentityFrames && output_frames->read(o_frame) && target_frames->read(t_frame);
@@ -189,9 +190,10 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
       r.identity_alike_output_source += (*o_id - id_src).norm();
       r.identity_alike_output_target += (*o_id - *t_id).norm();
       r.identity_alike_source_target += (*t_id - id_src).norm();
-      r.shape_alike_output_source_mm += shape_distance_mm(model, *o_id, id_src);
-      r.shape_alike_output_target_mm += shape_distance_mm(model, *o_id, *t_id);
-      r.shape_alike_source_target_mm += shape_distance_mm(model, *t_id, id_src);
+      const Positions o_face = neutral_face(model, *o_id), t_face = neutral_face(model, *t_id);
+      r.shape_alike_output_source_mm += shape_distance_mm(o_face, src_face);
+      r.shape_alike_output_target_mm += shape_distance_mm(o_face, t_face);
+      r.shape_alike_source_target_mm += shape_distance_mm(t_face, src_face);
       ++r.identity_alike_frames;
     }
     if (r.identity_alike_frames > 0) {
