@@ -163,7 +163,12 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video");
   cmd->add_option("--albedo-frames", a->options.refine.albedo.frames, "Frames before the albedo is fixed")
       ->capture_default_str();
+  cmd->add_flag("--true-shading", a->options.true_shading,
+                "--synthetic: solve the displacements with the render's true lighting and albedo (the estimates "
+                "are still made and reported), to measure the displacement solve alone");
   cmd->callback([a, &global] {
+    if (!a->video.empty() && a->options.true_shading)
+      throw Error("--true-shading needs --synthetic: real footage has no true shading");
     const FaceModel model = load_model(global);
     if (!a->video.empty()) {
       a->capture.quiet = global.quiet;
@@ -189,6 +194,12 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                 {"albedo_corr", r.albedo_corr},
                 {"normal_error_deg", r.normal_error_deg},
                 {"normal_error_coarse_deg", r.normal_error_coarse_deg},
+                {"detail_pixel_fraction", r.detail_pixel_fraction},
+                {"normal_error_detail_deg", r.normal_error_detail_deg},
+                {"normal_error_detail_coarse_deg", r.normal_error_detail_coarse_deg},
+                {"normal_error_flat_deg", r.normal_error_flat_deg},
+                {"normal_error_flat_coarse_deg", r.normal_error_flat_coarse_deg},
+                {"true_shading", a->options.true_shading},
                 {"vertex_error_mm", r.vertex_error_mm},
                 {"vertex_error_coarse_mm", r.vertex_error_coarse_mm},
                 {"refine_ms_per_frame", r.refine_ms_per_frame}});

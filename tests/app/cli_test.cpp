@@ -71,6 +71,10 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_NE(r.out.find("--frames"), std::string::npos) << r.out;
   EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
   EXPECT_NE(run("probe").code, 0);
+  const RunResult shading = run("eval refine --video whatever.mp4 --true-shading");
+  EXPECT_EQ(shading.code, 1) << shading.out;
+  EXPECT_EQ(lines(shading.out), 1) << shading.out;
+  EXPECT_NE(shading.out.find("--true-shading"), std::string::npos) << shading.out;
 }
 
 TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {

@@ -69,15 +69,30 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
 
   RefineEvalResult r;
   double refine_ms = 0;
-  double normal_sum = 0, normal_coarse_sum = 0, depth_sum = 0, depth_coarse_sum = 0;
-  long pixels = 0;
+  // Sums of the refined and the coarse normal error over all, detail and flat pixels.
+  struct ErrorSums {
+    double refined = 0, coarse = 0;
+    long pixels = 0;
+    void add(double e_refined, double e_coarse) {
+      refined += e_refined;
+      coarse += e_coarse;
+      ++pixels;
+    }
+    double mean_refined() const { return pixels > 0 ? refined / pixels : 0.0; }
+    double mean_coarse() const { return pixels > 0 ? coarse / pixels : 0.0; }
+  };
+  ErrorSums all, detail, flat;
+  double depth_sum = 0, depth_coarse_sum = 0;
+  KnownShading known;
+  if (o.true_shading) known.albedo = renderer.appearance().vertex_albedo.leftCols(face.num_vertices);
   std::vector<bool> seen(face.num_vertices, false);
   Progress progress("refine eval", o.frames, o.quiet);
   for (const SynthFrame& f : perf.frames) {
     const cv::Mat image = renderer.render(f, rng);
     const Positions coarse = to_camera(model.evaluate(perf.identity, f.expression, regions::kFace), f.pose);
     const auto t0 = std::chrono::steady_clock::now();
-    const Refinement ref = refiner.refine(image, coarse, perf.camera);
+    known.lighting = f.lighting;
+    const Refinement ref = refiner.refine(image, coarse, perf.camera, o.true_shading ? &known : nullptr);
     refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     r.lighting_error_rel += scaled_lighting_error(ref.lighting, f.lighting);
     for (int v = 0; v < face.num_vertices; ++v) seen[v] = seen[v] || ref.visible[v];
@@ -98,11 +113,11 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
           const double c = a.dot(b) / std::max(1e-12, double(cv::norm(a) * cv::norm(b)));
           return std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg;
         };
-        normal_sum += angle(nr, nt);
-        normal_coarse_sum += angle(nc, nt);
+        const double e_refined = angle(nr, nt), e_coarse = angle(nc, nt);
+        all.add(e_refined, e_coarse);
+        (e_coarse > RefineEvalResult::kDetailAngleDeg ? detail : flat).add(e_refined, e_coarse);
         depth_sum += 10.0 * std::abs(refined.buffers.depth[i] - truth.buffers.depth[i]);
         depth_coarse_sum += 10.0 * std::abs(base.buffers.depth[i] - truth.buffers.depth[i]);
-        ++pixels;
       }
     }
     ++r.frames;
@@ -113,11 +128,16 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
   progress.finish();
   r.lighting_error_rel /= std::max(1, r.frames);
   r.refine_ms_per_frame = refine_ms / std::max(1, r.frames);
-  if (pixels > 0) {
-    r.normal_error_deg = normal_sum / pixels;
-    r.normal_error_coarse_deg = normal_coarse_sum / pixels;
-    r.vertex_error_mm = depth_sum / pixels;
-    r.vertex_error_coarse_mm = depth_coarse_sum / pixels;
+  if (all.pixels > 0) {
+    r.normal_error_deg = all.mean_refined();
+    r.normal_error_coarse_deg = all.mean_coarse();
+    r.detail_pixel_fraction = double(detail.pixels) / all.pixels;
+    r.normal_error_detail_deg = detail.mean_refined();
+    r.normal_error_detail_coarse_deg = detail.mean_coarse();
+    r.normal_error_flat_deg = flat.mean_refined();
+    r.normal_error_flat_coarse_deg = flat.mean_coarse();
+    r.vertex_error_mm = depth_sum / all.pixels;
+    r.vertex_error_coarse_mm = depth_coarse_sum / all.pixels;
   }
   std::vector<double> est, tru;
   const Positions& albedo = refiner.coarse_albedo();

@@ -21,6 +21,9 @@ struct RefineEvalOptions {
   int width = 1280;
   int height = 720;
   RefineOptions refine;
+  // Solve the displacements with the render's own lighting and albedo (the
+  // estimates are still made and reported): the solver's accuracy alone.
+  bool true_shading = false;
   bool quiet = false;
 };
 
@@ -35,6 +38,15 @@ struct RefineEvalResult {
   double normal_error_deg =
       0;  // refined finest level vs the true detailed surface: geometric (triangle) normals per pixel
   double normal_error_coarse_deg = 0;
+  // The same split by where the true surface has detail: pixels whose true
+  // normal lies more than kDetailAngleDeg from the coarse mesh's (the
+  // wrinkles), and the rest (flat skin, where any detail is false).
+  static constexpr double kDetailAngleDeg = 1.0;
+  double detail_pixel_fraction = 0;
+  double normal_error_detail_deg = 0;
+  double normal_error_detail_coarse_deg = 0;
+  double normal_error_flat_deg = 0;
+  double normal_error_flat_coarse_deg = 0;
   double vertex_error_mm = 0;  // |depth - true depth| per pixel
   double vertex_error_coarse_mm = 0;
   double refine_ms_per_frame = 0;

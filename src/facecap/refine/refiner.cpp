@@ -1,7 +1,9 @@
 #include "facecap/refine/refiner.hpp"
 
 #include <chrono>
+#include <string>
 
+#include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
 
 namespace facecap {
@@ -34,7 +36,11 @@ const Positions& Refiner::coarse_albedo() const {
   return albedo_ ? albedo_->albedo() : empty;
 }
 
-Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera) {
+Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
+                           const KnownShading* known) {
+  if (known && known->albedo.cols() != num_vertices_)
+    throw Error("known albedo has " + std::to_string(known->albedo.cols()) + " vertices, the mesh " +
+                std::to_string(num_vertices_));
   if (!initialised()) {
     HierarchyOptions ho = options_.hierarchy;
     if (!options_.displacements) ho.levels = 1;
@@ -101,11 +107,11 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   out.timings.albedo_ms = ms_since(t0);
   lighting_ = frame_lighting;
   out.lighting = frame_lighting;
-  const ShCoeffs& lighting_used = frame_lighting;
+  const ShCoeffs& lighting_used = known ? known->lighting : frame_lighting;
 
   // Displacements, coarse to fine.
   Eigen::MatrixXf base = coarse;
-  Eigen::MatrixXf albedo = albedo_->albedo();
+  Eigen::MatrixXf albedo = known ? known->albedo : albedo_->albedo();
   Eigen::VectorXf d;
   for (int l = 0; l < levels; ++l) {
     t0 = std::chrono::steady_clock::now();

@@ -84,6 +84,15 @@ struct Refinement {
 // The triangles whose three vertices are all in `mask`.
 std::vector<Triangle> masked_triangles(const std::vector<Triangle>& triangles, const std::vector<bool>& mask);
 
+// Lighting and coarsest-level albedo known from elsewhere (a synthetic
+// render's truth): the displacement solve uses them instead of the
+// estimates, which are still made and reported. `eval refine --true-shading`
+// measures the displacement solve alone this way.
+struct KnownShading {
+  ShCoeffs lighting;
+  Positions albedo;  // 3 x N RGB on the coarse mesh
+};
+
 class Refiner {
  public:
   // polygons / num_vertices: the coarse mesh (the face region). data_mask:
@@ -95,7 +104,8 @@ class Refiner {
 
   // Refines one frame: `coarse` are the coarse mesh's camera-space positions
   // (the tracked face), `image` the BGR 8-bit frame, `camera` its intrinsics.
-  Refinement refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera);
+  Refinement refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
+                    const KnownShading* known = nullptr);
 
   bool initialised() const { return hierarchy_.num_levels() > 0; }
   const MeshHierarchy& hierarchy() const { return hierarchy_; }
