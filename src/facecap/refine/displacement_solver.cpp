@@ -115,7 +115,7 @@ class Solver {
  public:
   Solver(const DisplacementProblem& p, const DisplacementOptions& o)
       : p_(p), o_(scaled(o)), lv_(*p.level), g_(lv_, free_vertices(p)) {
-    d_full_.setZero(lv_.num_vertices);
+    positions_ = p.base;
     const int nf = g_.num_free;
     // The fixed vertices' share of E_hier and E_temp (d = 0 there): constant,
     // kept so that the reported energies are the whole energy.
@@ -138,12 +138,15 @@ class Solver {
     lin.weight.resize(nt);
     lin.data_residual.resize(nt);
     vertex_cost_.resize(nt);
-    for (int a = 0; a < g_.num_free; ++a) d_full_[g_.global[a]] = d[a];
-    const auto position = [&](int i) -> Vec3f { return p_.base.col(i) + d_full_[i] * p_.base_normals.col(i); };
+    // The displaced positions, once: each enters the normals of its whole ring.
+    for (int a = 0; a < g_.num_free; ++a) {
+      const int i = g_.global[a];
+      positions_.col(i) = p_.base.col(i) + d[a] * p_.base_normals.col(i);
+    }
     parallel_for(
         nt,
         [&](int b, int e) {
-          for (int t = b; t < e; ++t) linearise_vertex(t, position, lin);
+          for (int t = b; t < e; ++t) linearise_vertex(t, lin);
         },
         512);
     lin.data_cost = vertex_cost_.cast<double>().sum();
@@ -313,8 +316,8 @@ class Solver {
 
  private:
   // Shading, its derivatives and the data residual of touched vertex t.
-  template <typename PositionOf>
-  void linearise_vertex(int t, const PositionOf& position, Linearisation& lin) {
+  void linearise_vertex(int t, Linearisation& lin) {
+    const auto position = [&](int v) -> Vec3f { return positions_.col(v); };
     constexpr int kMaxRing = 32;
     const int i = g_.global[t];
     const Vec3f pi = position(i);
@@ -393,7 +396,7 @@ class Solver {
   const DisplacementOptions o_;
   const MeshLevel& lv_;
   const LocalGraph g_;
-  Eigen::VectorXf d_full_;  // d on the whole level, for positions (zero where fixed)
+  Positions positions_;     // the displaced surface on the whole level (the base where d is fixed)
   Eigen::VectorXf vertex_cost_;
   Eigen::VectorXf scratch_lx_;
   Eigen::VectorXf prolonged_, previous_;  // pd and d_prev at the free vertices
