@@ -396,7 +396,7 @@ class Solver {
   const DisplacementOptions o_;
   const MeshLevel& lv_;
   const LocalGraph g_;
-  Positions positions_;     // the displaced surface on the whole level (the base where d is fixed)
+  Positions positions_;  // the displaced surface on the whole level (the base where d is fixed)
   Eigen::VectorXf vertex_cost_;
   Eigen::VectorXf scratch_lx_;
   Eigen::VectorXf prolonged_, previous_;  // pd and d_prev at the free vertices
