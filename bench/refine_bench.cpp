@@ -70,8 +70,9 @@ void BM_RefineFrame720p(benchmark::State& state) {
 BENCHMARK(BM_RefineFrame720p)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // Rasterising the finest level at 1280x720 (depth, triangle and barycentric
-// buffers reused across frames), as the displacement solve's vertex sampling
-// does every frame.
+// buffers reused across frames). The displacement solve's depth test at the
+// finest level rasterises the coarse mesh instead (the same surface):
+// BM_RasterizeCoarseMesh720p.
 void BM_RasterizeFinestLevel720p(benchmark::State& state) {
   const Scene& s = scene();
   Refiner refiner = make_face_refiner(s.model, RefineOptions{});
@@ -95,6 +96,25 @@ void BM_RasterizeFinestLevel720p(benchmark::State& state) {
   state.counters["triangles"] = double(h.level(finest).triangles.size());
 }
 BENCHMARK(BM_RasterizeFinestLevel720p)->Unit(benchmark::kMillisecond);
+
+// The coarse mesh at 1280x720: the depth the finest level's vertices are
+// tested against, every frame.
+void BM_RasterizeCoarseMesh720p(benchmark::State& state) {
+  const Scene& s = scene();
+  Refiner refiner = make_face_refiner(s.model, RefineOptions{});
+  refiner.refine(s.images[0], s.coarse[0], s.performance.camera);
+  const std::vector<Triangle>& triangles = refiner.hierarchy().level(0).triangles;
+  RasterBuffers buffers;
+  buffers.resize(s.images[0].cols, s.images[0].rows);
+  size_t frame = 0;
+  for (auto _ : state) {
+    rasterize(s.coarse[frame], triangles, s.performance.camera, buffers);
+    benchmark::DoNotOptimize(buffers.depth.data());
+    frame = (frame + 1) % s.coarse.size();
+  }
+  state.counters["triangles"] = double(triangles.size());
+}
+BENCHMARK(BM_RasterizeCoarseMesh720p)->Unit(benchmark::kMillisecond);
 
 // The albedo phase of a video's first frames: lighting and albedo estimated
 // jointly over 8 albedo frames (4 lighting/albedo rounds at each, 100 PCG

@@ -18,8 +18,14 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Po
 VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Positions& n,
                               const std::vector<Triangle>& triangles, const PinholeCamera& camera,
                               RasterBuffers& buffers) {
+  return sample_vertices(image, p, n, p, triangles, camera, buffers);
+}
+
+VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Positions& n,
+                              const Positions& occluder_points, const std::vector<Triangle>& occluder_triangles,
+                              const PinholeCamera& camera, RasterBuffers& buffers) {
   if (buffers.width != image.cols || buffers.height != image.rows) buffers.resize(image.cols, image.rows);
-  rasterize(p, triangles, camera, buffers);
+  rasterize(occluder_points, occluder_triangles, camera, buffers);
   VertexSamples s;
   s.visible = vertex_visibility(p, n, camera, buffers, 0.1f);
   s.colour = Positions::Zero(3, p.cols());

@@ -27,6 +27,13 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_poin
 VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_points, const Positions& camera_normals,
                               const std::vector<Triangle>& triangles, const PinholeCamera& camera,
                               RasterBuffers& buffers);
+// The same with the depth test against another mesh of the same surface:
+// a finer hierarchy level's base surface is the coarse one, whose fewer
+// triangles draw the same depth sooner (refine_bench at 720p: 70k triangles
+// 4.7-5.5 ms, the coarse 18k 2.6-3.7 ms).
+VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_points, const Positions& camera_normals,
+                              const Positions& occluder_points, const std::vector<Triangle>& occluder_triangles,
+                              const PinholeCamera& camera, RasterBuffers& buffers);
 
 // Drops the observations within `rings` rings of a vertex that is not
 // observed (the silhouette, the edge of the skin mask) or of a hole in the
