@@ -129,9 +129,12 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     problem.albedo = albedo;
     problem.lighting = lighting_used;
     const std::vector<bool>& mask = level_masks_[l];
-    // Depth from the coarse mesh: every level's base is its surface.
-    VertexSamples samples = sample_vertices(image_for(l), problem.base, problem.base_normals, coarse, level_skin_[0],
-                                            camera_for(l), raster_[l]);
+    // Depth from the coarse mesh, whose surface every level's base is
+    // (unless the smoothing mask moved the new vertices off it).
+    const bool coarse_depth = !options_.hierarchy.smoothing_mask;
+    VertexSamples samples =
+        sample_vertices(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
+                        level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
     apply_mask(samples, mask);
     drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
