@@ -83,6 +83,7 @@ struct LocalGraph {
 struct Linearisation {
   Eigen::VectorXf self;           // d s_t / d d_t
   Eigen::VectorXf jac;            // d s_t / d d_q per row entry (t, q)
+  Eigen::VectorXf jac_by_column;  // the same per column entry (q, t) (0 where t's ring lacks q)
   Eigen::VectorXf weight;         // W_t = sum_c rho_tc^2 (0 when not visible)
   Eigen::VectorXf data_residual;  // sum_c rho_tc (rho_tc s_t - I_tc)
   double data_cost = 0;           // sum of the (Huber) vertex costs
@@ -150,6 +151,18 @@ class Solver {
         },
         512);
     lin.data_cost = vertex_cost_.cast<double>().sum();
+    // The column passes read the Jacobian in column order: gathered once
+    // here instead of through col_entries in each of the PCG's products.
+    lin.jac_by_column.resize(static_cast<Eigen::Index>(g_.col_rows.size()));
+    parallel_for(
+        g_.num_free,
+        [&](int b, int e) {
+          for (int k = g_.col_offsets[b]; k < g_.col_offsets[e]; ++k) {
+            const int entry = g_.col_entries[k];
+            lin.jac_by_column[k] = entry >= 0 ? lin.jac[entry] : 0.0f;
+          }
+        },
+        kBlock);
   }
 
   // The row products over the touched vertices: lx = L x for the uniform
@@ -195,8 +208,7 @@ class Solver {
             float lap = g_.inv_degree[a] > 0 ? v[a] : 0.0f;
             for (int k = g_.col_offsets[a]; k < g_.col_offsets[a + 1]; ++k) {
               const int t = g_.col_rows[k];
-              const int entry = g_.col_entries[k];
-              if (entry >= 0) data += lin.jac[entry] * u[t];
+              data += lin.jac_by_column[k] * u[t];
               lap -= v[t] * g_.inv_degree[t];
             }
             y[a] = data + (smooth * lap + c * x[a]);
@@ -225,8 +237,8 @@ class Solver {
       float lap = g_.inv_degree[a] > 0 ? 1.0f : 0.0f;
       for (int k = g_.col_offsets[a]; k < g_.col_offsets[a + 1]; ++k) {
         const int t = g_.col_rows[k];
-        const int entry = g_.col_entries[k];
-        if (entry >= 0) dd += lin.weight[t] * lin.jac[entry] * lin.jac[entry];
+        const float j = lin.jac_by_column[k];
+        dd += lin.weight[t] * j * j;
         lap += g_.inv_degree[t] * g_.inv_degree[t];
       }
       diag[a] = dd + smooth * lap + diag_const_;
