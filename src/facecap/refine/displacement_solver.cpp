@@ -27,6 +27,7 @@ struct LocalGraph {
   // Rows, per touched vertex: its free ring neighbours (local indices) and
   // their slot in the level's ring. Other neighbours multiply a zero.
   std::vector<int> row_offsets, row_cols, row_slots;
+  std::vector<int> row_vertices;  // the level vertex of each row entry's column (global[row_cols[k]])
   // Columns, per free vertex q: its ring neighbours t (local, all touched) and
   // the row entry (t, q), or -1 where t's ring does not list q.
   std::vector<int> col_offsets, col_rows, col_entries;
@@ -62,6 +63,7 @@ struct LocalGraph {
         slot_entry[s] = static_cast<int>(row_cols.size());
         row_cols.push_back(j);
         row_slots.push_back(s - r.offsets[i]);
+        row_vertices.push_back(r.indices[s]);
       }
       row_offsets.push_back(static_cast<int>(row_cols.size()));
     }
@@ -372,8 +374,7 @@ class Solver {
     lin.self[t] = sum_a_minus_b.dot(dsdm.cross(ni));
     for (int e = rb; e < re; ++e) {
       const int slot = g_.row_slots[e];
-      lin.jac[e] =
-          slot < kMaxRing ? u[slot].dot(dsdm.cross(Vec3f(p_.base_normals.col(g_.global[g_.row_cols[e]])))) : 0.0f;
+      lin.jac[e] = slot < kMaxRing ? u[slot].dot(dsdm.cross(Vec3f(p_.base_normals.col(g_.row_vertices[e])))) : 0.0f;
     }
     if (!p_.samples->visible[i]) {
       lin.weight[t] = 0;
