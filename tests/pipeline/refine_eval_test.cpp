@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "facecap/core/error.hpp"
+
 #include "test_support.hpp"
 
 namespace facecap {
@@ -61,6 +63,19 @@ TEST(RefineEval, WithTheTrueShadingTheSolveRecoversSomeWrinkles) {
   EXPECT_LT(known.normal_error_detail_deg, known.normal_error_detail_coarse_deg - 0.1);
   EXPECT_LT(known.normal_error_detail_deg, estimated.normal_error_detail_deg - 0.1);
   EXPECT_LT(known.normal_error_flat_deg, estimated.normal_error_flat_deg);
+}
+
+TEST(RefineEval, KnownShadingOfTheWrongMeshIsAnError) {
+  FACECAP_REQUIRE_MODEL(model);
+  Refiner refiner = make_face_refiner(*model, RefineOptions{});
+  KnownShading known;
+  known.lighting.setZero();
+  known.albedo = Positions::Constant(3, 10, 0.5f);
+  const cv::Mat image(720, 1280, CV_8UC3, cv::Scalar::all(128));
+  const Positions coarse = model->evaluate(Eigen::VectorXf::Zero(model->num_identity()),
+                                           Eigen::VectorXf::Zero(model->num_expressions()), regions::kFace);
+  EXPECT_THROW(refiner.refine(image, coarse, PinholeCamera::centered(1000, 1280, 720), &known), Error);
+  EXPECT_FALSE(refiner.initialised());
 }
 
 TEST(RefineEval, RealFootageRefinedMeshExplainsTheImageBetter) {
