@@ -75,6 +75,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
                      {"warp_background", options.swap.warp_background ? "true" : "false"},
                      {"match_target_size", options.swap.match_target_size ? "true" : "false"},
+                     {"mirror_source", options.swap.mirror_source ? "true" : "false"},
                      {"source_frames_used", std::to_string(summary.source.frames_used)}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);

@@ -125,6 +125,7 @@ struct FaceSwapper::Impl {
     FaceTexture t = unshade_face(photo, source.camera_points, skin.triangles, source.camera, source.lighting, map,
                                  feature_holes(m, source.camera_points, source.camera));
     drop_non_skin(t);
+    if (options.mirror_source) complete_from_mirror(t, options.mirror_low_pass_texels);
     source_albedo = fill_unseen(t.albedo, t.weight);
     source_weight = t.weight;
     // Alpha in UV space: distance (texels) to the nearest texel outside the skin.

@@ -101,6 +101,38 @@ int drop_non_skin(FaceTexture& texture, float max_chroma, float max_log_brightne
   return dropped;
 }
 
+void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
+  const cv::Mat albedo = texture.albedo.clone(), weight = texture.weight.clone();
+  // Low-pass colour of what was seen: blur(albedo * weight) / blur(weight).
+  cv::Mat w3, weighted, low, low_weight;
+  cv::merge(std::vector<cv::Mat>{weight, weight, weight}, w3);
+  cv::multiply(albedo, w3, weighted);
+  cv::GaussianBlur(weighted, low, cv::Size(0, 0), low_pass_texels);
+  cv::GaussianBlur(w3, low_weight, cv::Size(0, 0), low_pass_texels);
+  low /= cv::max(low_weight, 1e-4f);
+  // A texel seen less squarely than this keeps the mirror's colour as it is:
+  // its own side's low-pass colour says too little.
+  constexpr float kMinWeightForColour = 0.05f;
+  const int n = texture.albedo.cols;
+  for (int y = 0; y < texture.albedo.rows; ++y) {
+    const auto* a = albedo.ptr<cv::Vec3f>(y);
+    const auto* lo = low.ptr<cv::Vec3f>(y);
+    const float* w = weight.ptr<float>(y);
+    auto* out = texture.albedo.ptr<cv::Vec3f>(y);
+    float* out_w = texture.weight.ptr<float>(y);
+    for (int x = 0; x < n; ++x) {
+      const int m = n - 1 - x;
+      const float extra = w[m] - w[x];
+      if (extra <= 0) continue;
+      cv::Vec3f mirrored = a[m];
+      if (w[x] > kMinWeightForColour)
+        for (int c = 0; c < 3; ++c) mirrored[c] *= lo[x][c] / std::max(lo[m][c], 1e-4f);
+      out[x] = (w[x] * a[x] + extra * mirrored) / w[m];
+      out_w[x] = w[m];
+    }
+  }
+}
+
 void accumulate(FaceTexture& sum, const FaceTexture& one) {
   cv::Mat weighted;
   cv::Mat w3;

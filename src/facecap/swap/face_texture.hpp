@@ -33,6 +33,17 @@ FaceTexture unshade_face(const cv::Mat& image, const Positions& camera_points, c
 // coarse mesh's outline covers. Returns how many texels it dropped.
 int drop_non_skin(FaceTexture& texture, float max_chroma = 0.05f, float max_log_brightness = 0.9f);
 
+// Completes a photo's texture from its mirror image. ICT's face and its UV
+// layout are left-right symmetric (the surface point at (u, v) mirrors to
+// (1 - u, v)), and a photo of a turned head sees its far cheek obliquely or
+// not at all. Where the mirror texel was seen more squarely (a higher
+// weight), it is blended in by the difference of the weights, carrying its
+// detail but not its colour: it is scaled by the ratio of this side's
+// low-pass colour to the mirror side's (Gaussian, `low_pass_texels`;
+// weighted by what each side saw), as the two sides differ by what the
+// de-lighting left. The texel's weight becomes the mirror's.
+void complete_from_mirror(FaceTexture& texture, double low_pass_texels);
+
 // Adds `one` to a weighted running sum (albedo * weight and weight).
 void accumulate(FaceTexture& sum, const FaceTexture& one);
 // The weighted mean of an accumulated sum.

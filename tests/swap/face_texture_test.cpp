@@ -1,0 +1,82 @@
+// A photo's texture completed from its mirror image.
+#include "facecap/swap/face_texture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace facecap {
+
+namespace {
+
+constexpr int kSize = 128;
+
+// Stripes along v: detail the mirror should carry across.
+float stripes(int y) { return std::sin(0.5f * float(y)); }
+
+// The left half seen squarely with skin 0.5 and stripes; the right half seen
+// obliquely (weight 0.2) as a flat, darker 0.3; one column pair unseen.
+FaceTexture half_seen_face() {
+  FaceTexture t;
+  t.albedo = cv::Mat(kSize, kSize, CV_32FC3);
+  t.weight = cv::Mat(kSize, kSize, CV_32F);
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const bool left = x < kSize / 2;
+      const float v = left ? 0.5f + 0.1f * stripes(y) : 0.3f;
+      t.albedo.at<cv::Vec3f>(y, x) = cv::Vec3f(v, v, v);
+      t.weight.at<float>(y, x) = left ? 1.0f : 0.2f;
+    }
+    t.weight.at<float>(y, 5) = t.weight.at<float>(y, kSize - 1 - 5) = 0.0f;
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST(CompleteFromMirror, TheObliqueSideTakesTheMirrorsDetailInItsOwnColour) {
+  const FaceTexture before = half_seen_face();
+  FaceTexture t{before.albedo.clone(), before.weight.clone()};
+  complete_from_mirror(t, 4.0);
+  double mean = 0, cov = 0, var_s = 0, var_t = 0;
+  int count = 0;
+  for (int y = 0; y < kSize; ++y) {
+    // Far from the middle, where the low-pass colour mixes the halves.
+    for (int x = kSize / 2 + 16; x < kSize - 16; ++x) {
+      const float v = t.albedo.at<cv::Vec3f>(y, x)[1];
+      mean += v;
+      ++count;
+      EXPECT_FLOAT_EQ(t.weight.at<float>(y, x), 1.0f);
+    }
+  }
+  mean /= count;
+  // The right side keeps its own (darker) colour...
+  EXPECT_NEAR(mean, 0.3, 0.01);
+  // ...and gains the left side's stripes, scaled to it (0.8 of 0.1 * 0.3 / 0.5).
+  for (int y = 0; y < kSize; ++y) {
+    const double v = t.albedo.at<cv::Vec3f>(y, kSize - 20)[1] - mean, s = stripes(y);
+    cov += v * s;
+    var_s += s * s;
+    var_t += v * v;
+  }
+  EXPECT_GT(cov / std::sqrt(var_s * var_t), 0.95);
+  EXPECT_NEAR(cov / var_s, 0.8 * 0.1 * 0.3 / 0.5, 0.01);
+  // The squarely seen side is untouched, and what neither side saw stays unseen.
+  EXPECT_EQ(cv::norm(t.albedo.colRange(0, kSize / 2), before.albedo.colRange(0, kSize / 2), cv::NORM_INF), 0.0);
+  for (int y = 0; y < kSize; ++y) {
+    EXPECT_EQ(t.weight.at<float>(y, 5), 0.0f);
+    EXPECT_EQ(t.weight.at<float>(y, kSize - 1 - 5), 0.0f);
+  }
+}
+
+TEST(CompleteFromMirror, AnUnseenTexelTakesTheMirrorAsItIs) {
+  FaceTexture t = half_seen_face();
+  for (int y = 0; y < kSize; ++y) t.weight.at<float>(y, kSize - 20) = 0.0f;
+  complete_from_mirror(t, 4.0);
+  for (int y = 0; y < kSize; ++y) {
+    EXPECT_FLOAT_EQ(t.albedo.at<cv::Vec3f>(y, kSize - 20)[0], t.albedo.at<cv::Vec3f>(y, 19)[0]);
+    EXPECT_FLOAT_EQ(t.weight.at<float>(y, kSize - 20), 1.0f);
+  }
+}
+
+}  // namespace facecap
