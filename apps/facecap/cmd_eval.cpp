@@ -11,6 +11,12 @@ namespace facecap::cli {
 
 namespace {
 
+// The per-region NME keys both landmark evaluations print.
+nlohmann::json region_json(const RegionNme& r) {
+  return {
+      {"nme_jaw", r.jaw}, {"nme_brows", r.brows}, {"nme_nose", r.nose}, {"nme_eyes", r.eyes}, {"nme_mouth", r.mouth}};
+}
+
 void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
   auto* cmd = eval.add_subcommand("landmarks",
                                   "Landmark accuracy as JSON: dlib's 68 points on an annotated image (IMAGE PTS), "
@@ -32,31 +38,22 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
       o.frames = a->synthetic;
       o.seed = a->seed;
       const SynthLandmarkEval r = evaluate_synthetic_landmarks(model, o, global.quiet);
-      print_json({{"frames", r.frames},
-                  {"detected", r.detected},
-                  {"detection_rate", r.detection_rate},
-                  {"nme_median", r.nme_median},
-                  {"nme_mean", r.nme_mean},
-                  {"nme_inner_median", r.nme_inner_median},
-                  {"nme_jaw", r.nme_jaw},
-                  {"nme_brows", r.nme_brows},
-                  {"nme_nose", r.nme_nose},
-                  {"nme_eyes", r.nme_eyes},
-                  {"nme_mouth", r.nme_mouth}});
+      nlohmann::json j = {
+          {"frames", r.frames},         {"detected", r.detected}, {"detection_rate", r.detection_rate},
+          {"nme_median", r.nme_median}, {"nme_mean", r.nme_mean}, {"nme_inner_median", r.nme_inner_median}};
+      j.update(region_json(r.regions));
+      print_json(j);
       return;
     }
     if (a->image.empty() || a->pts.empty()) throw Error("eval landmarks needs IMAGE and PTS, or --synthetic N");
     const LandmarkEvalResult r = evaluate_landmarks(a->image, a->pts);
-    print_json({{"image", a->image},
-                {"faces", r.faces},
-                {"nme", r.nme},
-                {"mean_error_px", r.mean_error_px},
-                {"max_error_px", r.max_error_px},
-                {"nme_jaw", r.nme_jaw},
-                {"nme_brows", r.nme_brows},
-                {"nme_nose", r.nme_nose},
-                {"nme_eyes", r.nme_eyes},
-                {"nme_mouth", r.nme_mouth}});
+    nlohmann::json j = {{"image", a->image},
+                        {"faces", r.faces},
+                        {"nme", r.nme},
+                        {"mean_error_px", r.mean_error_px},
+                        {"max_error_px", r.max_error_px}};
+    j.update(region_json(r.regions));
+    print_json(j);
   });
 }
 

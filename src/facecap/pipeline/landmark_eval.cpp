@@ -20,20 +20,28 @@ float range_nme(const Landmarks& e, const Landmarks& t, int from, int to) {
 
 }  // namespace
 
-void region_nme(const Landmarks& e, const Landmarks& t, LandmarkEvalResult& out) {
-  out.nme = landmark_nme(e, t);
-  out.nme_jaw = range_nme(e, t, 0, 16);
-  out.nme_brows = range_nme(e, t, 17, 26);
-  out.nme_nose = range_nme(e, t, 27, 35);
-  out.nme_eyes = range_nme(e, t, 36, 47);
-  out.nme_mouth = range_nme(e, t, 48, 67);
-  out.mean_error_px = 0;
-  out.max_error_px = 0;
-  for (int i = 0; i < kNumLandmarks; ++i) {
-    const float d = (e[i] - t[i]).norm();
-    out.mean_error_px += d / kNumLandmarks;
-    out.max_error_px = std::max(out.max_error_px, d);
-  }
+RegionNme& RegionNme::operator+=(const RegionNme& o) {
+  jaw += o.jaw;
+  brows += o.brows;
+  nose += o.nose;
+  eyes += o.eyes;
+  mouth += o.mouth;
+  return *this;
+}
+
+RegionNme& RegionNme::operator/=(double k) {
+  for (double* v : {&jaw, &brows, &nose, &eyes, &mouth}) *v /= k;
+  return *this;
+}
+
+RegionNme region_nme(const Landmarks& e, const Landmarks& t) {
+  RegionNme out;
+  out.jaw = range_nme(e, t, 0, 16);
+  out.brows = range_nme(e, t, 17, 26);
+  out.nose = range_nme(e, t, 27, 35);
+  out.eyes = range_nme(e, t, 36, 47);
+  out.mouth = range_nme(e, t, 48, 67);
+  return out;
 }
 
 LandmarkEvalResult evaluate_landmarks(const std::filesystem::path& image_path, const std::filesystem::path& pts) {
@@ -51,7 +59,14 @@ LandmarkEvalResult evaluate_landmarks(const std::filesystem::path& image_path, c
   LandmarkEvalResult result;
   result.faces = static_cast<int>(faces.size());
   result.detected = LandmarkDetector().detect(frame.image, best->box);
-  region_nme(result.detected, truth, result);
+  const Landmarks& e = result.detected;
+  result.nme = landmark_nme(e, truth);
+  result.regions = region_nme(e, truth);
+  for (int i = 0; i < kNumLandmarks; ++i) {
+    const float d = (e[i] - truth[i]).norm();
+    result.mean_error_px += d / kNumLandmarks;
+    result.max_error_px = std::max(result.max_error_px, d);
+  }
   return result;
 }
 

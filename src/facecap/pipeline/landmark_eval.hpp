@@ -7,12 +7,20 @@
 
 namespace facecap {
 
+// NME per face region (iBUG ranges), each normalised as the whole NME is.
+struct RegionNme {
+  double jaw = 0, brows = 0, nose = 0, eyes = 0, mouth = 0;
+
+  RegionNme& operator+=(const RegionNme& o);
+  RegionNme& operator/=(double k);
+};
+
 struct LandmarkEvalResult {
   int faces = 0;  // faces the detector found
   float nme = 0;  // mean error / outer-eye distance of the annotation (300-W convention)
   float mean_error_px = 0;
   float max_error_px = 0;
-  float nme_jaw = 0, nme_brows = 0, nme_nose = 0, nme_eyes = 0, nme_mouth = 0;
+  RegionNme regions;
   Landmarks detected{};
 };
 
@@ -20,7 +28,7 @@ struct LandmarkEvalResult {
 // facecap::Error for unreadable files or when no face is found.
 LandmarkEvalResult evaluate_landmarks(const std::filesystem::path& image, const std::filesystem::path& pts);
 
-// Per-region NME of `estimate` against `truth` (iBUG ranges).
-void region_nme(const Landmarks& estimate, const Landmarks& truth, LandmarkEvalResult& out);
+// Per-region NME of `estimate` against `truth`.
+RegionNme region_nme(const Landmarks& estimate, const Landmarks& truth);
 
 }  // namespace facecap

@@ -42,17 +42,9 @@ SynthLandmarkEval evaluate_synthetic_landmarks(const FaceModel& model, const Syn
     double inner = 0;
     for (int i = 17; i < kNumLandmarks; ++i) inner += (lm[i] - truth[i]).norm();
     nme_inner.push_back(inner / (kNumLandmarks - 17) / outer_eye_distance(truth));
-    LandmarkEvalResult regions;
-    region_nme(lm, truth, regions);
-    out.nme_jaw += regions.nme_jaw;
-    out.nme_brows += regions.nme_brows;
-    out.nme_nose += regions.nme_nose;
-    out.nme_eyes += regions.nme_eyes;
-    out.nme_mouth += regions.nme_mouth;
+    out.regions += region_nme(lm, truth);
   }
-  if (out.detected > 0) {
-    for (double* v : {&out.nme_jaw, &out.nme_brows, &out.nme_nose, &out.nme_eyes, &out.nme_mouth}) *v /= out.detected;
-  }
+  if (out.detected > 0) out.regions /= out.detected;
   progress.finish();
   out.detection_rate = out.frames ? double(out.detected) / out.frames : 0.0;
   out.nme_median = median(nme);

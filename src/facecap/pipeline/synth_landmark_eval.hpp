@@ -1,6 +1,7 @@
 #pragma once
 // How well dlib sees the synthetic renders: the share of frames where the
 // HOG detector finds the face, and the landmark NME against the truth.
+#include "facecap/pipeline/landmark_eval.hpp"
 #include "facecap/synth/performance.hpp"
 
 namespace facecap {
@@ -14,7 +15,7 @@ struct SynthLandmarkEval {
   double nme_inner_median = 0;  // landmarks 17-67 only (no jaw)
   // Per-region NME (iBUG ranges), mean over the detected frames: comparable
   // with `eval landmarks IMAGE PTS` on an annotated photo.
-  double nme_jaw = 0, nme_brows = 0, nme_nose = 0, nme_eyes = 0, nme_mouth = 0;
+  RegionNme regions;
 };
 
 SynthLandmarkEval evaluate_synthetic_landmarks(const FaceModel& model, const SynthOptions& options, bool quiet = false);
