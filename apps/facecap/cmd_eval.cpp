@@ -273,6 +273,7 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("-o,--output", a->output, "Keep the swapped video here (--source/--target; default: temporary)");
   cmd->add_flag("--wrinkles", a->options.swap.wrinkles, "Predict the target's expression wrinkles (§6.1.2)");
+  add_swap_texture_flags(*cmd, a->options.swap);
   cmd->callback([a, &global] {
     const bool self = !a->self.empty();
     if (self == (!a->source.empty() || !a->target.empty()))

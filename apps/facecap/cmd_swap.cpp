@@ -15,7 +15,6 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     SwapJobOptions options;
     bool no_warp = false;
     bool photo_size = false;
-    bool no_mirror = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source,
@@ -39,14 +38,11 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--photo-size", a->photo_size,
                 "Keep the new face at the size the photo's fit gives it (default: the target face's size; a "
                 "single photo does not fix a face's absolute size)");
-  cmd->add_flag("--no-mirror", a->no_mirror,
-                "Do not complete the side of the face the photo sees obliquely from its mirror image (for a face "
-                "that is not left-right symmetric: a scar, a patch)");
+  add_swap_texture_flags(*cmd, a->options.swap);
   cmd->callback([a, &global] {
     if (a->options.swap.appearance_frames < 1) throw Error("--appearance-frames must be at least 1");
     a->options.swap.warp_background = !a->no_warp;
     a->options.swap.match_target_size = !a->photo_size;
-    a->options.swap.mirror_source = !a->no_mirror;
     a->options.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
     const SwapSummary s = run_swap(model, a->source, a->target, a->output, a->options);

@@ -37,4 +37,16 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames) {
       ->capture_default_str();
 }
 
+void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
+  // `swap` outlives the parse: it is part of the subcommand's arguments.
+  cmd.add_flag_callback(
+      "--no-mirror", [&swap] { swap.mirror_source = false; },
+      "Do not complete the side of the face the photo sees obliquely from its mirror image (for a face "
+      "that is not left-right symmetric: a scar, a patch)");
+  cmd.add_flag_callback(
+      "--no-light-colour", [&swap] { swap.follow_light_colour = false; },
+      "Do not tint the new face as the target light's colour changes from that of the first frames (white "
+      "balance, a warmer lamp); its brightness follows the target's lighting either way");
+}
+
 }  // namespace facecap::cli

@@ -19,6 +19,7 @@
 #include "facecap/swap/albedo_adaptation.hpp"
 #include "facecap/swap/background_warp.hpp"
 #include "facecap/swap/face_texture.hpp"
+#include "facecap/swap/light_colour.hpp"
 #include "facecap/swap/noise_matching.hpp"
 #include "facecap/swap/size_match.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
@@ -109,6 +110,10 @@ struct FaceSwapper::Impl {
   std::vector<Triangle> fine_skin;  // the finest level's skin triangles
   SizeMatch size;                   // SwapOptions::match_target_size
   Eigen::VectorXf size_for;         // the target identity `size` was computed for
+  // The target's own albedo per skin vertex over the appearance frames, and
+  // how much of each was seen: the reference for light_colour().
+  Positions target_vertex_albedo;
+  std::vector<float> target_vertex_seen;
 
   const SizeMatch& size_match_for(const Eigen::VectorXf& target_identity) {
     if (size_for.size() != target_identity.size() || size_for != target_identity) {
@@ -202,6 +207,8 @@ struct FaceSwapper::Impl {
     const Positions tgt = vertex_means(map, skin.triangles, target.albedo, target.weight, skin.num_vertices, seen_t);
     std::vector<bool> known(skin.num_vertices);
     for (int v = 0; v < skin.num_vertices; ++v) known[v] = seen_t[v] > 0.05f;
+    target_vertex_albedo = tgt;
+    target_vertex_seen = seen_t;
     // Where none of the face's outline was seen in the target yet (a head
     // turned far away), the source albedo stays as it is until one is.
     Positions h = Positions::Zero(3, skin.num_vertices);
@@ -290,6 +297,12 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   }
   t.appearance_ms += ms_since(t0);
 
+  // The target light's colour now against the appearance frames' (light_colour.hpp).
+  Vec3f tint = Vec3f::Ones();
+  if (m.options.follow_light_colour && m.target_vertex_albedo.cols() > 0)
+    tint = light_colour(frame, target_points, vertex_normals(target_points, m.skin.triangles), m.target_vertex_albedo,
+                        m.target_vertex_seen, target.camera, target.lighting);
+
   SwappedFrame out;
   out.image = frame.clone();
   const cv::Rect bounds =
@@ -326,8 +339,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             const cv::Vec4f s = sample_bilinear_channels<4>(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
             const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
-            const float shade = std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
-            colour[x] = cv::Vec3f(s[0] * shade, s[1] * shade, s[2] * shade) * 255.0f;
+            const float shade = 255.0f * std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
+            colour[x] = cv::Vec3f(s[0] * shade * tint[0], s[1] * shade * tint[1], s[2] * shade * tint[2]);
             // Fade where the surface turns away too: the silhouette (the side of
             // the jaw, the cheek under a turned head) is no UV boundary.
             const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
