@@ -69,9 +69,27 @@ TEST(CompleteFromMirror, TheObliqueSideTakesTheMirrorsDetailInItsOwnColour) {
   }
 }
 
-TEST(CompleteFromMirror, AnUnseenTexelTakesTheMirrorAsItIs) {
+TEST(CompleteFromMirror, AnUnseenTexelAmongSeenOnesTakesTheMirrorInItsNeighboursColour) {
+  // A column unseen (a dropped shadow) inside the obliquely seen side: the
+  // mirror brings its detail, in the colour of the seen neighbours (0.3),
+  // not its own (0.5 + stripes): that would be a pale patch.
   FaceTexture t = half_seen_face();
   for (int y = 0; y < kSize; ++y) t.weight.at<float>(y, kSize - 20) = 0.0f;
+  complete_from_mirror(t, 4.0);
+  double mean = 0;
+  for (int y = 0; y < kSize; ++y) {
+    mean += t.albedo.at<cv::Vec3f>(y, kSize - 20)[0] / kSize;
+    EXPECT_FLOAT_EQ(t.weight.at<float>(y, kSize - 20), 1.0f);
+  }
+  EXPECT_NEAR(mean, 0.3, 0.01);
+}
+
+TEST(CompleteFromMirror, AnUnseenRegionTakesTheMirrorAsItIs) {
+  // Where this side saw nothing in the low-pass neighbourhood, its colour is
+  // unknown: the mirror's is copied.
+  FaceTexture t = half_seen_face();
+  for (int y = 0; y < kSize; ++y)
+    for (int x = kSize / 2; x < kSize; ++x) t.weight.at<float>(y, x) = 0.0f;
   complete_from_mirror(t, 4.0);
   for (int y = 0; y < kSize; ++y) {
     EXPECT_FLOAT_EQ(t.albedo.at<cv::Vec3f>(y, kSize - 20)[0], t.albedo.at<cv::Vec3f>(y, 19)[0]);

@@ -110,14 +110,20 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
   cv::GaussianBlur(weighted, low, cv::Size(0, 0), low_pass_texels);
   cv::GaussianBlur(w3, low_weight, cv::Size(0, 0), low_pass_texels);
   low /= cv::max(low_weight, 1e-4f);
-  // A texel seen less squarely than this keeps the mirror's colour as it is:
-  // its own side's low-pass colour says too little.
-  constexpr float kMinWeightForColour = 0.05f;
+  // Where this side saw too little around a texel (its low-pass weight, the
+  // seen share of the neighbourhood), the mirror's colour is kept as it is:
+  // this side's low-pass colour says too little there. A texel unseen itself
+  // but with seen neighbours takes their colour: copied as it is, the other
+  // side's colour came with its own lighting residual (a lit outer eye corner
+  // copied into the dropped shadow of the other: a pale patch on the eyelid
+  // when the target blinks).
+  constexpr float kMinLowPassWeight = 0.05f;
   const int n = texture.albedo.cols;
   for (int y = 0; y < texture.albedo.rows; ++y) {
     const auto* a = albedo.ptr<cv::Vec3f>(y);
     const auto* lo = low.ptr<cv::Vec3f>(y);
     const float* w = weight.ptr<float>(y);
+    const auto* lw = low_weight.ptr<cv::Vec3f>(y);
     auto* out = texture.albedo.ptr<cv::Vec3f>(y);
     float* out_w = texture.weight.ptr<float>(y);
     for (int x = 0; x < n; ++x) {
@@ -125,7 +131,7 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
       const float extra = w[m] - w[x];
       if (extra <= 0) continue;
       cv::Vec3f mirrored = a[m];
-      if (w[x] > kMinWeightForColour)
+      if (lw[x][0] > kMinLowPassWeight)
         for (int c = 0; c < 3; ++c) mirrored[c] *= lo[x][c] / std::max(lo[m][c], 1e-4f);
       out[x] = (w[x] * a[x] + extra * mirrored) / w[m];
       out_w[x] = w[m];
