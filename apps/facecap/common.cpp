@@ -47,6 +47,11 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
       "--no-light-colour", [&swap] { swap.follow_light_colour = false; },
       "Do not tint the new face as the target light's colour changes from that of the first frames (white "
       "balance, a warmer lamp); its brightness follows the target's lighting either way");
+  cmd.add_option("--photo-detail", swap.photo_detail_gain,
+                 "Gain on the photo's mid-scale detail (0.4-3 mm), where its texture holds its own folds and shadows "
+                 "that land in the wrong place on another expression; 1 keeps the photo's texture as it is")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
 }
 
 }  // namespace facecap::cli

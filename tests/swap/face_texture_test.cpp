@@ -97,4 +97,26 @@ TEST(CompleteFromMirror, AnUnseenRegionTakesTheMirrorAsItIs) {
   }
 }
 
+TEST(ScaleDetail, ScalesTheDetailFinerThanSigmaAndKeepsTheRest) {
+  // A constant, a slow ramp along x and a sine along y with a 12-texel
+  // period: the blur of sigma 16 removes the sine and keeps the ramp.
+  constexpr int kN = 256;
+  cv::Mat albedo(kN, kN, CV_32FC3);
+  auto sine = [](int y) { return 0.05f * std::sin(2.0f * 3.14159265f * float(y) / 12.0f); };
+  for (int y = 0; y < kN; ++y)
+    for (int x = 0; x < kN; ++x) {
+      const float v = 0.4f + 0.001f * float(x) + sine(y);
+      albedo.at<cv::Vec3f>(y, x) = cv::Vec3f(v, v, v);
+    }
+  const cv::Mat out = scale_detail(albedo, 16.0, 0.7f);
+  // Away from the borders, where the blur sees past the edge.
+  for (int y = 64; y < kN - 64; ++y)
+    for (int x = 64; x < kN - 64; x += 16) {
+      const float expected = 0.4f + 0.001f * float(x) + 0.7f * sine(y);
+      EXPECT_NEAR(out.at<cv::Vec3f>(y, x)[1], expected, 2e-3f) << "at " << x << ", " << y;
+    }
+  // A gain of 1 changes nothing.
+  EXPECT_LT(cv::norm(scale_detail(albedo, 16.0, 1.0f), albedo, cv::NORM_INF), 1e-5);
+}
+
 }  // namespace facecap

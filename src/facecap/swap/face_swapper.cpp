@@ -219,6 +219,8 @@ struct FaceSwapper::Impl {
     // Noise: the photo's fine residual, histogram-matched to the first target frame's.
     cv::Mat smooth;
     cv::GaussianBlur(source_albedo, smooth, cv::Size(0, 0), options.noise_sigma);
+    if (options.photo_detail_gain != 1.0f)
+      smooth = scale_detail(smooth, options.photo_detail_fraction * map.size, options.photo_detail_gain);
     const cv::Mat residual_s = source_albedo - smooth;
     const cv::Mat residual_t =
         fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);

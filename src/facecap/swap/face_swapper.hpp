@@ -52,6 +52,18 @@ struct SwapOptions {
   // Self-swap (`eval swap --self`) median / mean 4.325 / 6.475 -> 4.325 /
   // 6.422 on address_720p_a, 6.675 / 9.979 -> 6.675 / 9.884 on _b.
   bool follow_light_colour = true;
+  // The photo's detail between the noise scale (noise_sigma) and this
+  // fraction of the texture's width (16 texels of 1024, about 3 mm of face)
+  // is scaled by photo_detail_gain (scale_detail): there the photo's texture
+  // holds its own folds and shadows, which the coarse shading does not
+  // remove and which land in the wrong place as the target's expression
+  // changes. The cost is that much of the photo's mid-scale albedo detail.
+  // Self-swap (`eval swap --self`) median / mean with gains 1 / 0.8 / 0.7 /
+  // 0.6: 4.325 / 6.416, 4.325 / 6.255, 4.325 / 6.210, 4.325 / 6.222
+  // (address_720p_a) and 6.325 / 9.709, 6.325 / 9.567, 6.325 / 9.528, 6.325
+  // / 9.539 (_b); at 32 texels (gain 0.7) 4.675 / 6.346 and 6.675 / 9.682.
+  float photo_detail_gain = 0.7f;
+  double photo_detail_fraction = 16.0 / 1024.0;
 };
 
 // The source portrait, reconstructed.

@@ -139,6 +139,12 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
   }
 }
 
+cv::Mat scale_detail(const cv::Mat& albedo, double sigma, float gain) {
+  cv::Mat base;
+  cv::GaussianBlur(albedo, base, cv::Size(0, 0), sigma);
+  return base + gain * (albedo - base);
+}
+
 void accumulate(FaceTexture& sum, const FaceTexture& one) {
   cv::Mat weighted;
   cv::Mat w3;

@@ -45,6 +45,13 @@ int drop_non_skin(FaceTexture& texture, float max_chroma = 0.05f, float max_log_
 void complete_from_mirror(FaceTexture& texture, double low_pass_texels);
 
 // Adds `one` to a weighted running sum (albedo * weight and weight).
+// Scales the detail of `albedo` finer than a Gaussian of `sigma` texels by
+// `gain`: blur + gain (albedo - blur). A photo's texture below that scale is
+// partly its own shading (the folds and shadows of its expression and pose,
+// which the coarse shading model does not remove); rendered on another
+// expression it lands in the wrong place.
+cv::Mat scale_detail(const cv::Mat& albedo, double sigma, float gain);
+
 void accumulate(FaceTexture& sum, const FaceTexture& one);
 // The weighted mean of an accumulated sum.
 FaceTexture weighted_mean(const FaceTexture& sum);
