@@ -57,7 +57,7 @@ struct SwapOptions {
   // is scaled by photo_detail_gain (scale_detail): there the photo's texture
   // holds its own folds and shadows, which the coarse shading does not
   // remove and which land in the wrong place as the target's expression
-  // changes. The cost is that much of the photo's mid-scale albedo detail.
+  // changes. The cost: as much of the photo's albedo detail at that scale.
   // Self-swap (`eval swap --self`) median / mean with gains 1 / 0.8 / 0.7 /
   // 0.6: 4.325 / 6.416, 4.325 / 6.255, 4.325 / 6.210, 4.325 / 6.222
   // (address_720p_a) and 6.325 / 9.709, 6.325 / 9.567, 6.325 / 9.528, 6.325

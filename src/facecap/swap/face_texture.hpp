@@ -44,7 +44,6 @@ int drop_non_skin(FaceTexture& texture, float max_chroma = 0.05f, float max_log_
 // de-lighting left. The texel's weight becomes the mirror's.
 void complete_from_mirror(FaceTexture& texture, double low_pass_texels);
 
-// Adds `one` to a weighted running sum (albedo * weight and weight).
 // Scales the detail of `albedo` finer than a Gaussian of `sigma` texels by
 // `gain`: blur + gain (albedo - blur). A photo's texture below that scale is
 // partly its own shading (the folds and shadows of its expression and pose,
@@ -52,6 +51,7 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels);
 // expression it lands in the wrong place.
 cv::Mat scale_detail(const cv::Mat& albedo, double sigma, float gain);
 
+// Adds `one` to a weighted running sum (albedo * weight and weight).
 void accumulate(FaceTexture& sum, const FaceTexture& one);
 // The weighted mean of an accumulated sum.
 FaceTexture weighted_mean(const FaceTexture& sum);

@@ -20,7 +20,7 @@ Vec3f light_colour(const cv::Mat& frame, const Positions& camera_points, const P
     if (!(seen[v] > options.min_seen)) continue;
     const Vec3f p = camera_points.col(v);
     const Vec3f normal = camera_normals.col(v);
-    if (!(p.z() > 0) || -normal.dot(p.normalized()) < options.min_facing) continue;
+    if (!(p.z() > 0) || !(view_facing(p, normal) >= options.min_facing)) continue;
     const Vec2f q = camera.project(p);
     if (!(q.x() >= 0 && q.y() >= 0 && q.x() <= frame.cols - 1 && q.y() <= frame.rows - 1)) continue;
     const Vec3f n_viewer = to_viewer_frame(normal);
