@@ -291,6 +291,11 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
                   {"photometric_median", r.photometric_median},
                   {"photometric_mean", r.photometric_mean},
                   {"face_pixels_per_frame", r.face_pixels_per_frame},
+                  {"photometric_mean_mouth", r.regions[0].mean},
+                  {"photometric_mean_eyes", r.regions[1].mean},
+                  {"photometric_mean_rest", r.regions[2].mean},
+                  {"pixel_share_mouth", r.regions[0].share},
+                  {"pixel_share_eyes", r.regions[1].share},
                   {"render_ms_per_frame", r.timings.swap.render_ms / n},
                   {"warp_ms_per_frame", r.timings.swap.warp_ms / n},
                   {"blend_ms_per_frame", r.timings.swap.blend_ms / n}});

@@ -63,6 +63,15 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   // weighed as one video frame (identity_evidence_frames).
   EXPECT_LT(r.photometric_median, 4.8);
   EXPECT_LT(r.photometric_mean, 6.6);
+  // The split by region adds up to the whole, and each region has its pixels.
+  double mean = 0, share = 0;
+  for (const auto& region : r.regions) {
+    EXPECT_GT(region.share, 0.1);
+    mean += region.share * region.mean;
+    share += region.share;
+  }
+  EXPECT_NEAR(share, 1.0, 1e-9);
+  EXPECT_NEAR(mean, r.photometric_mean, 1e-6);
 }
 
 // A burst of source photos (the video's first 5 frames) fixes the identity

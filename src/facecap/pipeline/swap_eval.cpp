@@ -1,5 +1,6 @@
 #include "facecap/pipeline/swap_eval.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
@@ -35,6 +36,36 @@ struct ErrorHistogram {
       if (run >= 0.5 * count) return (b + 0.5) * 0.05;
     }
     return 0;
+  }
+};
+
+// Boxes around the mouth (landmarks 48-67) and the eyes with their brows
+// (17-26, 36-47), grown a little, for splitting an error by region.
+struct FeatureBoxes {
+  cv::Rect2f mouth, eyes;
+
+  FeatureBoxes(const Landmarks& points, const cv::Point2f& origin) {
+    auto box = [&](std::initializer_list<std::pair<int, int>> ranges, float grow_x, float grow_y) {
+      float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+      for (const auto& [first, last] : ranges) {
+        for (int k = first; k <= last; ++k) {
+          x0 = std::min(x0, points[k].x());
+          y0 = std::min(y0, points[k].y());
+          x1 = std::max(x1, points[k].x());
+          y1 = std::max(y1, points[k].y());
+        }
+      }
+      const float w = x1 - x0, h = y1 - y0;
+      return cv::Rect2f(x0 - grow_x * w - origin.x, y0 - grow_y * h - origin.y, (1 + 2 * grow_x) * w,
+                        (1 + 2 * grow_y) * h);
+    };
+    mouth = box({{48, 67}}, 0.2f, 0.3f);
+    eyes = box({{17, 26}, {36, 47}}, 0.05f, 0.15f);
+  }
+  // 0 mouth, 1 eyes (the mouth's box wins where they meet), 2 the rest.
+  int region(int x, int y) const {
+    const cv::Point2f p{float(x), float(y)};
+    return mouth.contains(p) ? 0 : eyes.contains(p) ? 1 : 2;
   }
 };
 
@@ -107,18 +138,25 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
 
   SwapSelfEval r;
   ErrorHistogram errors;
+  std::array<double, 3> region_sum{}, region_count{};
   SwapJobOptions o = options;
   o.source_frames = source_frames;
   o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& result) {
     if (target.index == 0 || result.alpha.empty()) return;
     const cv::Mat truth = target.image(result.window), made = result.image(result.window);
+    const FeatureBoxes boxes(target.fit.observed, cv::Point2f(float(result.window.x), float(result.window.y)));
     for (int y = 0; y < result.window.height; ++y) {
       const auto* t = truth.ptr<cv::Vec3b>(y);
       const auto* m = made.ptr<cv::Vec3b>(y);
       const float* a = result.alpha.ptr<float>(y);
       for (int x = 0; x < result.window.width; ++x) {
         if (a[x] <= 0.5f) continue;
-        errors.add((std::abs(t[x][0] - m[x][0]) + std::abs(t[x][1] - m[x][1]) + std::abs(t[x][2] - m[x][2])) / 3.0f);
+        const float e =
+            (std::abs(t[x][0] - m[x][0]) + std::abs(t[x][1] - m[x][1]) + std::abs(t[x][2] - m[x][2])) / 3.0f;
+        errors.add(e);
+        const int region = boxes.region(x, y);
+        region_sum[region] += e;
+        region_count[region] += 1;
       }
     }
     ++r.frames;
@@ -128,6 +166,10 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
   r.photometric_median = errors.median();
   r.photometric_mean = errors.mean();
   r.face_pixels_per_frame = r.frames > 0 ? errors.count / r.frames : 0;
+  for (int k = 0; k < 3; ++k) {
+    r.regions[k].mean = region_count[k] > 0 ? region_sum[k] / region_count[k] : 0;
+    r.regions[k].share = errors.count > 0 ? region_count[k] / errors.count : 0;
+  }
   r.timings = s.timings;
   return r;
 }

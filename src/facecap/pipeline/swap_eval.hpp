@@ -8,6 +8,7 @@
 //    source's identity and the target's expression; the blend boundary
 //    should not stand out (seam_ratio: mean gradient magnitude on the outer
 //    edge of the blend over that in a band just inside it).
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -22,6 +23,13 @@ struct SwapSelfEval {
   double photometric_median = 0;
   double photometric_mean = 0;
   double face_pixels_per_frame = 0;
+  // The mean split by where the error lies: boxes around the detected mouth
+  // and around the eyes with their brows, and the rest of the face; share:
+  // that region's part of the face pixels.
+  struct Region {
+    double mean = 0, share = 0;
+  };
+  std::array<Region, 3> regions;  // mouth, eyes, rest
   SwapJobTimings timings;
 };
 
