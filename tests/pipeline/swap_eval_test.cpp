@@ -54,9 +54,10 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30));
   EXPECT_EQ(r.frames, 29);
   EXPECT_GT(r.face_pixels_per_frame, 30000);
-  // 4.3 / 6.1 on these frames (the bars are 3 / 6); 4.3 / 6.5 with
-  // the photo's mid-scale detail as it is, the mirror's colour copied into
-  // unseen texels and no light colour; 5.0 / 7.7 with the photo's expression
+  // 4.0 / 6.04 on these frames (the bars are 3 / 6); 4.3 / 6.12 with
+  // the appearance gathered under the target's provisional lighting, 4.3 /
+  // 6.5 also with the photo's mid-scale detail as it is, the mirror's colour
+  // copied into unseen texels and no light colour; 5.0 / 7.7 with the photo's expression
   // prior as weak as one video frame's against its 30 frames' worth of
   // landmarks, 6.0 / 9.7 with the photo's face at the photo fit's own size as
   // well (match_target_size off), 8.7 / 12.7 when the photo's identity
@@ -75,8 +76,8 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
 }
 
 // A burst of source photos (the video's first 5 frames) fixes the identity
-// at least as well as one. 4.0 / 6.05 on these frames against the photo's
-// 4.3 / 6.12; 6.0 / 8.7 when each burst frame weighed as one video frame
+// at least as well as one. 4.0 / 6.01 on these frames against the photo's
+// 4.0 / 6.04; 6.0 / 8.7 when each burst frame weighed as one video frame
 // (before the texture changes that took the photo from 4.3 / 6.53 to 4.3 /
 // 6.12).
 TEST(SwapEval, ABurstOfSourcePhotosDoesAtLeastAsWellAsOne) {

@@ -288,6 +288,11 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   const Positions swapped_points = to_camera(source_shape, target.pose);
 
   auto t0 = std::chrono::steady_clock::now();
+  // What was gathered under provisional lighting starts again (TargetFrame::lighting_final).
+  if (!target.lighting_final) {
+    m.appearance_seen = 0;
+    m.target_sum = FaceTexture();
+  }
   if (m.appearance_seen < m.options.appearance_frames) {
     FaceTexture tex = unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map,
                                    feature_holes(m.model, target_points, target.camera));

@@ -17,8 +17,10 @@
 namespace facecap {
 
 struct SwapOptions {
-  int texture_size = 1024;    // UV texture of the face
-  int appearance_frames = 5;  // target frames over which the appearance is harmonised, then held
+  int texture_size = 1024;  // UV texture of the face
+  // Target frames over which the appearance is harmonised, then held,
+  // counted from the first with final lighting (TargetFrame::lighting_final).
+  int appearance_frames = 5;
   float fade_texels = 40.0f;  // width of the alpha fade at the face boundary, in texels
   // Where the surface turns away (the jaw and cheek silhouette, no UV
   // boundary), alpha fades in from this cosine between the normal and the
@@ -84,6 +86,11 @@ struct TargetFrame {
   HeadPose pose;
   PinholeCamera camera;
   ShCoeffs lighting;
+  // Whether `lighting` was estimated against the target's final albedo (the
+  // refiner's albedo is fixed after its first frames; until then the
+  // lighting estimates shift with it). The appearance gathered under
+  // provisional lighting is used, then gathered again once it is final.
+  bool lighting_final = true;
   // With SwapOptions::wrinkles: the refined face at the hierarchy's finest
   // level (camera space) and the hierarchy it lives on.
   Positions fine;
