@@ -30,7 +30,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
-                  "Target frames over which the appearance is harmonised, then held")
+                  "Target frames over which the appearance is harmonised, then held (counted once the target's "
+                  "albedo, which its lighting is estimated against, is fixed: its first 4 frames with a face)")
       ->capture_default_str();
   cmd->add_flag("--no-warp", a->no_warp, "Do not warp the target background to the new face outline");
   cmd->add_flag("--wrinkles", a->options.swap.wrinkles,
@@ -50,12 +51,11 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     const SwapTimings& t = s.timings.swap;
     std::fprintf(stderr,
                  "frames %d, swapped %d, lost %d | source %.0f ms | per frame: lighting %.2f, appearance %.2f "
-                 "(first %d frames), render %.2f, wrinkles %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json "
-                 "(synthetic-media "
-                 "marks)\n",
+                 "(first frames only), render %.2f, wrinkles %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json "
+                 "(synthetic-media marks)\n",
                  s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
-                 t.appearance_ms / n, a->options.swap.appearance_frames, t.render_ms / n, t.wrinkle_ms / n,
-                 t.warp_ms / n, t.blend_ms / n, a->output.c_str(), a->output.c_str());
+                 t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n, t.warp_ms / n, t.blend_ms / n,
+                 a->output.c_str(), a->output.c_str());
   });
 }
 

@@ -90,9 +90,6 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   VideoWriter writer(output, vo);
 
   FaceSwapper swapper(model, summary.source.photo, summary.source.face, options.swap);
-  // With wrinkles the target is refined as `track --refine` does, on a
-  // two-level hierarchy (the coarse mesh and one 4-8 level, about 4x the
-  // vertices), whose finest level carries the coating transfer.
   // The target's albedo from its first 4 frames in a row (not every 3rd):
   // the appearance waits for it (TargetFrame::lighting_final), and the
   // lighting of the frames before it is on another scale. Self-swap
@@ -101,6 +98,9 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   // albedo of every 3rd frame; 4.325 / 6.100, 6.325 / 9.502 with both.
   RefineOptions refine = lighting_only_refinement();
   refine.albedo.interval = 1;
+  // With wrinkles the target is refined as `track --refine` does, on a
+  // two-level hierarchy (the coarse mesh and one 4-8 level, about 4x the
+  // vertices), whose finest level carries the coating transfer.
   if (options.swap.wrinkles) {
     refine.displacements = true;
     refine.hierarchy.levels = 2;
