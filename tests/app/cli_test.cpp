@@ -179,6 +179,14 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // A gain on the photo's detail outside [0, 1] is refused by name before any work.
+  for (const char* gain : {"2", "-0.5", "lots"}) {
+    const RunResult bad = run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out +
+                              " --photo-detail " + gain);
+    EXPECT_NE(bad.code, 0) << bad.out;
+    EXPECT_NE(bad.out.find("--photo-detail"), std::string::npos) << bad.out;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
 }
 
 TEST(Cli, SwapTakesItsSourceFromAVideo) {
