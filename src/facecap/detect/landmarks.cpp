@@ -9,9 +9,10 @@
 
 namespace facecap {
 
-Box bounding_box(const Landmarks& lm) {
-  float x0 = lm[0].x(), x1 = x0, y0 = lm[0].y(), y1 = y0;
-  for (const Vec2f& p : lm) {
+Box bounding_box(std::span<const Vec2f> points) {
+  if (points.empty()) return {};
+  float x0 = points[0].x(), x1 = x0, y0 = points[0].y(), y1 = y0;
+  for (const Vec2f& p : points) {
     x0 = std::min(x0, p.x());
     x1 = std::max(x1, p.x());
     y0 = std::min(y0, p.y());

@@ -3,6 +3,7 @@
 // centres at integer coordinates).
 #include <array>
 #include <filesystem>
+#include <span>
 #include <vector>
 
 #include "facecap/core/geometry.hpp"
@@ -19,7 +20,9 @@ struct Box {
   Vec2f center() const { return {x + 0.5f * width, y + 0.5f * height}; }
 };
 
-Box bounding_box(const Landmarks& lm);
+// The box around some points (a range of landmarks), or around all 68.
+Box bounding_box(std::span<const Vec2f> points);
+inline Box bounding_box(const Landmarks& lm) { return bounding_box(std::span<const Vec2f>(lm)); }
 
 // Distance between the outer eye corners (iBUG 36 and 45): the normaliser of NME.
 float outer_eye_distance(const Landmarks& lm);

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <span>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/rigid_alignment.hpp"
@@ -45,22 +46,17 @@ struct FeatureBoxes {
   cv::Rect2f mouth, eyes;
 
   FeatureBoxes(const Landmarks& points, const cv::Point2f& origin) {
-    auto box = [&](std::initializer_list<std::pair<int, int>> ranges, float grow_x, float grow_y) {
-      float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
-      for (const auto& [first, last] : ranges) {
-        for (int k = first; k <= last; ++k) {
-          x0 = std::min(x0, points[k].x());
-          y0 = std::min(y0, points[k].y());
-          x1 = std::max(x1, points[k].x());
-          y1 = std::max(y1, points[k].y());
-        }
-      }
-      const float w = x1 - x0, h = y1 - y0;
-      return cv::Rect2f(x0 - grow_x * w - origin.x, y0 - grow_y * h - origin.y, (1 + 2 * grow_x) * w,
-                        (1 + 2 * grow_y) * h);
+    // Landmarks first..last, as a rectangle relative to `origin`.
+    auto range = [&](int first, int last) {
+      const Box b = bounding_box(std::span<const Vec2f>(points).subspan(first, last - first + 1));
+      return cv::Rect2f(b.x - origin.x, b.y - origin.y, b.width, b.height);
     };
-    mouth = box({{48, 67}}, 0.2f, 0.3f);
-    eyes = box({{17, 26}, {36, 47}}, 0.05f, 0.15f);
+    auto grown = [](const cv::Rect2f& r, float grow_x, float grow_y) {
+      return cv::Rect2f(r.x - grow_x * r.width, r.y - grow_y * r.height, (1 + 2 * grow_x) * r.width,
+                        (1 + 2 * grow_y) * r.height);
+    };
+    mouth = grown(range(48, 67), 0.2f, 0.3f);
+    eyes = grown(range(17, 26) | range(36, 47), 0.05f, 0.15f);
   }
   // 0 mouth, 1 eyes (the mouth's box wins where they meet), 2 the rest.
   int region(int x, int y) const {
