@@ -9,6 +9,7 @@
 #include "facecap/core/parallel.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
+#include "facecap/swap/noise_matching.hpp"
 
 namespace facecap {
 
@@ -140,9 +141,7 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
 }
 
 cv::Mat scale_detail(const cv::Mat& albedo, double sigma, float gain) {
-  cv::Mat base;
-  cv::GaussianBlur(albedo, base, cv::Size(0, 0), sigma);
-  return base + gain * (albedo - base);
+  return albedo - (1.0f - gain) * fine_residual(albedo, sigma);
 }
 
 void accumulate(FaceTexture& sum, const FaceTexture& one) {
