@@ -47,6 +47,12 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
       "--no-light-colour", [&swap] { swap.follow_light_colour = false; },
       "Do not tint the new face as the target light's colour changes from that of the first frames (white "
       "balance, a warmer lamp); its brightness follows the target's lighting either way");
+  cmd.add_option("--residual-shading", swap.residual_shading_mm,
+                 "Width (Gaussian sigma, mm on the face) of the target's shading that its lighting model leaves "
+                 "unexplained (light falling off toward the chin, a broad shadow) and the new face follows; smaller "
+                 "copies more of the target's own look onto the new face. 0: off")
+      ->check(CLI::Range(0.0f, 100.0f))
+      ->capture_default_str();
   cmd.add_option("--photo-detail", swap.photo_detail_gain,
                  "Gain on the photo's mid-scale detail (0.4-3 mm), where its texture holds its own folds and shadows "
                  "that land in the wrong place on another expression; 1 keeps the photo's texture as it is")

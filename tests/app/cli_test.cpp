@@ -8,6 +8,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "facecap/core/temp_dir.hpp"
 #include "test_support.hpp"
@@ -179,12 +181,18 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(out));
-  // A gain on the photo's detail outside [0, 1] is refused by name before any work.
-  for (const char* gain : {"2", "-0.5", "lots"}) {
+  // A gain on the photo's detail outside [0, 1], or a residual shading
+  // width outside [0, 100] mm, is refused by name before any work.
+  for (const auto& [flag, value] : std::vector<std::pair<std::string, std::string>>{{"--photo-detail", "2"},
+                                                                                    {"--photo-detail", "-0.5"},
+                                                                                    {"--photo-detail", "lots"},
+                                                                                    {"--residual-shading", "-5"},
+                                                                                    {"--residual-shading", "500"},
+                                                                                    {"--residual-shading", "wide"}}) {
     const RunResult bad = run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out +
-                              " --photo-detail " + gain);
+                              " " + flag + " " + value);
     EXPECT_NE(bad.code, 0) << bad.out;
-    EXPECT_NE(bad.out.find("--photo-detail"), std::string::npos) << bad.out;
+    EXPECT_NE(bad.out.find(flag), std::string::npos) << bad.out;
     EXPECT_FALSE(std::filesystem::exists(out));
   }
 }

@@ -46,15 +46,16 @@ TEST(SeamRatio, AHardEdgeOnTheOutlineStandsOutAndHolesDoNotCount) {
 }
 
 // Fig. 6.7's experiment: the video's first frame swapped into the rest. The
-// issue's bar (median <= 3, mean <= 6) is not met yet; this guards what we
-// have against getting worse.
+// issue's bar for the mean (<= 6) is met; that for the median (<= 3) is
+// not yet, and this guards what we have against getting worse.
 TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30));
   EXPECT_EQ(r.frames, 29);
   EXPECT_GT(r.face_pixels_per_frame, 30000);
-  // 4.0 / 6.04 on these frames (the bars are 3 / 6); 4.3 / 6.12 with
+  // 3.7 / 5.73 on these frames (the bars are 3 / 6); 4.0 / 6.01
+  // without the target's residual shading (residual_shading.hpp); 4.3 / 6.12 with
   // the appearance gathered under the target's provisional lighting, 4.3 /
   // 6.5 also with the photo's mid-scale detail as it is, the mirror's colour
   // copied into unseen texels and no light colour; 5.0 / 7.7 with the photo's expression
@@ -62,8 +63,8 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   // landmarks, 6.0 / 9.7 with the photo's face at the photo fit's own size as
   // well (match_target_size off), 8.7 / 12.7 when the photo's identity
   // weighed as one video frame (identity_evidence_frames).
-  EXPECT_LT(r.photometric_median, 4.8);
-  EXPECT_LT(r.photometric_mean, 6.6);
+  EXPECT_LT(r.photometric_median, 4.3);
+  EXPECT_LT(r.photometric_mean, 6.0);  // the bar
   // The split by region adds up to the whole, and each region has its pixels.
   double mean = 0, share = 0;
   for (const auto& region : r.regions) {
@@ -76,18 +77,17 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
 }
 
 // A burst of source photos (the video's first 5 frames) fixes the identity
-// at least as well as one. 4.0 / 6.01 on these frames against the photo's
-// 4.0 / 6.04; 6.0 / 8.7 when each burst frame weighed as one video frame
-// (before the texture changes that took the photo from 4.3 / 6.53 to 4.3 /
-// 6.12).
+// at least as well as one. 3.7 / 5.65 on these frames against the photo's
+// 3.7 / 5.73 (4.0 / 5.95 and 4.0 / 6.01 without the residual shading); 6.0 / 8.7 when each burst frame weighed as one
+// video frame (before the texture changes that took the photo from 4.3 / 6.53 to 4.3 / 6.12).
 TEST(SwapEval, ABurstOfSourcePhotosDoesAtLeastAsWellAsOne) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30), 5);
   EXPECT_EQ(r.source_frames_used, 5);
   EXPECT_EQ(r.frames, 29);
-  EXPECT_LT(r.photometric_median, 4.6);
-  EXPECT_LT(r.photometric_mean, 6.5);
+  EXPECT_LT(r.photometric_median, 4.3);
+  EXPECT_LT(r.photometric_mean, 5.9);
 }
 
 TEST(SwapEval, PortraitIntoVideoTakesTheSourceShapeAndTheTargetExpression) {

@@ -21,6 +21,7 @@
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/light_colour.hpp"
 #include "facecap/swap/noise_matching.hpp"
+#include "facecap/swap/residual_shading.hpp"
 #include "facecap/swap/size_match.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 
@@ -114,6 +115,7 @@ struct FaceSwapper::Impl {
   // how much of each was seen: the reference for light_colour().
   Positions target_vertex_albedo;
   std::vector<float> target_vertex_seen;
+  std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
 
   const SizeMatch& size_match_for(const Eigen::VectorXf& target_identity) {
     if (size_for.size() != target_identity.size() || size_for != target_identity) {
@@ -142,6 +144,11 @@ struct FaceSwapper::Impl {
     // smoothstep: no kink where the fade starts
     alpha = alpha.mul(alpha).mul(3.0f - 2.0f * alpha);
     const std::vector<bool> boundary = boundary_vertices(skin.triangles, skin.num_vertices);
+    if (options.residual_shading_mm > 0) {
+      ResidualShadingOptions ro;
+      ro.low_pass_mm = options.residual_shading_mm;
+      residual.emplace(skin, model.evaluate(source.identity, Eigen::VectorXf(), regions::kFace), ro);
+    }
     anchors = model.landmarks.vertices;
     for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
       if (boundary[v] && (k++ % 3 == 0)) anchors.push_back(v);
@@ -280,6 +287,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   Impl& m = *impl_;
   SwapTimings local;
   SwapTimings& t = timings ? *timings : local;
+  const auto start = std::chrono::steady_clock::now();
   const Positions target_points =
       to_camera(m.model.evaluate(target.identity, target.expression, regions::kFace), target.pose);
   // §6.1.1: the source identity performing the target expression, under the target pose (eq. 6.6).
@@ -302,13 +310,23 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     ++m.appearance_seen;
     m.harmonise();
   }
-  t.appearance_ms += ms_since(t0);
+  const double appearance_ms = ms_since(t0);
+  t.appearance_ms += appearance_ms;
 
   // The target light's colour now against the appearance frames' (light_colour.hpp).
+  // And the brightness pattern its SH lighting leaves unexplained (residual_shading.hpp).
   Vec3f tint = Vec3f::Ones();
-  if (m.options.follow_light_colour && m.target_vertex_albedo.cols() > 0)
-    tint = light_colour(frame, target_points, vertex_normals(target_points, m.skin.triangles), m.target_vertex_albedo,
-                        m.target_vertex_seen, target.camera, target.lighting);
+  cv::Mat gains;
+  if (m.target_vertex_albedo.cols() > 0 && (m.options.follow_light_colour || m.residual)) {
+    const Positions target_normals = vertex_normals(target_points, m.skin.triangles);
+    if (m.options.follow_light_colour)
+      tint = light_colour(frame, target_points, target_normals, m.target_vertex_albedo, m.target_vertex_seen,
+                          target.camera, target.lighting);
+    if (m.residual)
+      gains = m.residual->gains(frame, target_points, target_normals, m.target_vertex_albedo, m.target_vertex_seen,
+                                target.camera, target.lighting);
+  }
+  const float gain_texels = gains.empty() ? 0.0f : float(gains.cols - 1);
 
   SwappedFrame out;
   out.image = frame.clone();
@@ -320,7 +338,6 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   if (out.window.area() == 0) return out;
 
   // Eq. 6.7: the harmonised albedo under the target's lighting, on the swapped mesh's normals.
-  t0 = std::chrono::steady_clock::now();
   const PinholeCamera window = target.camera.cropped(out.window.x, out.window.y);
   RasterBuffers buffers;
   buffers.resize(out.window.width, out.window.height);
@@ -347,7 +364,10 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
             const float shade = 255.0f * std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
-            colour[x] = cv::Vec3f(s[0] * shade * tint[0], s[1] * shade * tint[1], s[2] * shade * tint[2]);
+            const float lit = gains.empty() ? shade
+                                            : shade * sample_bilinear_channels<1>(gains, coord.x() * gain_texels,
+                                                                                  (1.0f - coord.y()) * gain_texels)[0];
+            colour[x] = cv::Vec3f(s[0] * lit * tint[0], s[1] * lit * tint[1], s[2] * lit * tint[2]);
             // Fade where the surface turns away too: the silhouette (the side of
             // the jaw, the cheek under a turned head) is no UV boundary.
             const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
@@ -357,7 +377,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
         }
       },
       16);
-  t.render_ms += ms_since(t0);
+  t.render_ms += ms_since(start) - appearance_ms;
 
   if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {
     t0 = std::chrono::steady_clock::now();

@@ -3,7 +3,9 @@
 // target's per-frame expression (§6.1.1), the source appearance harmonised
 // with the target's (albedo adaptation, eq. 6.3, and noise matching,
 // eq. 6.4-6.5, both computed over the first target frames and then held),
-// rendered under the target's pose and SH lighting (eq. 6.6-6.7) into the
+// rendered under the target's pose and SH lighting (eq. 6.6-6.7), and the
+// colour and low-pass shading that lighting leaves unexplained (a departure
+// from the paper: light_colour.hpp, residual_shading.hpp), into the
 // target frame after warping its background to the new face outline, and
 // blended with an alpha map built in UV space that fades toward the
 // boundary of the face (§6.3).
@@ -54,6 +56,16 @@ struct SwapOptions {
   // Self-swap (`eval swap --self`) median / mean 4.325 / 6.475 -> 4.325 /
   // 6.422 on address_720p_a, 6.675 / 9.979 -> 6.675 / 9.884 on _b.
   bool follow_light_colour = true;
+  // Scale the new face by the brightness pattern the target's SH lighting
+  // leaves unexplained, low-pass at this Gaussian sigma on the face in mm
+  // (residual_shading.hpp); 0: off. Self-swap (`eval swap --self`) median /
+  // mean at 10 / 15 / 20 / 30 mm: 3.675 / 5.470, 4.025 / 5.677, 4.025 /
+  // 5.757, 4.025 / 5.870 on address_720p_a (off: 4.325 / 6.070), and 5.675 /
+  // 8.387, 5.675 / 8.744, 6.025 / 8.949, 6.025 / 9.168 on _b (off: 6.325 /
+  // 9.474). Finer scores better and copies more of the target's own look
+  // (its lips, its folds, tracking errors), which a real swap shows as a
+  // ghost: 20 mm, the width of a broad shadow, is the default.
+  float residual_shading_mm = 20.0f;
   // The photo's detail between the noise scale (noise_sigma) and this
   // fraction of the texture's width (16 texels of 1024, about 3 mm of face)
   // is scaled by photo_detail_gain (scale_detail): there the photo's texture
@@ -99,7 +111,7 @@ struct TargetFrame {
 
 struct SwapTimings {
   double appearance_ms = 0;  // texture of the target frame and harmonisation (first frames only)
-  double render_ms = 0;      // swapped mesh and its shading
+  double render_ms = 0;      // both meshes, the target light's colour and residual shading, the render
   double warp_ms = 0;        // background warp
   double blend_ms = 0;       // alpha blending
   double wrinkle_ms = 0;     // coating transfer and its shading (with SwapOptions::wrinkles)

@@ -1,0 +1,85 @@
+#include "facecap/swap/residual_shading.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/error.hpp"
+#include "facecap/render/uv_raster.hpp"
+#include "facecap/swap/lit_vertices.hpp"
+
+namespace facecap {
+
+namespace {
+
+// Millimetres on the face per unit of UV, over all triangle edges of `mesh`
+// on `shape` (cm).
+double millimetres_per_uv(const TriangleMesh& mesh, const Positions& shape) {
+  double length_3d = 0, length_uv = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      if (a >= shape.cols() || b >= shape.cols()) continue;
+      length_3d += (shape.col(a) - shape.col(b)).norm();
+      length_uv += (mesh.uvs[mesh.triangle_uvs[t][k]] - mesh.uvs[mesh.triangle_uvs[t][(k + 1) % 3]]).norm();
+    }
+  }
+  return length_uv > 0 ? 10.0 * length_3d / length_uv : 0;
+}
+
+}  // namespace
+
+ResidualShading::ResidualShading(const TriangleMesh& mesh, const Positions& reference, ResidualShadingOptions options)
+    : options_(options), vertex_uvs_(per_vertex_uvs(mesh)), mm_per_uv_(millimetres_per_uv(mesh, reference)) {
+  if (!(mm_per_uv_ > 0) || !(options_.low_pass_mm > 0)) throw Error("residual shading: the mesh has no UV extent");
+  // About 3 texels per sigma: a grid this coarse is all the field needs.
+  grid_ = std::clamp(static_cast<int>(std::lround(3.0 * mm_per_uv_ / options_.low_pass_mm)), 16, 256);
+  sigma_texels_ = options_.low_pass_mm / mm_per_uv_ * (grid_ - 1);
+}
+
+cv::Mat ResidualShading::gains(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
+                               const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
+                               const ShCoeffs& lighting) const {
+  // Each usable vertex's brightness ratio, splatted bilinearly into the grid:
+  // `sum` holds ratio x weight, `weight` the weight.
+  cv::Mat sum(grid_, grid_, CV_32F, cv::Scalar(0)), weight(grid_, grid_, CV_32F, cv::Scalar(0));
+  const std::vector<LitVertex> lit = lit_vertices(frame, camera_points, camera_normals, seen,
+                                                  static_cast<int>(std::min<size_t>(albedo.cols(), vertex_uvs_.size())),
+                                                  camera, lighting, options_.min_seen, options_.min_facing);
+  int samples = 0;
+  for (const LitVertex& s : lit) {
+    const float predicted = s.shade * albedo.col(s.vertex).sum();
+    if (!(predicted > 0.05f)) continue;
+    const float ratio = s.observed.sum() / predicted;
+    if (!std::isfinite(ratio)) continue;
+    const Vec2f t = uv_to_texel(vertex_uvs_[s.vertex], grid_);
+    const int x0 = std::clamp(static_cast<int>(std::floor(t.x())), 0, grid_ - 2);
+    const int y0 = std::clamp(static_cast<int>(std::floor(t.y())), 0, grid_ - 2);
+    const float fx = std::clamp(t.x() - float(x0), 0.0f, 1.0f), fy = std::clamp(t.y() - float(y0), 0.0f, 1.0f);
+    const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+    for (int k = 0; k < 4; ++k) {
+      const int x = x0 + (k & 1), y = y0 + (k >> 1);
+      sum.at<float>(y, x) += w[k] * ratio;
+      weight.at<float>(y, x) += w[k];
+    }
+    ++samples;
+  }
+  cv::Mat field(grid_, grid_, CV_32F, cv::Scalar(1));
+  if (samples < 50) return field;
+  // Normalised convolution; far from any sample the field fades to 1
+  // (`prior`: the weight of one half-seen texel) rather than stretching the
+  // nearest ratio over the unseen side of a turned head.
+  cv::GaussianBlur(sum, sum, cv::Size(0, 0), sigma_texels_, sigma_texels_, cv::BORDER_CONSTANT);
+  cv::GaussianBlur(weight, weight, cv::Size(0, 0), sigma_texels_, sigma_texels_, cv::BORDER_CONSTANT);
+  double max_weight = 0;
+  cv::minMaxLoc(weight, nullptr, &max_weight);
+  const float prior = 0.05f * static_cast<float>(max_weight);
+  field = (sum + prior) / (weight + prior);
+  // Mean 1 where the samples are.
+  const double mean = cv::sum(field.mul(weight))[0] / std::max(1e-9, cv::sum(weight)[0]);
+  if (mean > 0) field /= mean;
+  cv::min(cv::max(field, 1.0 / options_.max_gain), options_.max_gain, field);
+  return field;
+}
+
+}  // namespace facecap

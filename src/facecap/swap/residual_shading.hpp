@@ -1,0 +1,60 @@
+#pragma once
+// What the target's SH lighting leaves unexplained, low-pass over the face.
+// The SH irradiance of eq. 4.9 depends on the normal alone: light that falls
+// off toward the chin, a lamp near the face, the broad shadow of the brow or
+// the nose change the target face in ways no such lighting can fit, and a
+// new face rendered under it alone (eq. 6.7) keeps the brightness pattern
+// of the appearance frames. Here each target vertex seen squarely gives the
+// ratio of its observed brightness to its own albedo (the appearance
+// frames' mean) shaded by this frame's lighting; the ratios, splatted into
+// a coarse UV grid and blurred to a low-pass field some centimetres wide,
+// scale the new face texel by texel (the two meshes share their UVs).
+//
+// The scale is the choice that matters: at a few millimetres the field
+// copies the target's own look (its lips, its folds, tracking errors) onto
+// the new face, which a self-swap rewards and a real swap shows as a ghost.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/core/geometry.hpp"
+#include "facecap/core/mesh.hpp"
+#include "facecap/core/spherical_harmonics.hpp"
+
+namespace facecap {
+
+struct ResidualShadingOptions {
+  float min_facing = 0.5f;    // vertices whose normal is within 60 degrees of the view ray
+  float min_seen = 0.05f;     // albedo weight a vertex needs (the appearance frames saw it)
+  float low_pass_mm = 20.0f;  // Gaussian sigma of the field, on the face
+  float max_gain = 1.25f;     // gains are clamped to [1 / max_gain, max_gain]
+};
+
+class ResidualShading {
+ public:
+  // `mesh`: triangles with UVs; `reference`: a face shape on it (cm) that
+  // gives the millimetres per UV unit.
+  ResidualShading(const TriangleMesh& mesh, const Positions& reference, ResidualShadingOptions options = {});
+
+  // The gain field (CV_32F, grid_size() square over UV [0, 1]^2, row 0 at
+  // v = 1 like the face texture), mean 1 over the seen vertices: overall
+  // brightness is the SH lighting's business. All ones where too few
+  // vertices are seen. `frame`: BGR 8-bit; `camera_points`,
+  // `camera_normals`: the target face in camera space; `albedo`: 3 x N BGR
+  // in [0, 1] with `seen` its per-vertex weight.
+  cv::Mat gains(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
+                const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
+                const ShCoeffs& lighting) const;
+
+  int grid_size() const { return grid_; }
+  double mm_per_uv() const { return mm_per_uv_; }
+
+ private:
+  ResidualShadingOptions options_;
+  std::vector<Vec2f> vertex_uvs_;
+  double mm_per_uv_ = 0;
+  int grid_ = 0;
+  double sigma_texels_ = 0;
+};
+
+}  // namespace facecap
