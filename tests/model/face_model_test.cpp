@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "facecap/core/error.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -34,6 +35,20 @@ TEST(FaceModel, RegionEvaluationMatchesTheFullHead) {
   EXPECT_LT((full.leftCols(face.cols()) - face).cwiseAbs().maxCoeff(), 1e-5f);
   const Positions neck = model->evaluate(a, b, regions::kHeadAndNeck);
   EXPECT_LT((full.middleCols(regions::kHeadAndNeck.first_vertex, neck.cols()) - neck).cwiseAbs().maxCoeff(), 1e-5f);
+}
+
+TEST(FaceModel, AnIdentityShapeTakesExpressionsAsEvaluateDoes) {
+  FACECAP_REQUIRE_MODEL(model);
+  const Eigen::VectorXf a = Eigen::VectorXf::Random(model->num_identity());
+  const Eigen::VectorXf b = (Eigen::VectorXf::Random(model->num_expressions()).array() * 0.5f + 0.5f).matrix();
+  const Eigen::VectorXf shape = model->identity_shape(a, regions::kFace);
+  const Positions face = model->with_expression(shape, b, regions::kFace);
+  EXPECT_LT((face - model->evaluate(a, b, regions::kFace)).cwiseAbs().maxCoeff(), 1e-5f);
+  // No expression weights: the identity shape itself.
+  const Positions neutral = model->with_expression(shape, Eigen::VectorXf(), regions::kFace);
+  EXPECT_EQ((Eigen::Map<const Eigen::VectorXf>(neutral.data(), neutral.size()) - shape).cwiseAbs().maxCoeff(), 0.0f);
+  // A shape of another region is refused.
+  EXPECT_THROW(model->with_expression(shape, b, regions::kHeadAndNeck), Error);
 }
 
 TEST(FaceModel, FaceRegionMeshIsLocalAndUsesAllRegionVertices) {

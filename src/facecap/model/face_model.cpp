@@ -20,14 +20,20 @@ Eigen::VectorXf FaceModel::identity_shape(const Eigen::VectorXf& identity, const
   return v;
 }
 
-Positions FaceModel::evaluate(const Eigen::VectorXf& identity, const Eigen::VectorXf& expression,
-                              const Region& region) const {
+Positions FaceModel::with_expression(const Eigen::VectorXf& identity_shape, const Eigen::VectorXf& expression,
+                                     const Region& region) const {
   const Eigen::Index row0 = 3 * region.first_vertex;
   const Eigen::Index rows = 3 * region.num_vertices();
-  Eigen::VectorXf v = identity_shape(identity, region);
+  if (identity_shape.size() != rows) throw Error("identity shape does not match region " + std::string(region.name));
+  Eigen::VectorXf v = identity_shape;
   const Eigen::Index k = std::min<Eigen::Index>(expression.size(), expression_basis.cols());
   if (k > 0) v.noalias() += expression_basis.block(row0, 0, rows, k) * expression.head(k);
   return Eigen::Map<const Positions>(v.data(), 3, region.num_vertices());
+}
+
+Positions FaceModel::evaluate(const Eigen::VectorXf& identity, const Eigen::VectorXf& expression,
+                              const Region& region) const {
+  return with_expression(identity_shape(identity, region), expression, region);
 }
 
 Positions FaceModel::evaluate(const Eigen::VectorXf& identity, const Eigen::VectorXf& expression) const {

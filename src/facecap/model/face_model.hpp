@@ -46,6 +46,10 @@ struct FaceModel {
   Positions evaluate(const Eigen::VectorXf& identity, const Eigen::VectorXf& expression, const Region& region) const;
   // neutral + B_id a for a region: the identity shape, evaluated once per video.
   Eigen::VectorXf identity_shape(const Eigen::VectorXf& identity, const Region& region) const;
+  // An identity shape of `region` (from identity_shape) with expression
+  // weights added: evaluate() without recomputing the identity part.
+  Positions with_expression(const Eigen::VectorXf& identity_shape, const Eigen::VectorXf& expression,
+                            const Region& region) const;
 
   // Triangle mesh of a region's polygons, re-indexed to region-local vertices.
   TriangleMesh region_mesh(const Region& region) const;

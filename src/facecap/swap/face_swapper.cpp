@@ -109,26 +109,35 @@ struct FaceSwapper::Impl {
   std::optional<ExpressionReference> reference;
   Positions reference_coating;      // xi_0^T
   std::vector<Triangle> fine_skin;  // the finest level's skin triangles
-  SizeMatch size;                   // SwapOptions::match_target_size
-  Eigen::VectorXf size_for;         // the target identity `size` was computed for
+  // The identity shapes (neutral + B_id alpha over the face region), each
+  // evaluated once: only the expression changes from frame to frame.
+  Eigen::VectorXf source_identity_shape;
+  Eigen::VectorXf target_identity;  // alpha^T the two below were computed for
+  Eigen::VectorXf target_identity_shape;
+  SizeMatch size;  // SwapOptions::match_target_size
   // The target's own albedo per skin vertex over the appearance frames, and
   // how much of each was seen: the reference for light_colour().
   Positions target_vertex_albedo;
   std::vector<float> target_vertex_seen;
   std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
 
-  const SizeMatch& size_match_for(const Eigen::VectorXf& target_identity) {
-    if (size_for.size() != target_identity.size() || size_for != target_identity) {
-      // The identity shapes (no expression weights: the neutral face).
-      size = match_size(model.evaluate(source.identity, Eigen::VectorXf(), regions::kFace),
-                        model.evaluate(target_identity, Eigen::VectorXf(), regions::kFace));
-      size_for = target_identity;
-    }
-    return size;
+  // Follows the target's identity (fixed once its tracker has solved it).
+  void update_target_identity(const Eigen::VectorXf& identity) {
+    if (target_identity.size() == identity.size() && target_identity == identity) return;
+    target_identity = identity;
+    target_identity_shape = model.identity_shape(identity, regions::kFace);
+    const Eigen::VectorXf none;  // no expression weights: the neutral faces
+    size = match_size(model.with_expression(source_identity_shape, none, regions::kFace),
+                      model.with_expression(target_identity_shape, none, regions::kFace));
   }
 
   Impl(const FaceModel& m, const cv::Mat& photo, SourceFace s, SwapOptions o)
-      : model(m), options(o), source(std::move(s)), skin(skin_mesh(m)), map(rasterize_uv(skin, o.texture_size)) {
+      : model(m),
+        options(o),
+        source(std::move(s)),
+        skin(skin_mesh(m)),
+        map(rasterize_uv(skin, o.texture_size)),
+        source_identity_shape(m.identity_shape(source.identity, regions::kFace)) {
     FaceTexture t = unshade_face(photo, source.camera_points, skin.triangles, source.camera, source.lighting, map,
                                  feature_holes(m, source.camera_points, source.camera));
     drop_non_skin(t);
@@ -147,7 +156,7 @@ struct FaceSwapper::Impl {
     if (options.residual_shading_mm > 0) {
       ResidualShadingOptions ro;
       ro.low_pass_mm = options.residual_shading_mm;
-      residual.emplace(skin, model.evaluate(source.identity, Eigen::VectorXf(), regions::kFace), ro);
+      residual.emplace(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace), ro);
     }
     anchors = model.landmarks.vertices;
     for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
@@ -288,11 +297,12 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   SwapTimings local;
   SwapTimings& t = timings ? *timings : local;
   const auto start = std::chrono::steady_clock::now();
+  m.update_target_identity(target.identity);
   const Positions target_points =
-      to_camera(m.model.evaluate(target.identity, target.expression, regions::kFace), target.pose);
+      to_camera(m.model.with_expression(m.target_identity_shape, target.expression, regions::kFace), target.pose);
   // §6.1.1: the source identity performing the target expression, under the target pose (eq. 6.6).
-  Positions source_shape = m.model.evaluate(m.source.identity, target.expression, regions::kFace);
-  if (m.options.match_target_size) source_shape = m.size_match_for(target.identity).apply(source_shape);
+  Positions source_shape = m.model.with_expression(m.source_identity_shape, target.expression, regions::kFace);
+  if (m.options.match_target_size) source_shape = m.size.apply(source_shape);
   const Positions swapped_points = to_camera(source_shape, target.pose);
 
   auto t0 = std::chrono::steady_clock::now();
