@@ -54,7 +54,7 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30));
   EXPECT_EQ(r.frames, 29);
   EXPECT_GT(r.face_pixels_per_frame, 30000);
-  // 3.7 / 5.73 on these frames (the bars are 3 / 6); 4.0 / 6.01
+  // 3.7 / 5.72 on these frames (the bars are 3 / 6); 4.0 / 6.01
   // without the target's residual shading (residual_shading.hpp); 4.3 / 6.12 with
   // the appearance gathered under the target's provisional lighting, 4.3 /
   // 6.5 also with the photo's mid-scale detail as it is, the mirror's colour
@@ -77,8 +77,8 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
 }
 
 // A burst of source photos (the video's first 5 frames) fixes the identity
-// at least as well as one. 3.7 / 5.65 on these frames against the photo's
-// 3.7 / 5.73 (4.0 / 5.95 and 4.0 / 6.01 without the residual shading); 6.0 / 8.7 when each burst frame weighed as one
+// at least as well as one. 3.7 / 5.63 on these frames against the photo's
+// 3.7 / 5.72 (4.0 / 5.95 and 4.0 / 6.01 without the residual shading); 6.0 / 8.7 when each burst frame weighed as one
 // video frame (before the texture changes that took the photo from 4.3 / 6.53 to 4.3 / 6.12).
 TEST(SwapEval, ABurstOfSourcePhotosDoesAtLeastAsWellAsOne) {
   FACECAP_REQUIRE_MODEL(model);

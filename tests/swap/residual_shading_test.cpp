@@ -52,6 +52,10 @@ struct FacingGrid {
     return sh_shade(lighting, n.x(), n.y(), n.z());
   }
 
+  // A light's gain on channel k: one for all, or one per BGR channel.
+  static float channel(float gain, int) { return gain; }
+  static float channel(const Vec3f& gain, int k) { return gain[k]; }
+
   // The frame the albedo makes under the lighting, each vertex's
   // neighbourhood scaled by light(row).
   template <typename Light>
@@ -60,7 +64,8 @@ struct FacingGrid {
     for (int i = 0; i < kCount; ++i) {
       const Vec2f q = camera.project(Vec3f(points.col(i)));
       cv::Vec3b c;
-      for (int k = 0; k < 3; ++k) c[k] = cv::saturate_cast<uchar>(255.0f * albedo(k, i) * shade() * light(i / kSide));
+      for (int k = 0; k < 3; ++k)
+        c[k] = cv::saturate_cast<uchar>(255.0f * albedo(k, i) * shade() * channel(light(i / kSide), k));
       image(cv::Rect(int(q.x()) - 4, int(q.y()) - 4, 9, 9)).setTo(cv::Scalar(c[0], c[1], c[2]));
     }
     return image;
@@ -74,10 +79,11 @@ struct FacingGrid {
     return ResidualShading(mesh, points, options).gains(frame(light), points, normals, albedo, seen, camera, lighting);
   }
 
-  // The field at a grid row's middle vertex.
-  static float at_row(const cv::Mat& field, int row) {
+  // The field at a grid row's middle vertex: one BGR channel, or their mean.
+  static float at_row(const cv::Mat& field, int row, int channel = -1) {
     const Vec2f t = uv_to_texel(Vec2f(0.5f, 1.0f - float(row) / (kSide - 1)), field.cols);
-    return sample_bilinear_channels<1>(field, t.x(), t.y())[0];
+    const cv::Vec3f g = sample_bilinear_channels<3>(field, t.x(), t.y());
+    return channel < 0 ? (g[0] + g[1] + g[2]) / 3.0f : g[channel];
   }
 };
 
@@ -94,7 +100,7 @@ TEST(ResidualShading, AFaceTheLightingExplainsKeepsGainOne) {
   const FacingGrid g;
   const cv::Mat field = g.field([](int) { return 1.0f; });
   double lo = 0, hi = 0;
-  cv::minMaxLoc(field, &lo, &hi);
+  cv::minMaxLoc(field.reshape(1), &lo, &hi);
   EXPECT_GT(lo, 0.97);
   EXPECT_LT(hi, 1.03);
 }
@@ -116,6 +122,18 @@ TEST(ResidualShading, LightFallingOffDownTheFaceIsFollowed) {
   EXPECT_GT(top, 1.0f);
 }
 
+TEST(ResidualShading, ColourChangingDownTheFaceIsFollowedPerChannel) {
+  const FacingGrid g;
+  // The lower half 15 % bluer than the lighting says (BGR): a coloured
+  // bounce light from below, say. Red and green stay as they were.
+  const cv::Mat field = g.field([](int row) { return row > 10 ? Vec3f(1.15f, 1, 1) : Vec3f(1, 1, 1); }, 15.0f);
+  EXPECT_NEAR(FacingGrid::at_row(field, 18, 0) / FacingGrid::at_row(field, 2, 0), 1.15f, 0.03f);
+  for (int c : {1, 2}) {
+    EXPECT_NEAR(FacingGrid::at_row(field, 2, c), 1.0f, 0.02f) << "channel " << c;
+    EXPECT_NEAR(FacingGrid::at_row(field, 18, c), 1.0f, 0.02f) << "channel " << c;
+  }
+}
+
 TEST(ResidualShading, ThePatternIsLowPass) {
   const FacingGrid g;
   // Rows alternating 15 % darker and lighter every centimetre: detail, not light.
@@ -127,7 +145,7 @@ TEST(ResidualShading, GainsAreClamped) {
   const FacingGrid g;
   const cv::Mat field = g.field([](int row) { return row > 10 ? 0.3f : 1.0f; }, 10.0f);
   double lo = 0, hi = 0;
-  cv::minMaxLoc(field, &lo, &hi);
+  cv::minMaxLoc(field.reshape(1), &lo, &hi);
   const float max_gain = ResidualShadingOptions().max_gain;
   EXPECT_GE(lo, 1.0 / max_gain - 1e-6);
   EXPECT_LE(hi, max_gain + 1e-6);
@@ -138,7 +156,7 @@ TEST(ResidualShading, NothingSeenGivesOnes) {
   FacingGrid g;
   g.seen.assign(g.seen.size(), 0.0f);
   const cv::Mat field = g.field([](int row) { return row > 10 ? 0.8f : 1.0f; });
-  EXPECT_EQ(cv::countNonZero(field != 1.0f), 0);
+  EXPECT_EQ(cv::countNonZero(field.reshape(1) != 1.0f), 0);
 }
 
 TEST(ResidualShading, AMeshWithoutUvExtentIsRefused) {

@@ -374,10 +374,11 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
             const float shade = 255.0f * std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
-            const float lit = gains.empty() ? shade
-                                            : shade * sample_bilinear_channels<1>(gains, coord.x() * gain_texels,
-                                                                                  (1.0f - coord.y()) * gain_texels)[0];
-            colour[x] = cv::Vec3f(s[0] * lit * tint[0], s[1] * lit * tint[1], s[2] * lit * tint[2]);
+            cv::Vec3f light(shade * tint[0], shade * tint[1], shade * tint[2]);
+            if (!gains.empty())
+              light = light.mul(
+                  sample_bilinear_channels<3>(gains, coord.x() * gain_texels, (1.0f - coord.y()) * gain_texels));
+            colour[x] = cv::Vec3f(s[0] * light[0], s[1] * light[1], s[2] * light[2]);
             // Fade where the surface turns away too: the silhouette (the side of
             // the jaw, the cheek under a turned head) is no UV boundary.
             const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();

@@ -56,12 +56,12 @@ struct SwapOptions {
   // Self-swap (`eval swap --self`) median / mean 4.325 / 6.475 -> 4.325 /
   // 6.422 on address_720p_a, 6.675 / 9.979 -> 6.675 / 9.884 on _b.
   bool follow_light_colour = true;
-  // Scale the new face by the brightness pattern the target's SH lighting
+  // Scale the new face by the shading pattern the target's SH lighting
   // leaves unexplained, low-pass at this Gaussian sigma on the face in mm
   // (residual_shading.hpp); 0: off. Self-swap (`eval swap --self`) median /
-  // mean at 10 / 15 / 20 / 30 mm: 3.675 / 5.470, 4.025 / 5.677, 4.025 /
-  // 5.757, 4.025 / 5.870 on address_720p_a (off: 4.325 / 6.070), and 5.675 /
-  // 8.387, 5.675 / 8.744, 6.025 / 8.949, 6.025 / 9.168 on _b (off: 6.325 /
+  // mean at 10 / 15 / 20 / 30 mm: 3.675 / 5.436, 4.025 / 5.661, 4.025 /
+  // 5.748, 4.025 / 5.865 on address_720p_a (off: 4.325 / 6.070), and 5.325 /
+  // 8.241, 5.675 / 8.651, 5.675 / 8.881, 6.025 / 9.126 on _b (off: 6.325 /
   // 9.474). Finer scores better and copies more of the target's own look
   // (its lips, its folds, tracking errors), which a real swap shows as a
   // ghost: 20 mm, the width of a broad shadow, is the default.

@@ -40,18 +40,22 @@ ResidualShading::ResidualShading(const TriangleMesh& mesh, const Positions& refe
 cv::Mat ResidualShading::gains(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
                                const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
                                const ShCoeffs& lighting) const {
-  // Each usable vertex's brightness ratio, splatted bilinearly into the grid:
-  // `sum` holds ratio x weight, `weight` the weight.
-  cv::Mat sum(grid_, grid_, CV_32F, cv::Scalar(0)), weight(grid_, grid_, CV_32F, cv::Scalar(0));
+  // Each usable vertex's ratio per channel, splatted bilinearly into the
+  // grid: `sum` holds ratio x weight, `weight` the weight.
+  cv::Mat sum(grid_, grid_, CV_32FC3, cv::Scalar::all(0)), weight(grid_, grid_, CV_32F, cv::Scalar(0));
   const std::vector<LitVertex> lit = lit_vertices(frame, camera_points, camera_normals, seen,
                                                   static_cast<int>(std::min<size_t>(albedo.cols(), vertex_uvs_.size())),
                                                   camera, lighting, options_.min_seen, options_.min_facing);
   int samples = 0;
   for (const LitVertex& s : lit) {
-    const float predicted = s.shade * albedo.col(s.vertex).sum();
-    if (!(predicted > 0.05f)) continue;
-    const float ratio = s.observed.sum() / predicted;
-    if (!std::isfinite(ratio)) continue;
+    cv::Vec3f ratio;  // BGR, as the albedo
+    bool usable = true;
+    for (int c = 0; c < 3; ++c) {
+      const float predicted = s.shade * albedo(c, s.vertex);
+      ratio[c] = s.observed[2 - c] / predicted;
+      usable = usable && predicted > 0.02f && std::isfinite(ratio[c]);
+    }
+    if (!usable) continue;
     const Vec2f t = uv_to_texel(vertex_uvs_[s.vertex], grid_);
     const int x0 = std::clamp(static_cast<int>(std::floor(t.x())), 0, grid_ - 2);
     const int y0 = std::clamp(static_cast<int>(std::floor(t.y())), 0, grid_ - 2);
@@ -59,12 +63,12 @@ cv::Mat ResidualShading::gains(const cv::Mat& frame, const Positions& camera_poi
     const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
     for (int k = 0; k < 4; ++k) {
       const int x = x0 + (k & 1), y = y0 + (k >> 1);
-      sum.at<float>(y, x) += w[k] * ratio;
+      sum.at<cv::Vec3f>(y, x) += w[k] * ratio;
       weight.at<float>(y, x) += w[k];
     }
     ++samples;
   }
-  cv::Mat field(grid_, grid_, CV_32F, cv::Scalar(1));
+  cv::Mat field(grid_, grid_, CV_32FC3, cv::Scalar::all(1));
   if (samples < 50) return field;
   // Normalised convolution; far from any sample the field fades to 1
   // (`prior`: the weight of one half-seen texel) rather than stretching the
@@ -74,11 +78,18 @@ cv::Mat ResidualShading::gains(const cv::Mat& frame, const Positions& camera_poi
   double max_weight = 0;
   cv::minMaxLoc(weight, nullptr, &max_weight);
   const float prior = 0.05f * static_cast<float>(max_weight);
-  field = (sum + prior) / (weight + prior);
-  // Mean 1 where the samples are.
-  const double mean = cv::sum(field.mul(weight))[0] / std::max(1e-9, cv::sum(weight)[0]);
-  if (mean > 0) field /= mean;
-  cv::min(cv::max(field, 1.0 / options_.max_gain), options_.max_gain, field);
+  const double total_weight = std::max(1e-9, cv::sum(weight)[0]);
+  std::vector<cv::Mat> channels;
+  cv::split(sum, channels);
+  for (cv::Mat& f : channels) {
+    f = (f + prior) / (weight + prior);
+    // Mean 1 where the samples are: the overall level and colour are the
+    // SH lighting's and light_colour()'s.
+    const double mean = cv::sum(f.mul(weight))[0] / total_weight;
+    if (mean > 0) f /= mean;
+    cv::min(cv::max(f, 1.0 / options_.max_gain), options_.max_gain, f);
+  }
+  cv::merge(channels, field);
   return field;
 }
 

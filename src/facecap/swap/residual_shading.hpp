@@ -3,12 +3,13 @@
 // The SH irradiance of eq. 4.9 depends on the normal alone: light that falls
 // off toward the chin, a lamp near the face, the broad shadow of the brow or
 // the nose change the target face in ways no such lighting can fit, and a
-// new face rendered under it alone (eq. 6.7) keeps the brightness pattern
-// of the appearance frames. Here each target vertex seen squarely gives the
-// ratio of its observed brightness to its own albedo (the appearance
-// frames' mean) shaded by this frame's lighting; the ratios, splatted into
-// a coarse UV grid and blurred to a low-pass field some centimetres wide,
-// scale the new face texel by texel (the two meshes share their UVs).
+// new face rendered under it alone (eq. 6.7) keeps the shading pattern of
+// the appearance frames. Here each target vertex seen squarely gives the
+// ratio, per channel, of its observed colour to its own albedo (the
+// appearance frames' mean) shaded by this frame's lighting; the ratios,
+// splatted into a coarse UV grid and blurred to a low-pass field some
+// centimetres wide, scale the new face texel by texel (the two meshes share
+// their UVs).
 //
 // The scale is the choice that matters: at a few millimetres the field
 // copies the target's own look (its lips, its folds, tracking errors) onto
@@ -36,10 +37,10 @@ class ResidualShading {
   // gives the millimetres per UV unit.
   ResidualShading(const TriangleMesh& mesh, const Positions& reference, ResidualShadingOptions options = {});
 
-  // The gain field (CV_32F, grid_size() square over UV [0, 1]^2, row 0 at
-  // v = 1 like the face texture), mean 1 over the seen vertices: overall
-  // brightness is the SH lighting's business. All ones where too few
-  // vertices are seen. `frame`: BGR 8-bit; `camera_points`,
+  // The gain field (CV_32FC3, BGR, grid_size() square over UV [0, 1]^2, row
+  // 0 at v = 1 like the face texture), each channel of mean 1 over the seen
+  // vertices: the overall level and colour are the SH lighting's and
+  // light_colour()'s business. All ones where too few vertices are seen. `frame`: BGR 8-bit; `camera_points`,
   // `camera_normals`: the target face in camera space; `albedo`: 3 x N BGR
   // in [0, 1] with `seen` its per-vertex weight.
   cv::Mat gains(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
