@@ -48,12 +48,17 @@ struct FacingGrid {
   }
 };
 
+// The tint of `frame` from the grid's vertices it shows.
+Vec3f tint_of(const FacingGrid& g, const cv::Mat& frame, const LightColourOptions& options = {}) {
+  return light_colour(lit_vertices(frame, g.points, g.normals, g.seen, g.camera, g.lighting), g.albedo, options);
+}
+
 }  // namespace
 
 TEST(LightColour, AWarmerLightTintsByItsChromaticPart) {
   const FacingGrid g;
   const Vec3f light(0.9f, 1.0f, 1.15f);  // BGR: warmer than the albedo frames' light
-  const Vec3f tint = light_colour(g.frame(light), g.points, g.normals, g.albedo, g.seen, g.camera, g.lighting);
+  const Vec3f tint = tint_of(g, g.frame(light));
   const Vec3f expected = light / light.mean();
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(tint[c], expected[c], 0.01f) << "channel " << c;
 }
@@ -61,8 +66,7 @@ TEST(LightColour, AWarmerLightTintsByItsChromaticPart) {
 TEST(LightColour, ABrighterOrUnchangedLightGivesNoTint) {
   const FacingGrid g;
   for (const float brightness : {1.0f, 1.2f}) {
-    const Vec3f tint =
-        light_colour(g.frame(Vec3f::Constant(brightness)), g.points, g.normals, g.albedo, g.seen, g.camera, g.lighting);
+    const Vec3f tint = tint_of(g, g.frame(Vec3f::Constant(brightness)));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(tint[c], 1.0f, 0.01f) << "brightness " << brightness << " channel " << c;
   }
 }
@@ -72,21 +76,16 @@ TEST(LightColour, UnseenOrTurnedAwayVerticesGiveNoTint) {
   const cv::Mat warm = g.frame(Vec3f(0.8f, 1.0f, 1.2f));
   FacingGrid unseen = g;
   std::fill(unseen.seen.begin(), unseen.seen.end(), 0.0f);
-  EXPECT_TRUE(
-      light_colour(warm, unseen.points, unseen.normals, unseen.albedo, unseen.seen, unseen.camera, unseen.lighting)
-          .isApprox(Vec3f::Ones()));
+  EXPECT_TRUE(tint_of(unseen, warm).isApprox(Vec3f::Ones()));
   FacingGrid edge_on = g;
   edge_on.normals.row(2).setZero();
   edge_on.normals.row(0).setOnes();
-  EXPECT_TRUE(light_colour(warm, edge_on.points, edge_on.normals, edge_on.albedo, edge_on.seen, edge_on.camera,
-                           edge_on.lighting)
-                  .isApprox(Vec3f::Ones()));
+  EXPECT_TRUE(tint_of(edge_on, warm).isApprox(Vec3f::Ones()));
 }
 
 TEST(LightColour, TheTintIsClamped) {
   const FacingGrid g;
-  const Vec3f tint = light_colour(g.frame(Vec3f(0.2f, 1.0f, 1.0f)), g.points, g.normals, g.albedo, g.seen, g.camera,
-                                  g.lighting, LightColourOptions{.max_gain = 1.25f});
+  const Vec3f tint = tint_of(g, g.frame(Vec3f(0.2f, 1.0f, 1.0f)), LightColourOptions{.max_gain = 1.25f});
   EXPECT_NEAR(tint[0], 0.8f, 1e-5f);
 }
 

@@ -76,7 +76,8 @@ struct FacingGrid {
   cv::Mat field(Light light, float low_pass_mm = ResidualShadingOptions().low_pass_mm) const {
     ResidualShadingOptions options;
     options.low_pass_mm = low_pass_mm;
-    return ResidualShading(mesh, points, options).gains(frame(light), points, normals, albedo, seen, camera, lighting);
+    return ResidualShading(mesh, points, options)
+        .gains(lit_vertices(frame(light), points, normals, seen, camera, lighting), albedo);
   }
 
   // The field at a grid row's middle vertex: one BGR channel, or their mean.
@@ -163,6 +164,15 @@ TEST(ResidualShading, AMeshWithoutUvExtentIsRefused) {
   FacingGrid g;
   for (Vec2f& uv : g.mesh.uvs) uv = Vec2f(0.5f, 0.5f);
   EXPECT_THROW(ResidualShading(g.mesh, g.points), Error);
+}
+
+TEST(ResidualShading, ANonPositiveWidthIsRefused) {
+  const FacingGrid g;
+  for (const float width : {0.0f, -5.0f}) {
+    ResidualShadingOptions options;
+    options.low_pass_mm = width;
+    EXPECT_THROW(ResidualShading(g.mesh, g.points, options), Error) << width;
+  }
 }
 
 }  // namespace facecap

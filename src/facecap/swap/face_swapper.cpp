@@ -20,6 +20,7 @@
 #include "facecap/swap/background_warp.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/light_colour.hpp"
+#include "facecap/swap/lit_vertices.hpp"
 #include "facecap/swap/noise_matching.hpp"
 #include "facecap/swap/residual_shading.hpp"
 #include "facecap/swap/size_match.hpp"
@@ -323,18 +324,17 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   const double appearance_ms = ms_since(t0);
   t.appearance_ms += appearance_ms;
 
-  // The target light's colour now against the appearance frames' (light_colour.hpp).
-  // And the brightness pattern its SH lighting leaves unexplained (residual_shading.hpp).
+  // The target light's colour now against the appearance frames'
+  // (light_colour.hpp), and the shading pattern its SH lighting leaves
+  // unexplained (residual_shading.hpp), from the same lit vertices.
   Vec3f tint = Vec3f::Ones();
   cv::Mat gains;
   if (m.target_vertex_albedo.cols() > 0 && (m.options.follow_light_colour || m.residual)) {
-    const Positions target_normals = vertex_normals(target_points, m.skin.triangles);
-    if (m.options.follow_light_colour)
-      tint = light_colour(frame, target_points, target_normals, m.target_vertex_albedo, m.target_vertex_seen,
-                          target.camera, target.lighting);
-    if (m.residual)
-      gains = m.residual->gains(frame, target_points, target_normals, m.target_vertex_albedo, m.target_vertex_seen,
-                                target.camera, target.lighting);
+    const std::vector<LitVertex> lit =
+        lit_vertices(frame, target_points, vertex_normals(target_points, m.skin.triangles), m.target_vertex_seen,
+                     target.camera, target.lighting);
+    if (m.options.follow_light_colour) tint = light_colour(lit, m.target_vertex_albedo);
+    if (m.residual) gains = m.residual->gains(lit, m.target_vertex_albedo);
   }
   const float gain_texels = gains.empty() ? 0.0f : float(gains.cols - 1);
 

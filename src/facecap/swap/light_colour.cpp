@@ -2,26 +2,21 @@
 
 #include <algorithm>
 
-#include "facecap/swap/lit_vertices.hpp"
-
 namespace facecap {
 
-Vec3f light_colour(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
-                   const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
-                   const ShCoeffs& lighting, const LightColourOptions& options) {
+Vec3f light_colour(std::span<const LitVertex> lit, const Positions& albedo, const LightColourOptions& options) {
   // Per channel: sum of the observed colour over sum of albedo x shading,
   // over the vertices seen squarely now and in the appearance frames.
   Eigen::Vector3d observed = Eigen::Vector3d::Zero(), predicted = Eigen::Vector3d::Zero();
-  const std::vector<LitVertex> lit =
-      lit_vertices(frame, camera_points, camera_normals, seen, static_cast<int>(albedo.cols()), camera, lighting,
-                   options.min_seen, options.min_facing);
+  size_t samples = 0;
   for (const LitVertex& s : lit) {
+    if (s.vertex >= albedo.cols()) continue;
     for (int c = 0; c < 3; ++c) {
       observed[c] += s.observed[2 - c];
       predicted[c] += albedo(c, s.vertex) * s.shade;
     }
+    ++samples;
   }
-  const size_t samples = lit.size();
   if (samples < 50 || (predicted.array() <= 0).any() || (observed.array() <= 0).any()) return Vec3f::Ones();
   const Eigen::Vector3d ratio = observed.cwiseQuotient(predicted);
   Vec3f gain = (ratio / ratio.mean()).cast<float>();

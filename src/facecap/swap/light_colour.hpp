@@ -8,27 +8,20 @@
 // shaded by this frame's lighting, gives one ratio per channel; their
 // chromatic part (mean 1: brightness is the SH lighting's business) tints
 // the new face alike.
-#include <opencv2/core.hpp>
-#include <vector>
+#include <span>
 
-#include "facecap/core/camera.hpp"
 #include "facecap/core/geometry.hpp"
-#include "facecap/core/spherical_harmonics.hpp"
+#include "facecap/swap/lit_vertices.hpp"
 
 namespace facecap {
 
 struct LightColourOptions {
-  float min_facing = 0.5f;  // vertices whose normal is within 60 degrees of the view ray
-  float min_seen = 0.05f;   // albedo weight a vertex needs (the appearance frames saw it)
-  float max_gain = 1.25f;   // per-channel gains are clamped to [1 / max_gain, max_gain]
+  float max_gain = 1.25f;  // per-channel gains are clamped to [1 / max_gain, max_gain]
 };
 
-// `frame`: BGR 8-bit; `camera_points`, `camera_normals`: the target face's
-// vertices and unit normals in camera space; `albedo`: 3 x N BGR in [0, 1]
-// with `seen` its per-vertex weight. Returns the BGR gains (mean 1), or
-// (1, 1, 1) where too few vertices are seen.
-Vec3f light_colour(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
-                   const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
-                   const ShCoeffs& lighting, const LightColourOptions& options = {});
+// `lit`: the target face's vertices this frame shows (lit_vertices());
+// `albedo`: 3 x N BGR in [0, 1]. Returns the BGR gains (mean 1), or
+// (1, 1, 1) where fewer than 50 vertices are lit.
+Vec3f light_colour(std::span<const LitVertex> lit, const Positions& albedo, const LightColourOptions& options = {});
 
 }  // namespace facecap

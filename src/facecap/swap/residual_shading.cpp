@@ -6,7 +6,6 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/render/uv_raster.hpp"
-#include "facecap/swap/lit_vertices.hpp"
 
 namespace facecap {
 
@@ -31,23 +30,20 @@ double millimetres_per_uv(const TriangleMesh& mesh, const Positions& shape) {
 
 ResidualShading::ResidualShading(const TriangleMesh& mesh, const Positions& reference, ResidualShadingOptions options)
     : options_(options), vertex_uvs_(per_vertex_uvs(mesh)), mm_per_uv_(millimetres_per_uv(mesh, reference)) {
-  if (!(mm_per_uv_ > 0) || !(options_.low_pass_mm > 0)) throw Error("residual shading: the mesh has no UV extent");
+  if (!(mm_per_uv_ > 0)) throw Error("residual shading: the mesh has no UV extent");
+  if (!(options_.low_pass_mm > 0)) throw Error("residual shading: the low-pass width must be positive");
   // About 3 texels per sigma: a grid this coarse is all the field needs.
   grid_ = std::clamp(static_cast<int>(std::lround(3.0 * mm_per_uv_ / options_.low_pass_mm)), 16, 256);
   sigma_texels_ = options_.low_pass_mm / mm_per_uv_ * (grid_ - 1);
 }
 
-cv::Mat ResidualShading::gains(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
-                               const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
-                               const ShCoeffs& lighting) const {
-  // Each usable vertex's ratio per channel, splatted bilinearly into the
-  // grid: `sum` holds ratio x weight, `weight` the weight.
+cv::Mat ResidualShading::gains(std::span<const LitVertex> lit, const Positions& albedo) const {
+  // Each lit vertex's ratio per channel, splatted bilinearly into the grid:
+  // `sum` holds ratio x weight, `weight` the weight.
   cv::Mat sum(grid_, grid_, CV_32FC3, cv::Scalar::all(0)), weight(grid_, grid_, CV_32F, cv::Scalar(0));
-  const std::vector<LitVertex> lit = lit_vertices(frame, camera_points, camera_normals, seen,
-                                                  static_cast<int>(std::min<size_t>(albedo.cols(), vertex_uvs_.size())),
-                                                  camera, lighting, options_.min_seen, options_.min_facing);
   int samples = 0;
   for (const LitVertex& s : lit) {
+    if (s.vertex >= albedo.cols() || s.vertex >= static_cast<int>(vertex_uvs_.size())) continue;
     cv::Vec3f ratio;  // BGR, as the albedo
     bool usable = true;
     for (int c = 0; c < 3; ++c) {

@@ -15,12 +15,12 @@
 // copies the target's own look (its lips, its folds, tracking errors) onto
 // the new face, which a self-swap rewards and a real swap shows as a ghost.
 #include <opencv2/core.hpp>
+#include <span>
 #include <vector>
 
-#include "facecap/core/camera.hpp"
 #include "facecap/core/geometry.hpp"
 #include "facecap/core/mesh.hpp"
-#include "facecap/core/spherical_harmonics.hpp"
+#include "facecap/swap/lit_vertices.hpp"
 
 namespace facecap {
 
@@ -38,14 +38,12 @@ class ResidualShading {
   ResidualShading(const TriangleMesh& mesh, const Positions& reference, ResidualShadingOptions options = {});
 
   // The gain field (CV_32FC3, BGR, grid_size() square over UV [0, 1]^2, row
-  // 0 at v = 1 like the face texture), each channel of mean 1 over the seen
+  // 0 at v = 1 like the face texture), each channel of mean 1 over the lit
   // vertices: the overall level and colour are the SH lighting's and
-  // light_colour()'s business. All ones where too few vertices are seen. `frame`: BGR 8-bit; `camera_points`,
-  // `camera_normals`: the target face in camera space; `albedo`: 3 x N BGR
-  // in [0, 1] with `seen` its per-vertex weight.
-  cv::Mat gains(const cv::Mat& frame, const Positions& camera_points, const Positions& camera_normals,
-                const Positions& albedo, const std::vector<float>& seen, const PinholeCamera& camera,
-                const ShCoeffs& lighting) const;
+  // light_colour()'s business. All ones where fewer than 50 vertices are
+  // lit. `lit`: the target face's vertices this frame shows
+  // (lit_vertices()); `albedo`: 3 x N BGR in [0, 1].
+  cv::Mat gains(std::span<const LitVertex> lit, const Positions& albedo) const;
 
   int grid_size() const { return grid_; }
   double mm_per_uv() const { return mm_per_uv_; }
