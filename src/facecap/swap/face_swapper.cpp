@@ -96,10 +96,16 @@ struct FaceSwapper::Impl {
   SourceFace source;
   TriangleMesh skin;
   UvTexelMap map;
-  cv::Mat source_albedo;  // filled, CV_32FC3
-  cv::Mat source_weight;
-  cv::Mat alpha;    // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
-  cv::Mat texture;  // CV_32FC4: harmonised albedo (BGR) and alpha
+  // The photo's side of eq. 6.3-6.5, fixed once the photo is unshaded: its
+  // albedo per skin vertex, its texture above the noise scale (mid-scale
+  // detail scaled by photo_detail_gain) and what lies below, and where it
+  // was seen.
+  Positions source_vertex_albedo;
+  cv::Mat source_smooth;    // CV_32FC3
+  cv::Mat source_residual;  // CV_32FC3: the filled albedo less source_smooth
+  cv::Mat source_seen;      // CV_8U
+  cv::Mat alpha;            // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
+  cv::Mat texture;          // CV_32FC4: harmonised albedo (BGR) and alpha
   FaceTexture target_sum;
   FaceTexture target_first;
   int appearance_seen = 0;
@@ -143,8 +149,15 @@ struct FaceSwapper::Impl {
                                  feature_holes(m, source.camera_points, source.camera));
     drop_non_skin(t);
     if (options.mirror_source) complete_from_mirror(t, options.mirror_low_pass_texels);
-    source_albedo = fill_unseen(t.albedo, t.weight);
-    source_weight = t.weight;
+    const cv::Mat source_albedo = fill_unseen(t.albedo, t.weight);
+    std::vector<float> seen;
+    source_vertex_albedo =
+        vertex_means(map, skin.triangles, source_albedo, cv::Mat(t.weight + 1e-3f), skin.num_vertices, seen);
+    cv::GaussianBlur(source_albedo, source_smooth, cv::Size(0, 0), options.noise_sigma);
+    if (options.photo_detail_gain != 1.0f)
+      source_smooth = scale_detail(source_smooth, options.photo_detail_fraction * map.size, options.photo_detail_gain);
+    source_residual = source_albedo - source_smooth;
+    source_seen = t.weight > 0;
     // Alpha in UV space: distance (texels) to the nearest texel outside the skin.
     cv::Mat covered(map.size, map.size, CV_8U);
     for (int i = 0; i < map.size * map.size; ++i) covered.data[i] = map.triangle[i] >= 0 ? 255 : 0;
@@ -218,9 +231,7 @@ struct FaceSwapper::Impl {
   // Eq. 6.3-6.5 with the target frames seen so far.
   void harmonise() {
     const FaceTexture target = weighted_mean(target_sum);
-    std::vector<float> seen_s, seen_t;
-    const Positions src =
-        vertex_means(map, skin.triangles, source_albedo, cv::Mat(source_weight + 1e-3f), skin.num_vertices, seen_s);
+    std::vector<float> seen_t;
     const Positions tgt = vertex_means(map, skin.triangles, target.albedo, target.weight, skin.num_vertices, seen_t);
     std::vector<bool> known(skin.num_vertices);
     for (int v = 0; v < skin.num_vertices; ++v) known[v] = seen_t[v] > 0.05f;
@@ -230,25 +241,20 @@ struct FaceSwapper::Impl {
     // turned far away), the source albedo stays as it is until one is.
     Positions h = Positions::Zero(3, skin.num_vertices);
     try {
-      h = AlbedoAdaptation(skin.triangles, skin.num_vertices, known).offset(src, tgt);
+      h = AlbedoAdaptation(skin.triangles, skin.num_vertices, known).offset(source_vertex_albedo, tgt);
     } catch (const Error&) {
     }
     // Noise: the photo's fine residual, histogram-matched to the first target frame's.
-    cv::Mat smooth;
-    cv::GaussianBlur(source_albedo, smooth, cv::Size(0, 0), options.noise_sigma);
-    if (options.photo_detail_gain != 1.0f)
-      smooth = scale_detail(smooth, options.photo_detail_fraction * map.size, options.photo_detail_gain);
-    const cv::Mat residual_s = source_albedo - smooth;
     const cv::Mat residual_t =
         fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);
     const cv::Mat matched =
-        match_histograms(residual_s, source_weight > 0, residual_t, target_first.weight > 0, -0.3f, 0.3f);
+        match_histograms(source_residual, source_seen, residual_t, target_first.weight > 0, -0.3f, 0.3f);
     texture.create(map.size, map.size, CV_32FC4);
     parallel_for(
         map.size,
         [&](int y0, int y1) {
           for (int y = y0; y < y1; ++y) {
-            const auto* sm = smooth.ptr<cv::Vec3f>(y);
+            const auto* sm = source_smooth.ptr<cv::Vec3f>(y);
             const auto* nm = matched.ptr<cv::Vec3f>(y);
             const float* al = alpha.ptr<float>(y);
             auto* out = texture.ptr<cv::Vec4f>(y);
