@@ -98,8 +98,7 @@ struct FaceSwapper::Impl {
   UvTexelMap map;
   // The photo's side of eq. 6.3-6.5, fixed once the photo is unshaded: its
   // albedo per skin vertex, its texture above the noise scale (mid-scale
-  // detail scaled by photo_detail_gain) and what lies below, and where it
-  // was seen.
+  // detail scaled by photo_detail_gain) and the rest, and where it was seen.
   Positions source_vertex_albedo;
   cv::Mat source_smooth;    // CV_32FC3
   cv::Mat source_residual;  // CV_32FC3: the filled albedo less source_smooth
@@ -156,6 +155,10 @@ struct FaceSwapper::Impl {
     cv::GaussianBlur(source_albedo, source_smooth, cv::Size(0, 0), options.noise_sigma);
     if (options.photo_detail_gain != 1.0f)
       source_smooth = scale_detail(source_smooth, options.photo_detail_fraction * map.size, options.photo_detail_gain);
+    // The residual holds the fine detail and the share of the mid-scale
+    // detail the gain took out, both then mapped onto the target's fine-noise
+    // histogram (eq. 6.5). The fine detail alone measured worse: self-swap
+    // mean 5.748 -> 5.788 (address_720p_a), 8.881 -> 9.002 (_b).
     source_residual = source_albedo - source_smooth;
     source_seen = t.weight > 0;
     // Alpha in UV space: distance (texels) to the nearest texel outside the skin.
