@@ -25,9 +25,9 @@ void parse_size(const std::string& s, int& width, int& height);
 // --init-frames: the frames the identity and focal length are solved from
 // (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
 void add_init_frames_option(CLI::App& cmd, int& init_frames);
-// --no-mirror, --no-light-colour and --photo-detail: how the swap completes,
-// tints and filters the photo's texture (SwapOptions), for `swap` and `eval
-// swap` alike.
+// --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
+// how the swap completes, tints, shades and filters the photo's texture
+// (SwapOptions), for `swap` and `eval swap` alike.
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
 
 void register_probe(CLI::App& app, GlobalOptions& global);
