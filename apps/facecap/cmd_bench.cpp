@@ -9,6 +9,7 @@
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/transform_job.hpp"
+#include "facecap/refine/displacement_bench.hpp"
 
 namespace facecap::cli {
 
@@ -33,6 +34,7 @@ nlohmann::json timings_json(const StageTimings& t) {
 
 void register_bench_transform(CLI::App& bench, GlobalOptions& global);
 void register_bench_swap(CLI::App& bench, GlobalOptions& global);
+void register_bench_displacement(CLI::App& bench);
 
 void register_bench(CLI::App& app, GlobalOptions& global) {
   auto* bench = app.add_subcommand("bench", "Measure speed: per-stage milliseconds and frames per second (JSON)");
@@ -42,9 +44,11 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
     std::string input;
     CaptureOptions capture;
     bool refine = false;
+    RefineOptions refine_options;
   };
   auto a = std::make_shared<Args>();
   track->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
+  add_device_option(*track, a->refine_options.device);
   track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)");
   track->add_flag("--refine", a->refine,
                   "Also the shading refinement, on its own thread (lighting, albedo, each level's displacement solve)");
@@ -59,7 +63,7 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
     int refined = 0;
     std::unique_ptr<RefineStage> stage;
     if (a->refine) {
-      stage = std::make_unique<RefineStage>(model, RefineOptions{}, [&](const RefinedFrame& r) {
+      stage = std::make_unique<RefineStage>(model, a->refine_options, [&](const RefinedFrame& r) {
         if (!r.refinement) return;
         const RefineTimings& t = r.refinement->timings;
         lighting += t.lighting_ms;
@@ -87,7 +91,8 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
                      {"albedo_ms_per_frame", albedo / n},
                      {"albedo_note", "the albedo is solved during the first frames only (every 3rd of the first 30)"},
                      {"displacement_ms_per_level", per_level},
-                     {"total_ms_per_frame", stage->refine_ms() / n}};
+                     {"total_ms_per_frame", stage->refine_ms() / n},
+                     {"device", to_string(a->refine_options.device)}};
       j["fps_with_refine"] =
           (wall - s.timings.setup_ms / 1000) > 0 ? s.frames / (wall - s.timings.setup_ms / 1000) : 0.0;
     }
@@ -100,6 +105,7 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
   });
   register_bench_transform(*bench, global);
   register_bench_swap(*bench, global);
+  register_bench_displacement(*bench);
 }
 
 void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
@@ -192,6 +198,64 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
     j["height"] = s.capture.input.height;
     j["cores"] = std::thread::hardware_concurrency();
     print_json(j);
+  });
+}
+
+void register_bench_displacement(CLI::App& bench) {
+  auto* cmd = bench.add_subcommand(
+      "displacement",
+      "The displacement solve alone on saved problems (`facecap eval refine --video V --save-problems DIR`): "
+      "milliseconds per level on each device and, on a machine with a GPU, the CUDA results against the CPU");
+  struct Args {
+    std::string dir, device;
+    bool check = false;
+    DisplacementBenchOptions options;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("DIR", a->dir, "Folder of .fcdp problem files")->required();
+  cmd->add_option("--device", a->device,
+                  "cpu, cuda, or both (the CPU is then the reference); default: both where a GPU answers, else cpu")
+      ->check(CLI::IsMember({"cpu", "cuda", "both"}));
+  cmd->add_option("--repeats", a->options.repeats, "Timed solves per problem (the median is kept)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_flag("--check", a->check,
+                "Exit with status 1 unless the CUDA results agree with the CPU (needs both devices)");
+  cmd->callback([a] {
+    const std::string device = a->device.empty() ? (cuda_device_available() ? "both" : "cpu") : a->device;
+    if (device != "cpu" && !cuda_device_available())
+      throw Error(cuda_built() ? "--device " + device + ": no CUDA device answers on this machine"
+                               : "--device " + device + ": this facecap was built without CUDA");
+    if (device != "cuda") a->options.devices.push_back(ComputeDevice::cpu);
+    if (device != "cpu") a->options.devices.push_back(ComputeDevice::cuda);
+    if (a->check && a->options.devices.size() < 2) throw Error("--check needs --device both (and a GPU)");
+    const DisplacementBenchResult r = bench_displacement(a->dir, a->options);
+    nlohmann::json j = {{"problems", r.problems},
+                        {"frames", r.frames},
+                        {"levels", r.levels},
+                        {"free_vertices_per_level", r.level_vertices},
+                        {"gauss_newton_steps", a->options.solver.gauss_newton_steps},
+                        {"pcg_iterations", a->options.solver.pcg_iterations}};
+    for (const DeviceTiming& t : r.timings) {
+      j[std::string(to_string(t.device))] = {
+          {"ms_per_level", t.level_ms}, {"ms_per_frame", t.frame_ms}, {"max_ms_per_frame", t.max_frame_ms}};
+    }
+    bool agree = true;
+    if (r.compared) {
+      const DeviceAgreement& g = r.agreement;
+      agree = g.within_tolerance();
+      j["agreement"] = {
+          {"max_abs_diff_um", g.max_abs_diff_um},
+          {"max_rel_diff", g.max_rel_diff},
+          {"max_cost_rel_diff", g.max_cost_rel_diff},
+          {"same_gauss_newton_steps", g.same_steps},
+          {"agree", agree},
+          {"tolerance", {{"rel_diff", DeviceAgreement::kRelDiff}, {"cost_rel_diff", DeviceAgreement::kCostRelDiff}}}};
+      if (r.timings.size() == 2 && r.timings[1].frame_ms > 0)
+        j["speedup"] = r.timings[0].frame_ms / r.timings[1].frame_ms;
+    }
+    print_json(j);
+    if (a->check && !agree) throw Error("the CUDA displacement solve disagrees with the CPU reference");
   });
 }
 

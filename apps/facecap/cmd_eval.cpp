@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
@@ -6,6 +7,7 @@
 #include "facecap/pipeline/synth_landmark_eval.hpp"
 #include "facecap/pipeline/track_eval.hpp"
 #include "facecap/pipeline/transform_eval.hpp"
+#include "facecap/refine/displacement_problem_io.hpp"
 
 namespace facecap::cli {
 
@@ -151,6 +153,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
     std::string size = "1280x720";
     RefineEvalOptions options;
     CaptureOptions capture;
+    std::string save_problems;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--synthetic", a->synthetic, "Render and refine N synthetic frames");
@@ -160,12 +163,27 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video");
   cmd->add_option("--albedo-frames", a->options.refine.albedo.frames, "Frames before the albedo is fixed")
       ->capture_default_str();
+  add_device_option(*cmd, a->options.refine.device);
+  cmd->add_option("--save-problems", a->save_problems,
+                  "--video: also write each frame's displacement problems to DIR (frameNNNN_levelL.fcdp) for "
+                  "`facecap bench displacement`");
   cmd->add_flag("--true-shading", a->options.true_shading,
                 "--synthetic: solve the displacements with the render's true lighting and albedo (the estimates "
                 "are still made and reported), to measure the displacement solve alone");
   cmd->callback([a, &global] {
     if (!a->video.empty() && a->options.true_shading)
       throw Error("--true-shading needs --synthetic: real footage has no true shading");
+    if (!a->save_problems.empty()) {
+      if (a->video.empty()) throw Error("--save-problems needs --video");
+      ensure_writable_dir(a->save_problems);
+      a->options.refine.on_displacement_problem = [dir = std::filesystem::path(a->save_problems)](
+                                                      int frame, int level, const DisplacementProblem& problem,
+                                                      const Eigen::VectorXf& start) {
+        char name[64];
+        std::snprintf(name, sizeof(name), "frame%04d_level%d.fcdp", frame, level);
+        save_displacement_problem(dir / name, problem, start, frame, level);
+      };
+    }
     const FaceModel model = load_model(global);
     if (!a->video.empty()) {
       a->capture.quiet = global.quiet;
@@ -175,7 +193,8 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                   {"photometric_coarse", r.photometric_coarse},
                   {"photometric_refined", r.photometric_refined},
                   {"reduction", r.photometric_coarse > 0 ? 1.0 - r.photometric_refined / r.photometric_coarse : 0.0},
-                  {"refine_ms_per_frame", r.refine_ms_per_frame}});
+                  {"refine_ms_per_frame", r.refine_ms_per_frame},
+                  {"device", to_string(a->options.refine.device)}});
       return;
     }
     if (a->synthetic <= 0) throw Error("eval refine needs --synthetic N or --video PATH");

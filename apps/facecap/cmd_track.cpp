@@ -27,6 +27,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "DIR/shaded.mp4 and DIR/heatmap.mp4)");
   cmd->add_flag("--refine", a->options.refine,
                 "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
+  add_device_option(*cmd, a->options.refine_options.device);
   cmd->add_option("--focal", a->options.capture.fit.focal_guess,
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "facecap/model/face_model.hpp"
+#include "facecap/refine/compute_device.hpp"
 #include "facecap/swap/face_swapper.hpp"
 
 namespace facecap::cli {
@@ -29,6 +30,9 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames);
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
+// --device cpu|cuda: where the refinement's displacement solve runs (default:
+// cuda when this build has it and a GPU answers, else cpu).
+void add_device_option(CLI::App& cmd, ComputeDevice& device);
 
 void register_probe(CLI::App& app, GlobalOptions& global);
 void register_model(CLI::App& app, GlobalOptions& global);

@@ -37,6 +37,23 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames) {
       ->capture_default_str();
 }
 
+void add_device_option(CLI::App& cmd, ComputeDevice& device) {
+  // `device` outlives the parse: it is part of the subcommand's arguments.
+  cmd.add_option_function<std::string>(
+         "--device",
+         [&device](const std::string& name) {
+           const std::optional<ComputeDevice> d = parse_compute_device(name);
+           if (!d) throw CLI::ValidationError("--device", "must be cpu or cuda, not '" + name + "'");
+           if (*d == ComputeDevice::cuda && !cuda_device_available())
+             throw CLI::ValidationError("--device", cuda_built() ? "cuda: no CUDA device answers on this machine"
+                                                                 : "cuda: this facecap was built without CUDA");
+           device = *d;
+         },
+         "Where the refinement's displacement solve runs: cpu or cuda (default: " +
+             std::string(to_string(default_compute_device())) + " on this machine)")
+      ->type_name("cpu|cuda");
+}
+
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
   // `swap` outlives the parse: it is part of the subcommand's arguments.
   cmd.add_flag_callback(

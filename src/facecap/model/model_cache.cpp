@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/binary_io.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/model/ict_loader.hpp"
@@ -34,64 +35,6 @@ struct CacheHeader {
   uint32_t payload_crc32;
 };
 #pragma pack(pop)
-
-class Writer {
- public:
-  template <typename T>
-  void pod(const T& v) {
-    raw(&v, sizeof(T));
-  }
-  void raw(const void* p, size_t n) { bytes_.append(static_cast<const char*>(p), n); }
-  void floats(const float* p, size_t n) { raw(p, n * sizeof(float)); }
-  void ints(const std::vector<int>& v) {
-    pod(static_cast<uint32_t>(v.size()));
-    for (int x : v) pod(static_cast<int32_t>(x));
-  }
-  void text(const std::string& s) {
-    pod(static_cast<uint32_t>(s.size()));
-    raw(s.data(), s.size());
-  }
-  const std::string& bytes() const { return bytes_; }
-
- private:
-  std::string bytes_;
-};
-
-class Reader {
- public:
-  Reader(std::string_view data, const fs::path& path) : data_(data), path_(path) {}
-  template <typename T>
-  T pod() {
-    T v;
-    raw(&v, sizeof(T));
-    return v;
-  }
-  void raw(void* p, size_t n) {
-    if (n > data_.size()) throw Error("model cache is truncated: " + path_.string());
-    std::memcpy(p, data_.data(), n);
-    data_.remove_prefix(n);
-  }
-  void floats(float* p, size_t n) { raw(p, n * sizeof(float)); }
-  std::vector<int> ints(uint32_t max_count) {
-    const uint32_t n = pod<uint32_t>();
-    if (n > max_count) throw Error("model cache is corrupt: " + path_.string());
-    std::vector<int> v(n);
-    for (auto& x : v) x = pod<int32_t>();
-    return v;
-  }
-  std::string text() {
-    const uint32_t n = pod<uint32_t>();
-    if (n > 256) throw Error("model cache is corrupt: " + path_.string());
-    std::string s(n, '\0');
-    raw(s.data(), n);
-    return s;
-  }
-  bool done() const { return data_.empty(); }
-
- private:
-  std::string_view data_;
-  const fs::path& path_;
-};
 
 uint64_t fnv1a(uint64_t h, std::string_view s) {
   for (const unsigned char c : s) {
@@ -125,7 +68,7 @@ fs::path model_cache_path(const fs::path& model_dir) {
 }
 
 void write_model_cache(const FaceModel& model, uint64_t source_fingerprint, const fs::path& path) {
-  Writer w;
+  ByteWriter w;
   w.floats(model.neutral.data(), model.neutral.size());
   w.floats(model.identity_basis.data(), model.identity_basis.size());
   w.floats(model.expression_basis.data(), model.expression_basis.size());
@@ -198,7 +141,7 @@ FaceModel read_model_cache(const fs::path& path, uint64_t expected_fingerprint) 
       crc32(0L, reinterpret_cast<const Bytef*>(payload.data()), static_cast<uInt>(payload.size())));
   if (crc != header.payload_crc32) throw Error("model cache is corrupt (checksum mismatch): " + path.string());
 
-  Reader r(payload, path);
+  ByteReader r(payload, "model cache", path);
   FaceModel m;
   m.num_vertices = static_cast<int>(header.num_vertices);
   m.neutral.resize(static_cast<Eigen::Index>(n3));

@@ -1,8 +1,11 @@
 #include "facecap/refine/displacement_solver.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include "facecap/core/parallel.hpp"
+#include "facecap/core/stopwatch.hpp"
+#include "facecap/refine/displacement_graph.hpp"
 
 namespace facecap {
 
@@ -15,72 +18,6 @@ inline Vec3f sh_gradient(const ShCoeffs& l, const Vec3f& v) {
           float(l[3] + l[5] * v.x() + l[6] * v.y() + 6 * l[8] * v.z())};
 }
 
-// The solver's own numbering. Only the free vertices are unknowns, and only
-// the residuals of free vertices and of their rings depend on them, so every
-// pass runs over those "touched" vertices in a compact index space: free ones
-// first, [0, num_free), then the rest of the touched, [num_free, touched).
-// A vector of unknowns has `num_free` entries; d is zero everywhere else.
-struct LocalGraph {
-  int num_free = 0;
-  std::vector<int> global;        // local -> level vertex
-  std::vector<float> inv_degree;  // 1 / ring size (0 for an isolated vertex)
-  // Rows, per touched vertex: its free ring neighbours (local indices) and
-  // their slot in the level's ring. Other neighbours multiply a zero.
-  std::vector<int> row_offsets, row_cols, row_slots;
-  std::vector<int> row_vertices;  // the level vertex of each row entry's column (global[row_cols[k]])
-  // Columns, per free vertex q: its ring neighbours t (local, all touched) and
-  // the row entry (t, q), or -1 where t's ring does not list q.
-  std::vector<int> col_offsets, col_rows, col_entries;
-
-  LocalGraph(const MeshLevel& lv, const std::vector<int>& free_vertices) {
-    const int n = lv.num_vertices;
-    const VertexAdjacency& r = lv.rings;
-    std::vector<int> local(n, -1);
-    num_free = static_cast<int>(free_vertices.size());
-    for (int i : free_vertices) {
-      local[i] = static_cast<int>(global.size());
-      global.push_back(i);
-    }
-    for (int i : free_vertices)
-      for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
-        const int j = r.indices[s];
-        if (local[j] < 0) {
-          local[j] = static_cast<int>(global.size());
-          global.push_back(j);
-        }
-      }
-    const int nt = static_cast<int>(global.size());
-    inv_degree.resize(nt);
-    // Per level ring slot of a touched vertex: its row entry, or -1.
-    std::vector<int> slot_entry(r.indices.size(), -1);
-    row_offsets.assign(1, 0);
-    for (int t = 0; t < nt; ++t) {
-      const int i = global[t];
-      inv_degree[t] = r.degree(i) > 0 ? 1.0f / float(r.degree(i)) : 0.0f;
-      for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
-        const int j = local[r.indices[s]];
-        if (j < 0 || j >= num_free) continue;
-        slot_entry[s] = static_cast<int>(row_cols.size());
-        row_cols.push_back(j);
-        row_slots.push_back(s - r.offsets[i]);
-        row_vertices.push_back(r.indices[s]);
-      }
-      row_offsets.push_back(static_cast<int>(row_cols.size()));
-    }
-    col_offsets.assign(1, 0);
-    for (int a = 0; a < num_free; ++a) {
-      const int q = global[a];
-      for (int s = r.offsets[q]; s < r.offsets[q + 1]; ++s) {
-        const int back = lv.ring_transpose[s];
-        col_rows.push_back(local[r.indices[s]]);
-        col_entries.push_back(back >= 0 ? slot_entry[back] : -1);
-      }
-      col_offsets.push_back(static_cast<int>(col_rows.size()));
-    }
-  }
-  int touched() const { return static_cast<int>(global.size()); }
-};
-
 // The linearisation of one Gauss-Newton step, over the touched vertices.
 struct Linearisation {
   Eigen::VectorXf self;           // d s_t / d d_t
@@ -91,25 +28,6 @@ struct Linearisation {
   double data_cost = 0;           // sum of the (Huber) vertex costs
 };
 
-// The regularisers' weights for d in centimetres.
-DisplacementOptions scaled(DisplacementOptions o) {
-  const double k = 1.0 / (o.length_unit_cm * o.length_unit_cm);
-  o.weights.smooth *= k;
-  o.weights.hierarchy *= k;
-  o.weights.temporal *= k;
-  o.weights.coarse *= k;
-  return o;
-}
-
-std::vector<int> free_vertices(const DisplacementProblem& p) {
-  // Dirichlet: d = 0 on the boundary, and outside the active set.
-  std::vector<int> out;
-  const MeshLevel& lv = *p.level;
-  for (int i = 0; i < lv.num_vertices; ++i)
-    if (!lv.boundary[i] && (p.active.empty() || p.active[i])) out.push_back(i);
-  return out;
-}
-
 // Vertices per block of the PCG's parallel passes and their sums (fixed, so
 // that the sums do not depend on the thread count).
 constexpr int kBlock = 2048;
@@ -117,7 +35,7 @@ constexpr int kBlock = 2048;
 class Solver {
  public:
   Solver(const DisplacementProblem& p, const DisplacementOptions& o)
-      : p_(p), o_(scaled(o)), lv_(*p.level), g_(lv_, free_vertices(p)) {
+      : p_(p), o_(weights_in_centimetres(o)), lv_(*p.level), g_(lv_, free_vertices(p)) {
     positions_ = p.base;
     const int nf = g_.num_free;
     // The fixed vertices' share of E_hier and E_temp (d = 0 there): constant,
@@ -224,8 +142,10 @@ class Solver {
   double cost(const Eigen::VectorXf& d, const Linearisation& lin) {
     apply_rows<false>(nullptr, d, nullptr, scratch_lx_);
     double c = lin.data_cost + o_.weights.smooth * scratch_lx_.squaredNorm() + o_.weights.coarse * d.squaredNorm();
-    if (prolonged_.size()) c += o_.weights.hierarchy * ((d - prolonged_).squaredNorm() + prolonged_fixed_);
-    if (previous_.size()) c += o_.weights.temporal * ((d - previous_).squaredNorm() + previous_fixed_);
+    // (Tested on the problem's vectors: with no free vertex the local ones are
+    // empty, and the fixed share is then the whole term.)
+    if (p_.prolonged.size()) c += o_.weights.hierarchy * ((d - prolonged_).squaredNorm() + prolonged_fixed_);
+    if (p_.previous.size()) c += o_.weights.temporal * ((d - previous_).squaredNorm() + previous_fixed_);
     return c;
   }
 
@@ -332,7 +252,7 @@ class Solver {
   // Shading, its derivatives and the data residual of touched vertex t.
   void linearise_vertex(int t, Linearisation& lin) {
     const auto position = [&](int v) -> Vec3f { return positions_.col(v); };
-    constexpr int kMaxRing = 32;
+    constexpr int kMaxRing = kMaxDisplacementRing;
     const int i = g_.global[t];
     const Vec3f pi = position(i);
     const Vec3f ni = p_.base_normals.col(i);
@@ -408,7 +328,7 @@ class Solver {
   const DisplacementProblem& p_;
   const DisplacementOptions o_;
   const MeshLevel& lv_;
-  const LocalGraph g_;
+  const DisplacementGraph g_;
   Positions positions_;  // the displaced surface on the whole level (the base where d is fixed)
   Eigen::VectorXf vertex_cost_;
   Eigen::VectorXf scratch_lx_;
@@ -427,8 +347,12 @@ Positions displaced_positions(const Positions& base, const Positions& normals, c
 
 DisplacementReport solve_displacements(const DisplacementProblem& problem, Eigen::VectorXf& d,
                                        const DisplacementOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
   Solver solver(problem, options);
-  return solver.run(d);
+  const double setup_ms = ms_since(t0);
+  DisplacementReport report = solver.run(d);
+  report.setup_ms = setup_ms;
+  return report;
 }
 
 }  // namespace facecap

@@ -153,7 +153,11 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];
     // Start from the coarser level's solution, or at level 0 from last frame's.
     d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
-    if (options_.displacements) solve_displacements(problem, d, options_.displacement);
+    if (options_.displacements) {
+      if (options_.on_displacement_problem) options_.on_displacement_problem(frame_count_ - 1, l, problem, d);
+      if (!displacement_) displacement_ = make_displacement_backend(options_.device);
+      displacement_->solve(problem, d, options_.displacement);
+    }
     previous_[l] = d;
     if (l == levels - 1) {
       out.positions = displaced_positions(problem.base, problem.base_normals, d);

@@ -5,6 +5,7 @@
 // displacements, M_d = M + d_{t-1} N), updates the albedo during the first
 // frames (then holds it), and solves the displacements level by level from
 // coarse to fine, each level starting from the prolonged coarser solution.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/refine/albedo.hpp"
+#include "facecap/refine/displacement_backend.hpp"
 #include "facecap/refine/displacement_solver.hpp"
 #include "facecap/refine/lighting.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
@@ -56,6 +58,13 @@ struct RefineOptions {
   // displacements also corrupt the next frame's M_d. On address_720p_a (30
   // frames) the refined photometric error is 4.29 / 4.41 / 4.50.
   double displacement_min_facing = 0.7;
+  // Where the displacement solve runs (the lighting and albedo run on the
+  // CPU): CUDA when this build has it and a GPU answers.
+  ComputeDevice device = default_compute_device();
+  // Called with each displacement problem before it is solved (frame index,
+  // level, problem, starting d): `eval refine --save-problems` writes them.
+  std::function<void(int frame, int level, const DisplacementProblem&, const Eigen::VectorXf& start)>
+      on_displacement_problem;
   HierarchyOptions hierarchy;
   LightingOptions lighting;
   AlbedoOptions albedo;
@@ -120,6 +129,7 @@ class Refiner {
   RefineOptions options_;
   MeshHierarchy hierarchy_;
   std::unique_ptr<AlbedoEstimator> albedo_;
+  std::unique_ptr<DisplacementBackend> displacement_;  // made at the first solve
   std::optional<ShCoeffs> lighting_;
   std::vector<Eigen::VectorXf> previous_;  // per level, last frame's displacements
   // The albedo frames' coarsest-level samples and normals, kept until the
