@@ -1,0 +1,103 @@
+// The refiner end to end on each device: the same frames refined with the
+// displacement solve on the CPU and on the GPU give the same surface. Needs no
+// face model: a rippled dome rendered by the project's rasteriser.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "facecap/refine/refiner.hpp"
+#include "facecap/render/shading.hpp"
+
+namespace facecap {
+
+namespace {
+
+constexpr int kWidth = 640, kHeight = 480;
+
+// A dome of n x n quads, 0.4 cm apart, 40 cm in front of the camera; with
+// `detail` the grid is 4 times finer and rippled (what the camera sees).
+struct Dome {
+  std::vector<Polygon> polygons;
+  std::vector<Triangle> triangles;
+  Positions points;
+
+  Dome(int n, bool detail) {
+    const int m = detail ? 4 * n : n;
+    const float step = 0.4f * float(n) / float(m);
+    points.resize(3, (m + 1) * (m + 1));
+    for (int y = 0; y <= m; ++y)
+      for (int x = 0; x <= m; ++x) {
+        const float px = step * (float(x) - m / 2.0f), py = step * (float(y) - m / 2.0f);
+        float z = 40.0f + 0.04f * (px * px + py * py);
+        if (detail) z += 0.03f * std::sin(3.0f * px) * std::cos(2.0f * py);
+        points.col(y * (m + 1) + x) = Vec3f(px, py, z);
+      }
+    for (int y = 0; y < m; ++y)
+      for (int x = 0; x < m; ++x) {
+        const int a = y * (m + 1) + x;
+        Polygon q;
+        q.v = {a, a + m + 1, a + m + 2, a + 1};
+        polygons.push_back(q);
+        triangles.push_back({a, a + m + 1, a + m + 2});
+        triangles.push_back({a, a + m + 2, a + 1});
+      }
+  }
+};
+
+Positions vertex_normals(const std::vector<Triangle>& triangles, const Positions& p) {
+  Positions n = Positions::Zero(3, p.cols());
+  for (const Triangle& t : triangles) {
+    const Vec3f f = (Vec3f(p.col(t[1])) - Vec3f(p.col(t[0]))).cross(Vec3f(p.col(t[2])) - Vec3f(p.col(t[0])));
+    for (int k = 0; k < 3; ++k) n.col(t[k]) += f;
+  }
+  for (Eigen::Index i = 0; i < n.cols(); ++i) n.col(i).normalize();
+  return n;
+}
+
+cv::Mat render(const Dome& detailed, const PinholeCamera& camera) {
+  ShCoeffs lighting = ShCoeffs::Zero();
+  lighting << 0.7, 0.25, 0.3, 0.5, 0.05, 0.0, 0.0, 0.04, 0.02;
+  RasterBuffers buffers;
+  buffers.resize(kWidth, kHeight);
+  rasterize(detailed.points, detailed.triangles, camera, buffers);
+  cv::Mat canvas(kHeight, kWidth, CV_32FC3, cv::Scalar(0.1, 0.1, 0.1));
+  const Positions albedo = Positions::Constant(3, detailed.points.cols(), 0.6f);
+  shade_lambertian(buffers, detailed.triangles, albedo, vertex_normals(detailed.triangles, detailed.points), lighting,
+                   canvas);
+  cv::Mat image;
+  canvas.convertTo(image, CV_8UC3, 255.0);
+  return image;
+}
+
+}  // namespace
+
+TEST(RefinerOnEachDevice, CudaRefinesTheSameSurfaceAsTheCpu) {
+  if (!cuda_device_available()) {
+    GTEST_SKIP() << (cuda_built() ? "no CUDA device here: the CPU/CUDA comparison runs on a machine with a GPU"
+                                  : "this build has no CUDA backend (nvcc not found or -DFACECAP_CUDA=OFF)");
+  }
+  const Dome coarse(24, false), detailed(24, true);
+  const PinholeCamera camera = PinholeCamera::centered(900, kWidth, kHeight);
+  const cv::Mat image = render(detailed, camera);
+  RefineOptions options;
+  options.albedo.frames = 2;
+  options.device = ComputeDevice::cpu;
+  Refiner on_cpu(coarse.polygons, static_cast<int>(coarse.points.cols()), options);
+  options.device = ComputeDevice::cuda;
+  Refiner on_gpu(coarse.polygons, static_cast<int>(coarse.points.cols()), options);
+  for (int frame = 0; frame < 4; ++frame) {
+    const Refinement a = on_cpu.refine(image, coarse.points, camera);
+    const Refinement b = on_gpu.refine(image, coarse.points, camera);
+    ASSERT_EQ(a.levels, b.levels);
+    ASSERT_GE(a.levels, 2);
+    ASSERT_EQ(a.positions.cols(), b.positions.cols());
+    // Detail was found (the refined surface left the base) and both agree to 1 um.
+    const Positions base = on_cpu.hierarchy().prolong_from_coarse(coarse.points, a.levels - 1);
+    EXPECT_GT((a.positions - base).colwise().norm().maxCoeff(), 5e-3f) << "frame " << frame;
+    EXPECT_LT((a.positions - b.positions).cwiseAbs().maxCoeff(), 1e-4f) << "frame " << frame;
+    EXPECT_LT((a.lighting - b.lighting).norm(), 1e-4 * a.lighting.norm()) << "frame " << frame;
+    EXPECT_TRUE(b.positions.allFinite());
+  }
+}
+
+}  // namespace facecap
