@@ -361,7 +361,7 @@ DisplacementReport CudaDisplacementSolver::solve(const DisplacementProblem& prob
     s.clear_scalars(cuda::kDataCost, 2);
     cuda::launch_displace(graph, frame, trial, stream);
     cuda::launch_linearise(graph, level, frame, trial_lin, huber, scalars, stream);
-    cuda::launch_rows(graph, nullptr, trial, nullptr, lx, scalars, -1, stream);
+    cuda::launch_rows(graph, nullptr, trial, nullptr, nullptr, lx, scalars, -1, stream);
     cuda::launch_regulariser_cost(graph, w, trial, lx, prolonged, previous, scalars, stream);
   };
   double* host = s.readback.reserve(8);
@@ -385,14 +385,13 @@ DisplacementReport CudaDisplacementSolver::solve(const DisplacementProblem& prob
   if (step.signature != signature) {
     step.graph.begin_capture(stream);
     s.clear_scalars(cuda::kGradDotStep, cuda::kScalarCount - cuda::kGradDotStep);
-    cuda::launch_rows(graph, nullptr, d, nullptr, lx, scalars, -1, stream);
-    cuda::launch_columns(graph, lin, lin.data_residual, lx, w.coarse, w.smooth, d, grad, scalars, -1, stream);
+    cuda::launch_rows(graph, nullptr, d, nullptr, nullptr, lx, scalars, -1, stream);
+    cuda::launch_columns(graph, lin, lin.data_residual, lx, w.coarse, w.smooth, d, nullptr, grad, scalars, -1, stream);
     cuda::launch_pcg_start(graph, lin, w, d, prolonged, previous, grad, diag, x, rr, z, p, scalars, stream);
     for (int k = 0; k < o.pcg_iterations; ++k) {
-      cuda::launch_rows(graph, &lin, p, wgx, lx, scalars, k, stream);
-      cuda::launch_columns(graph, lin, wgx, lx, w.diag_const, w.smooth, p, ap, scalars, k, stream);
+      cuda::launch_rows(graph, &lin, p, z, wgx, lx, scalars, k, stream);
+      cuda::launch_columns(graph, lin, wgx, lx, w.diag_const, w.smooth, p, z, ap, scalars, k, stream);
       cuda::launch_pcg_update(graph, p, ap, diag, x, rr, z, scalars, k, stream);
-      cuda::launch_pcg_direction(graph, z, p, scalars, k, stream);
     }
     cuda::launch_dot(graph, grad, x, scalars, cuda::kGradDotStep, stream);
     trial_into(1.0f);
@@ -420,7 +419,7 @@ DisplacementReport CudaDisplacementSolver::solve(const DisplacementProblem& prob
   s.clear_scalars(cuda::kDataCost, 2);
   cuda::launch_displace(graph, frame, d, stream);
   cuda::launch_linearise(graph, level, frame, lin, huber, scalars, stream);
-  cuda::launch_rows(graph, nullptr, d, nullptr, lx, scalars, -1, stream);
+  cuda::launch_rows(graph, nullptr, d, nullptr, nullptr, lx, scalars, -1, stream);
   cuda::launch_regulariser_cost(graph, w, d, lx, prolonged, previous, scalars, stream);
   const double* start = s.read_scalars(cuda::kDataCost, 4);
   const double fixed_cost =

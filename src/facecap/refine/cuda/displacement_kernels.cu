@@ -36,6 +36,24 @@ __device__ void block_add(double value, double* out) {
 // Whether PCG iteration k runs: no earlier iteration stopped and r . z is not yet zero.
 __device__ inline bool pcg_live(const double* s, int k) { return s[kLive + k] != 0.0 && s[kRz + k] > 1e-30; }
 
+// The vector a pass multiplies. In PCG iteration k > 0 it is the search
+// direction p_k = z_k + beta p_{k-1}, beta = (r.z)_k / (r.z)_{k-1}
+// (Algorithm 2), formed where it is read: `x` holds p_{k-1} and `z` z_k
+// until iteration k's update stores p_k, so no kernel of its own is needed.
+struct Operand {
+  const float* x = nullptr;
+  const float* z = nullptr;  // null: x itself
+  float beta = 0;
+
+  __device__ Operand(const float* x_, const float* z_, const double* scalars, int k) : x(x_) {
+    if (z_ != nullptr && k > 0) {
+      z = z_;
+      beta = float(scalars[kRz + k] / scalars[kRz + k - 1]);
+    }
+  }
+  __device__ float operator[](int i) const { return z ? z[i] + beta * x[i] : x[i]; }
+};
+
 __global__ void displace_kernel(GraphView g, FrameView f, const float* d) {
   const int a = blockIdx.x * blockDim.x + threadIdx.x;
   if (a >= g.counts[0]) return;
@@ -128,11 +146,12 @@ __global__ void gather_columns_kernel(GraphView g, LinearisationView lin) {
 }
 
 template <bool kWithData>
-__global__ void rows_kernel(GraphView g, LinearisationView lin, const float* x, float* wgx, float* lx,
-                            const double* scalars, int pcg_iteration) {
+__global__ void rows_kernel(GraphView g, LinearisationView lin, const float* x_in, const float* z, float* wgx,
+                            float* lx, const double* scalars, int pcg_iteration) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t >= g.counts[1]) return;
   if (pcg_iteration >= 0 && !pcg_live(scalars, pcg_iteration)) return;
+  const Operand x(x_in, z, scalars, pcg_iteration);
   const float xt = t < g.counts[0] ? x[t] : 0.0f;
   float gx = 0, sum = 0;
   if constexpr (kWithData) gx = lin.self[t] * xt;
@@ -147,10 +166,12 @@ __global__ void rows_kernel(GraphView g, LinearisationView lin, const float* x, 
 }
 
 __global__ void columns_kernel(GraphView g, LinearisationView lin, const float* u, const float* v, float c,
-                               float smooth, const float* x, float* y, double* scalars, int pcg_iteration) {
+                               float smooth, const float* x_in, const float* z, float* y, double* scalars,
+                               int pcg_iteration) {
   const int a = blockIdx.x * blockDim.x + threadIdx.x;
   const bool gated = pcg_iteration >= 0;
   if (gated && !pcg_live(scalars, pcg_iteration)) return;  // uniform over the grid
+  const Operand x(x_in, z, scalars, pcg_iteration);
   double xy = 0;
   if (a < g.counts[0]) {
     float data = lin.self[a] * u[a];
@@ -212,7 +233,7 @@ __global__ void pcg_start_kernel(GraphView g, LinearisationView lin, Weights w, 
   block_add(rz, scalars + kRz);
 }
 
-__global__ void pcg_update_kernel(GraphView g, const float* p, const float* ap, const float* diag, float* x, float* r,
+__global__ void pcg_update_kernel(GraphView g, float* p, const float* ap, const float* diag, float* x, float* r,
                                   float* z, double* scalars, int k) {
   const int a = blockIdx.x * blockDim.x + threadIdx.x;
   const bool live = pcg_live(scalars, k) && scalars[kPap + k] > 0;
@@ -221,19 +242,14 @@ __global__ void pcg_update_kernel(GraphView g, const float* p, const float* ap, 
   const float alpha = float(scalars[kRz + k] / scalars[kPap + k]);
   double rz = 0;
   if (a < g.counts[0]) {
-    x[a] += alpha * p[a];
+    const float pa = Operand(p, z, scalars, k)[a];
+    p[a] = pa;  // p_k, before z moves on
+    x[a] += alpha * pa;
     r[a] -= alpha * ap[a];
     z[a] = r[a] / diag[a];
     rz = double(r[a]) * z[a];
   }
   block_add(rz, scalars + kRz + k + 1);
-}
-
-__global__ void pcg_direction_kernel(GraphView g, const float* z, float* p, const double* scalars, int k) {
-  const int a = blockIdx.x * blockDim.x + threadIdx.x;
-  if (a >= g.counts[0] || scalars[kLive + k + 1] == 0.0) return;
-  const float beta = float(scalars[kRz + k + 1] / scalars[kRz + k]);
-  p[a] = z[a] + beta * p[a];
 }
 
 __global__ void dot_kernel(GraphView g, const float* a, const float* b, double* out) {
@@ -258,17 +274,19 @@ void launch_linearise(const GraphView& g, const LevelView& lv, const FrameView& 
   gather_columns_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, lin);
 }
 
-void launch_rows(const GraphView& g, const LinearisationView* lin, const float* x, float* wgx, float* lx,
-                 const double* scalars, int pcg_iteration, cudaStream_t s) {
+void launch_rows(const GraphView& g, const LinearisationView* lin, const float* x, const float* z, float* wgx,
+                 float* lx, const double* scalars, int pcg_iteration, cudaStream_t s) {
   if (lin)
-    rows_kernel<true><<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, *lin, x, wgx, lx, scalars, pcg_iteration);
+    rows_kernel<true><<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, *lin, x, z, wgx, lx, scalars, pcg_iteration);
   else
-    rows_kernel<false><<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, {}, x, wgx, lx, scalars, pcg_iteration);
+    rows_kernel<false><<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, {}, x, z, wgx, lx, scalars, pcg_iteration);
 }
 
 void launch_columns(const GraphView& g, const LinearisationView& lin, const float* u, const float* v, float c,
-                    float smooth, const float* x, float* y, double* scalars, int pcg_iteration, cudaStream_t s) {
-  columns_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, lin, u, v, c, smooth, x, y, scalars, pcg_iteration);
+                    float smooth, const float* x, const float* z, float* y, double* scalars, int pcg_iteration,
+                    cudaStream_t s) {
+  columns_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, lin, u, v, c, smooth, x, z, y, scalars,
+                                                                 pcg_iteration);
 }
 
 void launch_regulariser_cost(const GraphView& g, const Weights& w, const float* d, const float* lx,
@@ -283,14 +301,9 @@ void launch_pcg_start(const GraphView& g, const LinearisationView& lin, const We
                                                                    z, p, scalars);
 }
 
-void launch_pcg_update(const GraphView& g, const float* p, const float* ap, const float* diag, float* x, float* r,
-                       float* z, double* scalars, int pcg_iteration, cudaStream_t s) {
+void launch_pcg_update(const GraphView& g, float* p, const float* ap, const float* diag, float* x, float* r, float* z,
+                       double* scalars, int pcg_iteration, cudaStream_t s) {
   pcg_update_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, p, ap, diag, x, r, z, scalars, pcg_iteration);
-}
-
-void launch_pcg_direction(const GraphView& g, const float* z, float* p, const double* scalars, int pcg_iteration,
-                          cudaStream_t s) {
-  pcg_direction_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, z, p, scalars, pcg_iteration);
 }
 
 void launch_dot(const GraphView& g, const float* a, const float* b, double* scalars, int slot, cudaStream_t s) {

@@ -1,9 +1,10 @@
 #pragma once
 // The CUDA kernels of the displacement solve (§4.3.4): the linearisation of
 // one Gauss-Newton step per touched vertex, the matrix-free products J^T J p
-// as a row pass and a column pass, and the PCG's vector updates (Algorithm 2,
-// three kernels per iteration plus the direction update). Plain data views
-// only: this header is read by nvcc and by the host code, and holds no Eigen.
+// as a row pass and a column pass, and the PCG's vector updates (Algorithm 2:
+// three kernels per iteration, the row pass, the column pass and the update).
+// Plain data views only: this header is read by nvcc and by the host code,
+// and holds no Eigen.
 //
 // The numbering is DisplacementGraph's (displacement_graph.hpp): free
 // vertices [0, num_free), the other touched ones after them. The CPU solver
@@ -75,13 +76,16 @@ void launch_displace(const GraphView& g, const FrameView& f, const float* d, cud
 void launch_linearise(const GraphView& g, const LevelView& lv, const FrameView& f, const LinearisationView& lin,
                       float huber, double* scalars, cudaStream_t s);
 // lx = L x over the touched vertices; with `lin`, also wgx = W G x. With
-// pcg_iteration >= 0 the pass runs only while that PCG iteration is live.
-void launch_rows(const GraphView& g, const LinearisationView* lin, const float* x, float* wgx, float* lx,
-                 const double* scalars, int pcg_iteration, cudaStream_t s);
+// pcg_iteration >= 0 the pass runs only while that PCG iteration is live,
+// and x is the search direction formed from the previous one and z (z may
+// be null outside the PCG).
+void launch_rows(const GraphView& g, const LinearisationView* lin, const float* x, const float* z, float* wgx,
+                 float* lx, const double* scalars, int pcg_iteration, cudaStream_t s);
 // y = G^T u + smooth L^T v + c x over the free vertices; with pcg_iteration
-// >= 0 it is gated like launch_rows and x . y goes to scalars[kPap + it].
+// >= 0 it is gated and formed like launch_rows and x . y goes to scalars[kPap + it].
 void launch_columns(const GraphView& g, const LinearisationView& lin, const float* u, const float* v, float c,
-                    float smooth, const float* x, float* y, double* scalars, int pcg_iteration, cudaStream_t s);
+                    float smooth, const float* x, const float* z, float* y, double* scalars, int pcg_iteration,
+                    cudaStream_t s);
 // The energy's regularisers at d (lx = L d over the touched): into scalars[kRegulariserCost].
 void launch_regulariser_cost(const GraphView& g, const Weights& w, const float* d, const float* lx,
                              const float* prolonged, const float* previous, double* scalars, cudaStream_t s);
@@ -90,11 +94,10 @@ void launch_regulariser_cost(const GraphView& g, const Weights& w, const float* 
 void launch_pcg_start(const GraphView& g, const LinearisationView& lin, const Weights& w, const float* d,
                       const float* prolonged, const float* previous, float* grad, float* diag, float* x, float* r,
                       float* z, float* p, double* scalars, cudaStream_t s);
-// x += alpha p, r -= alpha Ap, z = M^-1 r and the new r . z; then p = z + beta p.
-void launch_pcg_update(const GraphView& g, const float* p, const float* ap, const float* diag, float* x, float* r,
-                       float* z, double* scalars, int pcg_iteration, cudaStream_t s);
-void launch_pcg_direction(const GraphView& g, const float* z, float* p, const double* scalars, int pcg_iteration,
-                          cudaStream_t s);
+// Stores this iteration's direction p, then x += alpha p, r -= alpha Ap,
+// z = M^-1 r and the new r . z.
+void launch_pcg_update(const GraphView& g, float* p, const float* ap, const float* diag, float* x, float* r, float* z,
+                       double* scalars, int pcg_iteration, cudaStream_t s);
 // scalars[slot] += a . b over the free vertices.
 void launch_dot(const GraphView& g, const float* a, const float* b, double* scalars, int slot, cudaStream_t s);
 // out = a + scale b over the free vertices.
