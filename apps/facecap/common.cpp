@@ -44,9 +44,10 @@ void add_device_option(CLI::App& cmd, ComputeDevice& device) {
          [&device](const std::string& name) {
            const std::optional<ComputeDevice> d = parse_compute_device(name);
            if (!d) throw CLI::ValidationError("--device", "must be cpu or cuda, not '" + name + "'");
+           // Not a parse error: the machine lacks what was asked for (one line).
            if (*d == ComputeDevice::cuda && !cuda_device_available())
-             throw CLI::ValidationError("--device", cuda_built() ? "cuda: no CUDA device answers on this machine"
-                                                                 : "cuda: this facecap was built without CUDA");
+             throw Error(cuda_built() ? "--device cuda: no CUDA device answers on this machine"
+                                      : "--device cuda: this facecap was built without CUDA");
            device = *d;
          },
          "Where the refinement's displacement solve runs: cpu or cuda (default: " +

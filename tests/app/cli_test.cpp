@@ -11,7 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/refine/compute_device.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -224,6 +227,50 @@ TEST(Cli, ProbeDescribesAVideoAsJson) {
   EXPECT_NE(r.out.find("\"width\": 1280"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"audio\": true"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
+}
+
+// --device names what it takes, and asking for CUDA where there is none is a
+// one-line error, not a crash or a silent fall back to the CPU.
+TEST(Cli, DeviceOptionNamesWhatItNeeds) {
+  RunResult r = run("eval refine --synthetic 1 --device gpu");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("--device"), std::string::npos) << r.out;
+  if (cuda_device_available()) GTEST_SKIP() << "a CUDA device is present";
+  r = run("eval refine --synthetic 1 --device cuda");
+  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("cuda"), std::string::npos) << r.out;
+}
+
+// Real footage's displacement problems saved, then solved again on their
+// own: what a GPU machine runs to compare the devices without the model.
+TEST(Cli, SavedDisplacementProblemsSolveAgainOnTheirOwn) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const auto problems = dir.path() / "problems";
+  RunResult r = run("eval refine --video " + video.string() + " --max-frames 3 --device cpu --save-problems " +
+                    problems.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(problems / "frame0002_level0.fcdp"));
+  r = run("bench displacement " + problems.string() + " --device cpu --repeats 1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("frames").get<int>(), 3);
+  ASSERT_GE(j.at("levels").get<int>(), 1);
+  const auto& ms = j.at("cpu").at("ms_per_level");
+  ASSERT_EQ(ms.size(), j.at("levels").get<size_t>());
+  for (const auto& v : ms) EXPECT_GT(v.get<double>(), 0.0);
+  EXPECT_GT(j.at("free_vertices_per_level").at(0).get<int>(), 100);
+  // An empty folder, and --check without a second device: one-line errors.
+  std::filesystem::create_directories(dir.path() / "empty");
+  r = run("bench displacement " + (dir.path() / "empty").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("no .fcdp"), std::string::npos) << r.out;
+  r = run("bench displacement " + problems.string() + " --device cpu --check");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--check"), std::string::npos) << r.out;
 }
 
 }  // namespace facecap
