@@ -350,8 +350,18 @@ DisplacementReport CudaDisplacementSolver::solve(const DisplacementProblem& prob
   w.coarse = float(o.weights.coarse);
   w.diag_const =
       float(o.weights.coarse + (has_previous ? o.weights.temporal : 0.0) + (has_prolonged ? o.weights.hierarchy : 0.0));
-  float *grad = s.grad.reserve(n), *diag = s.diag.reserve(n), *x = s.x.reserve(n), *rr = s.r.reserve(n),
-        *z = s.z.reserve(n), *p = s.p.reserve(n), *ap = s.ap.reserve(n), *wgx = s.wgx.reserve(n), *lx = s.lx.reserve(n);
+  cuda::NewtonVectors vectors;
+  vectors.grad = s.grad.reserve(n);
+  vectors.diag = s.diag.reserve(n);
+  vectors.x = s.x.reserve(n);
+  vectors.r = s.r.reserve(n);
+  vectors.z = s.z.reserve(n);
+  vectors.p = s.p.reserve(n);
+  vectors.ap = s.ap.reserve(n);
+  vectors.wgx = s.wgx.reserve(n);
+  vectors.lx = s.lx.reserve(n);
+  float* const x = vectors.x;
+  float* const lx = vectors.lx;
   cuda::LinearisationView lin = s.lin[0].reserve(n, r), trial_lin = s.lin[1].reserve(n, r);
   const float huber = float(o.data_huber);
 
@@ -361,39 +371,25 @@ DisplacementReport CudaDisplacementSolver::solve(const DisplacementProblem& prob
     s.clear_scalars(cuda::kDataCost, 2);
     cuda::launch_displace(graph, frame, trial, stream);
     cuda::launch_linearise(graph, level, frame, trial_lin, huber, scalars, stream);
-    cuda::launch_rows(graph, nullptr, trial, nullptr, nullptr, lx, scalars, -1, stream);
+    cuda::launch_laplacian(graph, trial, lx, stream);
     cuda::launch_regulariser_cost(graph, w, trial, lx, prolonged, previous, scalars, stream);
   };
   double* host = s.readback.reserve(8);
 
-  // One Gauss-Newton step up to the host's decision: the gradient J^T r of
-  // the whole energy; Algorithm 2 from x0 = 0 on (J^T J) x = -J^T r, each
-  // product a row pass and a column pass; grad^T x for the predicted
-  // decrease; and the full step's trial energy. One graph, one readback;
-  // captured again only when what it holds changes.
+  // One Gauss-Newton step up to the host's decision: its normal equations
+  // solved (launch_newton_step), grad^T x for the predicted decrease, and
+  // the full step's trial energy. One graph, one readback; captured again
+  // only when what it holds changes.
   std::string signature;
   const auto sign = [&](const auto& value) { signature.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
-  sign(graph), sign(frame), sign(level), sign(lin), sign(trial_lin), sign(w), sign(huber), sign(o.pcg_iterations);
-  for (const void* ptr :
-       {static_cast<const void*>(d), static_cast<const void*>(trial), static_cast<const void*>(x),
-        static_cast<const void*>(rr), static_cast<const void*>(z), static_cast<const void*>(p),
-        static_cast<const void*>(ap), static_cast<const void*>(grad), static_cast<const void*>(diag),
-        static_cast<const void*>(wgx), static_cast<const void*>(lx), static_cast<const void*>(prolonged),
-        static_cast<const void*>(previous), static_cast<const void*>(scalars), static_cast<const void*>(host)})
-    sign(ptr);
+  sign(graph), sign(frame), sign(level), sign(lin), sign(trial_lin), sign(vectors), sign(w), sign(huber);
+  sign(o.pcg_iterations), sign(d), sign(trial), sign(prolonged), sign(previous), sign(scalars), sign(host);
   State::CachedStep& step = s.steps[&lv];
   if (step.signature != signature) {
     step.graph.begin_capture(stream);
     s.clear_scalars(cuda::kGradDotStep, cuda::kScalarCount - cuda::kGradDotStep);
-    cuda::launch_rows(graph, nullptr, d, nullptr, nullptr, lx, scalars, -1, stream);
-    cuda::launch_columns(graph, lin, lin.data_residual, lx, w.coarse, w.smooth, d, nullptr, grad, scalars, -1, stream);
-    cuda::launch_pcg_start(graph, lin, w, d, prolonged, previous, grad, diag, x, rr, z, p, scalars, stream);
-    for (int k = 0; k < o.pcg_iterations; ++k) {
-      cuda::launch_rows(graph, &lin, p, z, wgx, lx, scalars, k, stream);
-      cuda::launch_columns(graph, lin, wgx, lx, w.diag_const, w.smooth, p, z, ap, scalars, k, stream);
-      cuda::launch_pcg_update(graph, p, ap, diag, x, rr, z, scalars, k, stream);
-    }
-    cuda::launch_dot(graph, grad, x, scalars, cuda::kGradDotStep, stream);
+    check(cuda::launch_newton_step(graph, lin, w, vectors, d, prolonged, previous, scalars, o.pcg_iterations, stream),
+          "cooperative launch of the Gauss-Newton step");
     trial_into(1.0f);
     check(cudaMemcpyAsync(host, scalars, (cuda::kGradDotStep + 1) * sizeof(double), cudaMemcpyDeviceToHost, stream),
           "copy from the GPU");
@@ -419,7 +415,7 @@ DisplacementReport CudaDisplacementSolver::solve(const DisplacementProblem& prob
   s.clear_scalars(cuda::kDataCost, 2);
   cuda::launch_displace(graph, frame, d, stream);
   cuda::launch_linearise(graph, level, frame, lin, huber, scalars, stream);
-  cuda::launch_rows(graph, nullptr, d, nullptr, nullptr, lx, scalars, -1, stream);
+  cuda::launch_laplacian(graph, d, lx, stream);
   cuda::launch_regulariser_cost(graph, w, d, lx, prolonged, previous, scalars, stream);
   const double* start = s.read_scalars(cuda::kDataCost, 4);
   const double fixed_cost =

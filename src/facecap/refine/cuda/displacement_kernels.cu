@@ -1,8 +1,14 @@
+#include <cooperative_groups.h>
+
+#include <algorithm>
+
 #include "facecap/refine/cuda/displacement_kernels.cuh"
 
 namespace facecap::cuda {
 
 namespace {
+
+namespace cg = cooperative_groups;
 
 constexpr int kThreads = 256;
 constexpr int kMaxRing = 32;  // kMaxDisplacementRing (displacement_graph.hpp)
@@ -46,6 +52,7 @@ struct Operand {
   float beta = 0;
 
   __device__ Operand(const float* x_, const float* z_, const double* scalars, int k) : x(x_) {
+    // (k = 0 or no z: x itself; scalars is read only for k > 0)
     if (z_ != nullptr && k > 0) {
       z = z_;
       beta = float(scalars[kRz + k] / scalars[kRz + k - 1]);
@@ -145,48 +152,6 @@ __global__ void gather_columns_kernel(GraphView g, LinearisationView lin) {
   }
 }
 
-template <bool kWithData>
-__global__ void rows_kernel(GraphView g, LinearisationView lin, const float* x_in, const float* z, float* wgx,
-                            float* lx, const double* scalars, int pcg_iteration) {
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t >= g.counts[1]) return;
-  if (pcg_iteration >= 0 && !pcg_live(scalars, pcg_iteration)) return;
-  const Operand x(x_in, z, scalars, pcg_iteration);
-  const float xt = t < g.counts[0] ? x[t] : 0.0f;
-  float gx = 0, sum = 0;
-  if constexpr (kWithData) gx = lin.self[t] * xt;
-  for (int k = g.row_offsets[t]; k < g.row_offsets[t + 1]; ++k) {
-    const float xs = x[g.row_cols[k]];
-    if constexpr (kWithData) gx += lin.jac[k] * xs;
-    sum += xs;
-  }
-  if constexpr (kWithData) wgx[t] = gx * lin.weight[t];
-  const float inv = g.inv_degree[t];
-  lx[t] = inv > 0 ? xt - sum * inv : 0.0f;
-}
-
-__global__ void columns_kernel(GraphView g, LinearisationView lin, const float* u, const float* v, float c,
-                               float smooth, const float* x_in, const float* z, float* y, double* scalars,
-                               int pcg_iteration) {
-  const int a = blockIdx.x * blockDim.x + threadIdx.x;
-  const bool gated = pcg_iteration >= 0;
-  if (gated && !pcg_live(scalars, pcg_iteration)) return;  // uniform over the grid
-  const Operand x(x_in, z, scalars, pcg_iteration);
-  double xy = 0;
-  if (a < g.counts[0]) {
-    float data = lin.self[a] * u[a];
-    float lap = g.inv_degree[a] > 0 ? v[a] : 0.0f;
-    for (int k = g.col_offsets[a]; k < g.col_offsets[a + 1]; ++k) {
-      const int t = g.col_rows[k];
-      data += lin.jac_by_column[k] * u[t];
-      lap -= v[t] * g.inv_degree[t];
-    }
-    y[a] = data + (smooth * lap + c * x[a]);
-    xy = double(x[a]) * y[a];
-  }
-  if (gated) block_add(xy, scalars + kPap + pcg_iteration);
-}
-
 __global__ void regulariser_cost_kernel(GraphView g, Weights w, const float* d, const float* lx, const float* prolonged,
                                         const float* previous, double* scalars) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
@@ -202,59 +167,128 @@ __global__ void regulariser_cost_kernel(GraphView g, Weights w, const float* d, 
   block_add(cost, scalars + kRegulariserCost);
 }
 
-__global__ void pcg_start_kernel(GraphView g, LinearisationView lin, Weights w, const float* d, const float* prolonged,
-                                 const float* previous, float* grad, float* diag, float* x, float* r, float* z,
-                                 float* p, double* scalars) {
-  const int a = blockIdx.x * blockDim.x + threadIdx.x;
-  if (a == 0) scalars[kLive] = 1.0;
-  double rz = 0;
-  if (a < g.counts[0]) {
-    float ga = grad[a];
-    if (prolonged) ga += w.hierarchy * (d[a] - prolonged[a]);
-    if (previous) ga += w.temporal * (d[a] - previous[a]);
-    grad[a] = ga;
-    // Jacobi preconditioner: diag(J^T J).
-    float dd = lin.weight[a] * lin.self[a] * lin.self[a];
-    float lap = g.inv_degree[a] > 0 ? 1.0f : 0.0f;
-    for (int k = g.col_offsets[a]; k < g.col_offsets[a + 1]; ++k) {
-      const int t = g.col_rows[k];
-      const float j = lin.jac_by_column[k];
-      dd += lin.weight[t] * j * j;
-      lap += g.inv_degree[t] * g.inv_degree[t];
-    }
-    const float m = dd + w.smooth * lap + w.diag_const;
-    diag[a] = m;
-    x[a] = 0;
-    r[a] = -ga;
-    z[a] = -ga / m;
-    p[a] = z[a];
-    rz = double(r[a]) * z[a];
+// Row pass at touched vertex t: lx = L x and, with data, wgx = W G x.
+template <bool kWithData>
+__device__ void row_at(const GraphView& g, const LinearisationView& lin, const Operand& x, float* wgx, float* lx,
+                       int t) {
+  const float xt = t < g.counts[0] ? x[t] : 0.0f;
+  float gx = 0, sum = 0;
+  if constexpr (kWithData) gx = lin.self[t] * xt;
+  for (int k = g.row_offsets[t]; k < g.row_offsets[t + 1]; ++k) {
+    const float xs = x[g.row_cols[k]];
+    if constexpr (kWithData) gx += lin.jac[k] * xs;
+    sum += xs;
   }
-  block_add(rz, scalars + kRz);
+  if constexpr (kWithData) wgx[t] = gx * lin.weight[t];
+  const float inv = g.inv_degree[t];
+  lx[t] = inv > 0 ? xt - sum * inv : 0.0f;
 }
 
-__global__ void pcg_update_kernel(GraphView g, float* p, const float* ap, const float* diag, float* x, float* r,
-                                  float* z, double* scalars, int k) {
-  const int a = blockIdx.x * blockDim.x + threadIdx.x;
-  const bool live = pcg_live(scalars, k) && scalars[kPap + k] > 0;
-  if (a == 0) scalars[kLive + k + 1] = live ? 1.0 : 0.0;
-  if (!live) return;  // uniform over the grid
-  const float alpha = float(scalars[kRz + k] / scalars[kPap + k]);
-  double rz = 0;
-  if (a < g.counts[0]) {
-    const float pa = Operand(p, z, scalars, k)[a];
-    p[a] = pa;  // p_k, before z moves on
-    x[a] += alpha * pa;
-    r[a] -= alpha * ap[a];
-    z[a] = r[a] / diag[a];
-    rz = double(r[a]) * z[a];
+// Column pass at free vertex a: y = G^T u + smooth L^T v + c x; returns x . y there.
+__device__ double column_at(const GraphView& g, const LinearisationView& lin, const float* u, const float* v, float c,
+                            float smooth, const Operand& x, float* y, int a) {
+  float data = lin.self[a] * u[a];
+  float lap = g.inv_degree[a] > 0 ? v[a] : 0.0f;
+  for (int k = g.col_offsets[a]; k < g.col_offsets[a + 1]; ++k) {
+    const int t = g.col_rows[k];
+    data += lin.jac_by_column[k] * u[t];
+    lap -= v[t] * g.inv_degree[t];
   }
-  block_add(rz, scalars + kRz + k + 1);
+  const float xa = x[a];
+  y[a] = data + (smooth * lap + c * xa);
+  return double(xa) * y[a];
 }
 
-__global__ void dot_kernel(GraphView g, const float* a, const float* b, double* out) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  block_add(i < g.counts[0] ? double(a[i]) * b[i] : 0.0, out);
+// The gradient's regularisers, the Jacobi preconditioner diag(J^T J) and the
+// PCG's start from x = 0 at free vertex a; returns r . z there.
+__device__ double pcg_start_at(const GraphView& g, const LinearisationView& lin, const Weights& w,
+                               const NewtonVectors& v, const float* d, const float* prolonged, const float* previous,
+                               int a) {
+  float ga = v.grad[a];
+  if (prolonged) ga += w.hierarchy * (d[a] - prolonged[a]);
+  if (previous) ga += w.temporal * (d[a] - previous[a]);
+  v.grad[a] = ga;
+  float dd = lin.weight[a] * lin.self[a] * lin.self[a];
+  float lap = g.inv_degree[a] > 0 ? 1.0f : 0.0f;
+  for (int k = g.col_offsets[a]; k < g.col_offsets[a + 1]; ++k) {
+    const int t = g.col_rows[k];
+    const float j = lin.jac_by_column[k];
+    dd += lin.weight[t] * j * j;
+    lap += g.inv_degree[t] * g.inv_degree[t];
+  }
+  const float m = dd + w.smooth * lap + w.diag_const;
+  v.diag[a] = m;
+  v.x[a] = 0;
+  v.r[a] = -ga;
+  v.z[a] = -ga / m;
+  v.p[a] = v.z[a];
+  return double(v.r[a]) * v.z[a];
+}
+
+// The PCG update at free vertex a: stores this iteration's direction p_k,
+// then x += alpha p, r -= alpha Ap, z = M^-1 r; returns the new r . z there.
+__device__ double pcg_update_at(const NewtonVectors& v, const Operand& p, float alpha, int a) {
+  const float pa = p[a];
+  v.p[a] = pa;  // p_k, before z moves on
+  v.x[a] += alpha * pa;
+  v.r[a] -= alpha * v.ap[a];
+  v.z[a] = v.r[a] / v.diag[a];
+  return double(v.r[a]) * v.z[a];
+}
+
+// lx = L x over the touched vertices (the smoothness term of the energy).
+__global__ void laplacian_kernel(GraphView g, const float* x_in, float* lx) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= g.counts[1]) return;
+  row_at<false>(g, {}, Operand(x_in, nullptr, nullptr, 0), nullptr, lx, t);
+}
+
+// One Gauss-Newton step's normal equations at d, solved: the gradient J^T r,
+// then Algorithm 2 from x0 = 0 for `iterations` iterations (or until r . z
+// vanishes or p . Ap stops being positive), then grad . x. One cooperative
+// launch whose passes wait for each other with grid.sync, so that the whole
+// of Algorithm 2 reads as one function. On the H100 it measured about the
+// same as one kernel per pass in a CUDA graph (a Gauss-Newton step 209-210
+// against 218-224 us with its trial energy): at these sizes each pass is a
+// few microseconds of dependent loads whichever way the passes are joined.
+__global__ void __launch_bounds__(kThreads)
+    newton_step_kernel(GraphView g, LinearisationView lin, Weights w, NewtonVectors v, const float* d,
+                       const float* prolonged, const float* previous, double* scalars, int iterations) {
+  const cg::grid_group grid = cg::this_grid();
+  const int first = blockIdx.x * blockDim.x + threadIdx.x, stride = gridDim.x * blockDim.x;
+  const int nf = g.counts[0], nt = g.counts[1];
+  const Operand at_d(d, nullptr, nullptr, 0);
+  for (int t = first; t < nt; t += stride) row_at<false>(g, lin, at_d, nullptr, v.lx, t);
+  grid.sync();
+  for (int a = first; a < nf; a += stride)
+    column_at(g, lin, lin.data_residual, v.lx, w.coarse, w.smooth, at_d, v.grad, a);
+  grid.sync();
+  double sum = 0;
+  for (int a = first; a < nf; a += stride) sum += pcg_start_at(g, lin, w, v, d, prolonged, previous, a);
+  if (first == 0) scalars[kLive] = 1.0;
+  block_add(sum, scalars + kRz);
+  grid.sync();
+  for (int k = 0; k < iterations; ++k) {
+    if (!pcg_live(scalars, k)) break;  // the same for every thread: read after the sync
+    const Operand p(v.p, v.z, scalars, k);
+    for (int t = first; t < nt; t += stride) row_at<true>(g, lin, p, v.wgx, v.lx, t);
+    grid.sync();
+    sum = 0;
+    for (int a = first; a < nf; a += stride) sum += column_at(g, lin, v.wgx, v.lx, w.diag_const, w.smooth, p, v.ap, a);
+    block_add(sum, scalars + kPap + k);
+    grid.sync();
+    const bool live = scalars[kPap + k] > 0;
+    if (first == 0) scalars[kLive + k + 1] = live ? 1.0 : 0.0;
+    if (!live) break;
+    const float alpha = float(scalars[kRz + k] / scalars[kPap + k]);
+    sum = 0;
+    for (int a = first; a < nf; a += stride) sum += pcg_update_at(v, p, alpha, a);
+    block_add(sum, scalars + kRz + k + 1);
+    grid.sync();
+  }
+  sum = 0;
+  for (int a = first; a < nf; a += stride) sum += double(v.grad[a]) * v.x[a];
+  block_add(sum, scalars + kGradDotStep);
 }
 
 __global__ void axpy_kernel(GraphView g, const float* a, float scale, const float* b, float* out) {
@@ -274,19 +308,8 @@ void launch_linearise(const GraphView& g, const LevelView& lv, const FrameView& 
   gather_columns_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, lin);
 }
 
-void launch_rows(const GraphView& g, const LinearisationView* lin, const float* x, const float* z, float* wgx,
-                 float* lx, const double* scalars, int pcg_iteration, cudaStream_t s) {
-  if (lin)
-    rows_kernel<true><<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, *lin, x, z, wgx, lx, scalars, pcg_iteration);
-  else
-    rows_kernel<false><<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, {}, x, z, wgx, lx, scalars, pcg_iteration);
-}
-
-void launch_columns(const GraphView& g, const LinearisationView& lin, const float* u, const float* v, float c,
-                    float smooth, const float* x, const float* z, float* y, double* scalars, int pcg_iteration,
-                    cudaStream_t s) {
-  columns_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, lin, u, v, c, smooth, x, z, y, scalars,
-                                                                 pcg_iteration);
+void launch_laplacian(const GraphView& g, const float* x, float* lx, cudaStream_t s) {
+  laplacian_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, x, lx);
 }
 
 void launch_regulariser_cost(const GraphView& g, const Weights& w, const float* d, const float* lx,
@@ -294,20 +317,30 @@ void launch_regulariser_cost(const GraphView& g, const Weights& w, const float* 
   regulariser_cost_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, w, d, lx, prolonged, previous, scalars);
 }
 
-void launch_pcg_start(const GraphView& g, const LinearisationView& lin, const Weights& w, const float* d,
-                      const float* prolonged, const float* previous, float* grad, float* diag, float* x, float* r,
-                      float* z, float* p, double* scalars, cudaStream_t s) {
-  pcg_start_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, lin, w, d, prolonged, previous, grad, diag, x, r,
-                                                                   z, p, scalars);
-}
-
-void launch_pcg_update(const GraphView& g, float* p, const float* ap, const float* diag, float* x, float* r, float* z,
-                       double* scalars, int pcg_iteration, cudaStream_t s) {
-  pcg_update_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, p, ap, diag, x, r, z, scalars, pcg_iteration);
-}
-
-void launch_dot(const GraphView& g, const float* a, const float* b, double* scalars, int slot, cudaStream_t s) {
-  dot_kernel<<<blocks_for(g.num_vertices), kThreads, 0, s>>>(g, a, b, scalars + slot);
+cudaError_t launch_newton_step(const GraphView& g, const LinearisationView& lin, const Weights& w,
+                               const NewtonVectors& v, const float* d, const float* prolonged, const float* previous,
+                               double* scalars, int iterations, cudaStream_t s) {
+  // Every block must be resident at once for grid.sync: no more blocks than
+  // the GPU holds (one thread per vertex fits on any GPU at these sizes; the
+  // loops stride over the rest).
+  static const int resident = [] {
+    int device = 0, sms = 0, per_sm = 0;
+    cudaGetDevice(&device);
+    cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device);
+    cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, newton_step_kernel, kThreads, 0);
+    return sms * per_sm;
+  }();
+  const int blocks = std::max(1, std::min(blocks_for(g.num_vertices), resident));
+  cudaLaunchConfig_t config = {};
+  config.gridDim = dim3(blocks);
+  config.blockDim = dim3(kThreads);
+  config.stream = s;
+  cudaLaunchAttribute cooperative[1];
+  cooperative[0].id = cudaLaunchAttributeCooperative;
+  cooperative[0].val.cooperative = 1;
+  config.attrs = cooperative;
+  config.numAttrs = 1;
+  return cudaLaunchKernelEx(&config, newton_step_kernel, g, lin, w, v, d, prolonged, previous, scalars, iterations);
 }
 
 void launch_axpy(const GraphView& g, const float* a, float scale, const float* b, float* out, cudaStream_t s) {

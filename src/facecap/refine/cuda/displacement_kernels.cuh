@@ -2,7 +2,7 @@
 // The CUDA kernels of the displacement solve (§4.3.4): the linearisation of
 // one Gauss-Newton step per touched vertex, the matrix-free products J^T J p
 // as a row pass and a column pass, and the PCG's vector updates (Algorithm 2:
-// three kernels per iteration, the row pass, the column pass and the update).
+// three passes per iteration, the row pass, the column pass and the update).
 // Plain data views only: this header is read by nvcc and by the host code,
 // and holds no Eigen.
 //
@@ -75,31 +75,25 @@ void launch_displace(const GraphView& g, const FrameView& f, const float* d, cud
 // the data cost is added to scalars[kDataCost].
 void launch_linearise(const GraphView& g, const LevelView& lv, const FrameView& f, const LinearisationView& lin,
                       float huber, double* scalars, cudaStream_t s);
-// lx = L x over the touched vertices; with `lin`, also wgx = W G x. With
-// pcg_iteration >= 0 the pass runs only while that PCG iteration is live,
-// and x is the search direction formed from the previous one and z (z may
-// be null outside the PCG).
-void launch_rows(const GraphView& g, const LinearisationView* lin, const float* x, const float* z, float* wgx,
-                 float* lx, const double* scalars, int pcg_iteration, cudaStream_t s);
-// y = G^T u + smooth L^T v + c x over the free vertices; with pcg_iteration
-// >= 0 it is gated and formed like launch_rows and x . y goes to scalars[kPap + it].
-void launch_columns(const GraphView& g, const LinearisationView& lin, const float* u, const float* v, float c,
-                    float smooth, const float* x, const float* z, float* y, double* scalars, int pcg_iteration,
-                    cudaStream_t s);
+// lx = L x over the touched vertices.
+void launch_laplacian(const GraphView& g, const float* x, float* lx, cudaStream_t s);
 // The energy's regularisers at d (lx = L d over the touched): into scalars[kRegulariserCost].
 void launch_regulariser_cost(const GraphView& g, const Weights& w, const float* d, const float* lx,
                              const float* prolonged, const float* previous, double* scalars, cudaStream_t s);
-// Finishes the gradient (E_hier, E_temp), forms the Jacobi preconditioner and
-// starts the PCG from x = 0: r = -grad, z = M^-1 r, p = z, r . z.
-void launch_pcg_start(const GraphView& g, const LinearisationView& lin, const Weights& w, const float* d,
-                      const float* prolonged, const float* previous, float* grad, float* diag, float* x, float* r,
-                      float* z, float* p, double* scalars, cudaStream_t s);
-// Stores this iteration's direction p, then x += alpha p, r -= alpha Ap,
-// z = M^-1 r and the new r . z.
-void launch_pcg_update(const GraphView& g, float* p, const float* ap, const float* diag, float* x, float* r, float* z,
-                       double* scalars, int pcg_iteration, cudaStream_t s);
-// scalars[slot] += a . b over the free vertices.
-void launch_dot(const GraphView& g, const float* a, const float* b, double* scalars, int slot, cudaStream_t s);
+// The PCG's vectors over the free vertices (wgx and lx over the touched).
+struct NewtonVectors {
+  float *grad = nullptr, *diag = nullptr, *x = nullptr, *r = nullptr, *z = nullptr, *p = nullptr, *ap = nullptr;
+  float *wgx = nullptr, *lx = nullptr;
+};
+// One Gauss-Newton step's normal equations at d (linearised in `lin`): the
+// gradient J^T r of the whole energy, the Jacobi preconditioner, Algorithm 2
+// from x0 = 0 on (J^T J) x = -J^T r (each product a row pass and a column
+// pass, three passes per iteration), and grad . x into scalars[kGradDotStep].
+// One cooperative kernel; its passes wait for each other with grid.sync.
+// Returns the launch's status (a cooperative launch can be refused).
+cudaError_t launch_newton_step(const GraphView& g, const LinearisationView& lin, const Weights& w,
+                               const NewtonVectors& v, const float* d, const float* prolonged, const float* previous,
+                               double* scalars, int iterations, cudaStream_t s);
 // out = a + scale b over the free vertices.
 void launch_axpy(const GraphView& g, const float* a, float scale, const float* b, float* out, cudaStream_t s);
 
