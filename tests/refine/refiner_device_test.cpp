@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "facecap/refine/refiner.hpp"
+#include "facecap/refine/vertex_sampler.hpp"
 #include "facecap/render/shading.hpp"
 
 namespace facecap {
@@ -97,6 +98,43 @@ TEST(RefinerOnEachDevice, CudaRefinesTheSameSurfaceAsTheCpu) {
     EXPECT_LT((a.positions - b.positions).cwiseAbs().maxCoeff(), 1e-4f) << "frame " << frame;
     EXPECT_LT((a.lighting - b.lighting).norm(), 1e-4 * a.lighting.norm()) << "frame " << frame;
     EXPECT_TRUE(b.positions.allFinite());
+  }
+}
+
+// The vertex sampling on each device: the detailed dome's vertices tested
+// against the coarse dome's depth (as the refiner's finer levels are) and
+// coloured from its render, at full and at half resolution.
+TEST(VertexSamplerOnEachDevice, CudaSamplesWhatTheCpuSamples) {
+  if (!cuda_device_available()) {
+    GTEST_SKIP() << (cuda_built() ? "no CUDA device here: the CPU/CUDA comparison runs on a machine with a GPU"
+                                  : "this build has no CUDA backend (nvcc not found or -DFACECAP_CUDA=OFF)");
+  }
+  const Dome coarse(24, false), detailed(24, true);
+  const PinholeCamera camera = PinholeCamera::centered(900, kWidth, kHeight);
+  const cv::Mat image = render(detailed, camera);
+  const Positions normals = vertex_normals(detailed.triangles, detailed.points);
+  const auto cpu = make_vertex_sampler(ComputeDevice::cpu);
+  const auto gpu = make_vertex_sampler(ComputeDevice::cuda);
+  for (const int factor : {1, 2}) {
+    cv::Mat scaled = image;
+    if (factor > 1) scaled = image_pyramid(image, 2)[1];
+    const PinholeCamera c = scaled_camera(camera, factor);
+    RasterBuffers buffers;
+    const VertexSamples a = cpu->sample(scaled, detailed.points, normals, coarse.points, coarse.triangles, c, buffers);
+    const VertexSamples b = gpu->sample(scaled, detailed.points, normals, coarse.points, coarse.triangles, c, buffers);
+    ASSERT_EQ(a.visible.size(), b.visible.size());
+    EXPECT_GT(a.visible_count, int(a.visible.size()) / 2);
+    int differ = 0;
+    float colour_diff = 0;
+    for (size_t i = 0; i < a.visible.size(); ++i) {
+      differ += a.visible[i] != b.visible[i];
+      if (a.visible[i] && b.visible[i])
+        colour_diff = std::max(colour_diff, (a.colour.col(i) - b.colour.col(i)).cwiseAbs().maxCoeff());
+    }
+    // The same arithmetic in the same order: the same vertices seen, the same colours.
+    EXPECT_EQ(differ, 0) << "factor " << factor;
+    EXPECT_LE(colour_diff, 1e-6f) << "factor " << factor;
+    EXPECT_EQ(a.visible_count, b.visible_count);
   }
 }
 

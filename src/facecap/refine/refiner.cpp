@@ -74,7 +74,9 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   Positions md = coarse;
   if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, normals0, previous_[0]);
   const Positions md_normals = level_normals(level0, md);
-  VertexSamples samples0 = sample_vertices(image_for(0), md, md_normals, level_skin_[0], camera_for(0), raster_[0]);
+  if (!sampler_) sampler_ = make_vertex_sampler(options_.device);
+  VertexSamples samples0 =
+      sampler_->sample(image_for(0), md, md_normals, md, level_skin_[0], camera_for(0), raster_[0]);
   apply_mask(samples0, data_mask_);
   erode_observations(samples0, level0.rings, options_.shading_margin_rings, level0.boundary);
   if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
@@ -133,8 +135,8 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     // (unless the smoothing mask moved the new vertices off it).
     const bool coarse_depth = !options_.hierarchy.smoothing_mask;
     VertexSamples samples =
-        sample_vertices(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
-                        level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
+        sampler_->sample(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
+                         level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
     apply_mask(samples, mask);
     drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.

@@ -17,6 +17,7 @@
 #include "facecap/refine/displacement_solver.hpp"
 #include "facecap/refine/lighting.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
+#include "facecap/refine/vertex_sampler.hpp"
 
 namespace facecap {
 
@@ -58,8 +59,9 @@ struct RefineOptions {
   // displacements also corrupt the next frame's M_d. On address_720p_a (30
   // frames) the refined photometric error is 4.29 / 4.41 / 4.50.
   double displacement_min_facing = 0.7;
-  // Where the displacement solve runs (the lighting and albedo run on the
-  // CPU): CUDA when this build has it and a GPU answers.
+  // Where the vertex sampling (the depth test and the colours) and the
+  // displacement solve run (the lighting and albedo run on the CPU): CUDA
+  // when this build has it and a GPU answers.
   ComputeDevice device = default_compute_device();
   // Called with each displacement problem before it is solved (frame index,
   // level, problem, starting d): `eval refine --save-problems` writes them.
@@ -130,6 +132,7 @@ class Refiner {
   MeshHierarchy hierarchy_;
   std::unique_ptr<AlbedoEstimator> albedo_;
   std::unique_ptr<DisplacementBackend> displacement_;  // made at the first solve
+  std::unique_ptr<VertexSampler> sampler_;             // made at the first frame
   std::optional<ShCoeffs> lighting_;
   std::vector<Eigen::VectorXf> previous_;  // per level, last frame's displacements
   // The albedo frames' coarsest-level samples and normals, kept until the

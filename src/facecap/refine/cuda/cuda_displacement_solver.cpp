@@ -26,6 +26,7 @@ void check(cudaError_t status, const char* what) {
 
 using cuda::check;
 using cuda::DeviceBuffer;
+using cuda::PinnedBuffer;
 
 bool cuda_device_available() {
   int count = 0;
@@ -61,32 +62,6 @@ struct LinearisationOnDevice {
   cuda::LinearisationView reserve(std::size_t n, std::size_t r) {
     return {self.reserve(n), jac.reserve(r), jac_by_column.reserve(r), weight.reserve(n), data_residual.reserve(n)};
   }
-};
-
-// Page-locked host memory: what the frame is packed into for one upload, and
-// where the few scalars the host decides on land.
-template <typename T>
-class PinnedBuffer {
- public:
-  PinnedBuffer() = default;
-  ~PinnedBuffer() { cudaFreeHost(data_); }
-  PinnedBuffer(const PinnedBuffer&) = delete;
-  PinnedBuffer& operator=(const PinnedBuffer&) = delete;
-  T* reserve(std::size_t n) {
-    if (n > capacity_) {
-      cudaFreeHost(data_);
-      data_ = nullptr;
-      capacity_ = 0;
-      check(cudaMallocHost(reinterpret_cast<void**>(&data_), n * sizeof(T)), "cudaMallocHost");
-      capacity_ = n;
-    }
-    return data_;
-  }
-  T* get() const { return data_; }
-
- private:
-  T* data_ = nullptr;
-  std::size_t capacity_ = 0;
 };
 
 // One Gauss-Newton step as a CUDA graph: its ~40 small kernels launched at

@@ -55,4 +55,30 @@ class DeviceBuffer {
   std::size_t capacity_ = 0;
 };
 
+// Page-locked host memory: what a frame is packed into for one upload, and
+// where results land.
+template <typename T>
+class PinnedBuffer {
+ public:
+  PinnedBuffer() = default;
+  ~PinnedBuffer() { cudaFreeHost(data_); }
+  PinnedBuffer(const PinnedBuffer&) = delete;
+  PinnedBuffer& operator=(const PinnedBuffer&) = delete;
+  T* reserve(std::size_t n) {
+    if (n > capacity_) {
+      cudaFreeHost(data_);
+      data_ = nullptr;
+      capacity_ = 0;
+      check(cudaMallocHost(reinterpret_cast<void**>(&data_), n * sizeof(T)), "cudaMallocHost");
+      capacity_ = n;
+    }
+    return data_;
+  }
+  T* get() const { return data_; }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t capacity_ = 0;
+};
+
 }  // namespace facecap::cuda
