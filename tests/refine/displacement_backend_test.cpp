@@ -8,20 +8,13 @@
 #include <random>
 
 #include "bump_case.hpp"
+#include "cuda_test_support.hpp"
 #include "facecap/refine/displacement_bench.hpp"
 #include "facecap/refine/displacement_problem_io.hpp"
 
 namespace facecap {
 
 using test::BumpCase;
-
-// The CUDA comparisons need a GPU; CI has none, so there they skip (the CPU
-// tests and a build of the CUDA code still run).
-#define FACECAP_REQUIRE_CUDA_DEVICE()                                                                           \
-  if (!cuda_device_available()) {                                                                               \
-    GTEST_SKIP() << (cuda_built() ? "no CUDA device here: the CPU/CUDA comparison runs on a machine with a GPU" \
-                                  : "this build has no CUDA backend (nvcc not found or -DFACECAP_CUDA=OFF)");   \
-  }
 
 namespace {
 

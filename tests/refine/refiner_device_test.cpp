@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "cuda_test_support.hpp"
 #include "facecap/refine/refiner.hpp"
 #include "facecap/refine/vertex_sampler.hpp"
 #include "facecap/render/shading.hpp"
@@ -73,10 +74,7 @@ cv::Mat render(const Dome& detailed, const PinholeCamera& camera) {
 }  // namespace
 
 TEST(RefinerOnEachDevice, CudaRefinesTheSameSurfaceAsTheCpu) {
-  if (!cuda_device_available()) {
-    GTEST_SKIP() << (cuda_built() ? "no CUDA device here: the CPU/CUDA comparison runs on a machine with a GPU"
-                                  : "this build has no CUDA backend (nvcc not found or -DFACECAP_CUDA=OFF)");
-  }
+  FACECAP_REQUIRE_CUDA_DEVICE();
   const Dome coarse(24, false), detailed(24, true);
   const PinholeCamera camera = PinholeCamera::centered(900, kWidth, kHeight);
   const cv::Mat image = render(detailed, camera);
@@ -105,10 +103,7 @@ TEST(RefinerOnEachDevice, CudaRefinesTheSameSurfaceAsTheCpu) {
 // against the coarse dome's depth (as the refiner's finer levels are) and
 // coloured from its render, at full and at half resolution.
 TEST(VertexSamplerOnEachDevice, CudaSamplesWhatTheCpuSamples) {
-  if (!cuda_device_available()) {
-    GTEST_SKIP() << (cuda_built() ? "no CUDA device here: the CPU/CUDA comparison runs on a machine with a GPU"
-                                  : "this build has no CUDA backend (nvcc not found or -DFACECAP_CUDA=OFF)");
-  }
+  FACECAP_REQUIRE_CUDA_DEVICE();
   const Dome coarse(24, false), detailed(24, true);
   const PinholeCamera camera = PinholeCamera::centered(900, kWidth, kHeight);
   const cv::Mat image = render(detailed, camera);

@@ -13,6 +13,9 @@ enum class ComputeDevice { cpu, cuda };
 bool cuda_built();
 // Whether the CUDA backend is built and a CUDA device answers.
 bool cuda_device_available();
+// Throws std::runtime_error saying why CUDA cannot be used here (this build
+// has no CUDA backend, or no CUDA device answers); returns when it can.
+void require_cuda();
 // CUDA when a device answers, else the CPU.
 ComputeDevice default_compute_device();
 

@@ -1,7 +1,5 @@
 #include "facecap/refine/displacement_backend.hpp"
 
-#include <stdexcept>
-
 #if FACECAP_HAVE_CUDA
 #include "facecap/refine/cuda/cuda_displacement_solver.hpp"
 #endif
@@ -35,11 +33,11 @@ class CudaDisplacementBackend final : public DisplacementBackend {
 
 std::unique_ptr<DisplacementBackend> make_displacement_backend(ComputeDevice device) {
   if (device == ComputeDevice::cpu) return std::make_unique<CpuDisplacementBackend>();
+  require_cuda();
 #if FACECAP_HAVE_CUDA
   return std::make_unique<CudaDisplacementBackend>();
 #else
-  throw std::runtime_error(
-      "this facecap was built without CUDA (nvcc was not found, or -DFACECAP_CUDA=OFF): use --device cpu");
+  return nullptr;  // not reached: require_cuda throws in a build without CUDA
 #endif
 }
 

@@ -1,7 +1,5 @@
 #include "facecap/refine/vertex_sampler.hpp"
 
-#include <stdexcept>
-
 #if FACECAP_HAVE_CUDA
 #include "facecap/refine/cuda/cuda_vertex_sampler.hpp"
 #endif
@@ -23,11 +21,11 @@ class CpuVertexSampler final : public VertexSampler {
 
 std::unique_ptr<VertexSampler> make_vertex_sampler(ComputeDevice device) {
   if (device == ComputeDevice::cpu) return std::make_unique<CpuVertexSampler>();
+  require_cuda();
 #if FACECAP_HAVE_CUDA
   return std::make_unique<CudaVertexSampler>();
 #else
-  throw std::runtime_error(
-      "this facecap was built without CUDA (nvcc was not found, or -DFACECAP_CUDA=OFF): use --device cpu");
+  return nullptr;  // not reached: require_cuda throws in a build without CUDA
 #endif
 }
 

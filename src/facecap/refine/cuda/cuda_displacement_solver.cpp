@@ -240,7 +240,7 @@ struct CudaDisplacementSolver::State {
 };
 
 CudaDisplacementSolver::CudaDisplacementSolver() {
-  if (!cuda_device_available()) throw std::runtime_error("no CUDA device is available (use --device cpu)");
+  require_cuda();
   state_ = std::make_unique<State>();
 }
 

@@ -14,7 +14,7 @@ namespace facecap {
 
 class CudaDisplacementSolver {
  public:
-  // Throws std::runtime_error when no CUDA device answers.
+  // Throws std::runtime_error when no CUDA device answers (require_cuda).
   CudaDisplacementSolver();
   ~CudaDisplacementSolver();
   CudaDisplacementSolver(const CudaDisplacementSolver&) = delete;

@@ -30,7 +30,7 @@ struct CudaVertexSampler::State {
 };
 
 CudaVertexSampler::CudaVertexSampler() {
-  if (!cuda_device_available()) throw std::runtime_error("no CUDA device is available (use --device cpu)");
+  require_cuda();
   state_ = std::make_unique<State>();
 }
 

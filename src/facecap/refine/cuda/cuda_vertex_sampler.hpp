@@ -10,7 +10,7 @@ namespace facecap {
 
 class CudaVertexSampler final : public VertexSampler {
  public:
-  // Throws std::runtime_error when no CUDA device answers.
+  // Throws std::runtime_error when no CUDA device answers (require_cuda).
   CudaVertexSampler();
   ~CudaVertexSampler() override;
 

@@ -1,12 +1,13 @@
 #include <cub/device/device_scan.cuh>
 
+#include "facecap/refine/cuda/block_reduce.cuh"
 #include "facecap/refine/cuda/displacement_graph_kernels.cuh"
 
 namespace facecap::cuda {
 
 namespace {
 
-constexpr int kThreads = 256;
+constexpr int kThreads = kBlockThreads;
 int blocks_for(int n) { return n > 0 ? (n + kThreads - 1) / kThreads : 1; }
 
 __global__ void classify_kernel(RingsView r, const unsigned char* active, int* is_free, int* is_touched) {
@@ -91,26 +92,13 @@ __global__ void col_fill_kernel(RingsView r, GraphBuildBuffers b) {
   }
 }
 
-__device__ void block_add_fixed(double value, double* out) {
-  __shared__ double partial[kThreads / 32];
-  for (int offset = 16; offset > 0; offset /= 2) value += __shfl_down_sync(0xffffffffu, value, offset);
-  const int lane = threadIdx.x % 32, warp = threadIdx.x / 32;
-  if (lane == 0) partial[warp] = value;
-  __syncthreads();
-  if (warp == 0) {
-    value = lane < kThreads / 32 ? partial[lane] : 0.0;
-    for (int offset = 16; offset > 0; offset /= 2) value += __shfl_down_sync(0xffffffffu, value, offset);
-    if (lane == 0 && value != 0.0) atomicAdd(out, value);
-  }
-}
-
 __global__ void gather_free_kernel(GraphView g, const int* is_free, const float* full, float* out, double* scalars,
                                    int slot) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < g.counts[0]) out[i] = full[g.global[i]];
   double fixed = 0;
   if (scalars && i < g.num_vertices && !is_free[i]) fixed = double(full[i]) * full[i];
-  if (scalars) block_add_fixed(fixed, scalars + slot);
+  if (scalars) block_add(fixed, scalars + slot);
 }
 
 __global__ void scatter_free_kernel(GraphView g, const float* d, float* full) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "facecap/refine/cuda/block_reduce.cuh"
 #include "facecap/refine/cuda/displacement_kernels.cuh"
 
 namespace facecap::cuda {
@@ -10,7 +11,7 @@ namespace {
 
 namespace cg = cooperative_groups;
 
-constexpr int kThreads = 256;
+constexpr int kThreads = kBlockThreads;
 constexpr int kMaxRing = 32;  // kMaxDisplacementRing (displacement_graph.hpp)
 
 int blocks_for(int n) { return n > 0 ? (n + kThreads - 1) / kThreads : 1; }
@@ -24,20 +25,6 @@ __device__ inline V3 operator*(V3 a, float s) { return {a.x * s, a.y * s, a.z * 
 __device__ inline float dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 __device__ inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 __device__ inline V3 load(const float* p, int i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
-
-// Sums `value` over the block and adds the block's sum to *out (one atomic per block).
-__device__ void block_add(double value, double* out) {
-  __shared__ double partial[kThreads / 32];
-  for (int offset = 16; offset > 0; offset /= 2) value += __shfl_down_sync(0xffffffffu, value, offset);
-  const int lane = threadIdx.x % 32, warp = threadIdx.x / 32;
-  if (lane == 0) partial[warp] = value;
-  __syncthreads();
-  if (warp == 0) {
-    value = lane < kThreads / 32 ? partial[lane] : 0.0;
-    for (int offset = 16; offset > 0; offset /= 2) value += __shfl_down_sync(0xffffffffu, value, offset);
-    if (lane == 0 && value != 0.0) atomicAdd(out, value);
-  }
-}
 
 // Whether PCG iteration k runs: no earlier iteration stopped and r . z is not yet zero.
 __device__ inline bool pcg_live(const double* s, int k) { return s[kLive + k] != 0.0 && s[kRz + k] > 1e-30; }
