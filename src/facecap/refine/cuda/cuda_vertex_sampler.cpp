@@ -20,9 +20,16 @@ struct CudaVertexSampler::State {
   DeviceBuffer<float> colour;
   DeviceBuffer<unsigned> depth;
   // The occluder's triangles: the refiner's skin triangles, the same vector
-  // for its whole life, found again by address and size.
+  // for its whole life, found again by address, size and end triangles (a
+  // vector freed and another made in its place would differ in those).
   const Triangle* triangles_key = nullptr;
   std::size_t triangles_count = 0;
+  Triangle triangles_first{}, triangles_last{};
+
+  bool holds(const std::vector<Triangle>& t) const {
+    return triangles_key == t.data() && triangles_count == t.size() &&
+           (t.empty() || (triangles_first == t.front() && triangles_last == t.back()));
+  }
   DeviceBuffer<int> triangles;
 
   State() { check(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), "cudaStreamCreate"); }
@@ -45,12 +52,16 @@ VertexSamples CudaVertexSampler::sample(const cv::Mat& image, const Positions& p
   const cudaStream_t stream = s.stream;
   const int n = static_cast<int>(points.cols()), m = static_cast<int>(occluder_points.cols());
   const int width = image.cols, height = image.rows;
-  if (s.triangles_key != occluder_triangles.data() || s.triangles_count != occluder_triangles.size()) {
+  if (!s.holds(occluder_triangles)) {
     s.triangles.upload(occluder_triangles.empty() ? nullptr : occluder_triangles.front().data(),
                        3 * occluder_triangles.size(), stream);
     check(cudaStreamSynchronize(stream), "copy to the GPU");
     s.triangles_key = occluder_triangles.data();
     s.triangles_count = occluder_triangles.size();
+    if (!occluder_triangles.empty()) {
+      s.triangles_first = occluder_triangles.front();
+      s.triangles_last = occluder_triangles.back();
+    }
   }
 
   // The image and the meshes in one copy: floats first, then the pixels.
