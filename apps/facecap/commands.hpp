@@ -30,7 +30,7 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames);
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
-// --device cpu|cuda: where the refinement's displacement solve runs (default:
+// --device cpu|cuda: where the refinement's sampling and displacement solve run (default:
 // cuda when this build has it and a GPU answers, else cpu).
 void add_device_option(CLI::App& cmd, ComputeDevice& device);
 
