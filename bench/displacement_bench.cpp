@@ -62,24 +62,15 @@ int main(int argc, char** argv) {
   }
   static std::map<int, Problems> by_level;
   try {
-    for (const auto& e : std::filesystem::directory_iterator(dir)) {
-      if (e.path().extension() != ".fcdp") continue;
-      auto p = load_displacement_problem(e.path());
-      by_level[p->level_index].push_back(std::move(p));
-    }
+    for (auto& p : load_displacement_problems(dir)) by_level[p->level_index].push_back(std::move(p));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "displacement_bench: %s\n", e.what());
-    return 2;
-  }
-  if (by_level.empty()) {
-    std::fprintf(stderr, "displacement_bench: no .fcdp files in %s\n", dir);
     return 2;
   }
   std::vector<ComputeDevice> devices{ComputeDevice::cpu};
   if (cuda_device_available()) devices.push_back(ComputeDevice::cuda);
   for (ComputeDevice device : devices)
     for (auto& [level, problems] : by_level) {
-      std::sort(problems.begin(), problems.end(), [](const auto& a, const auto& b) { return a->frame < b->frame; });
       const std::string name =
           "BM_DisplacementSolve/" + std::string(to_string(device)) + "/level" + std::to_string(level);
       benchmark::RegisterBenchmark(name.c_str(), solve_level, device, &problems)->Unit(benchmark::kMillisecond);

@@ -169,14 +169,12 @@ TEST(CudaDisplacementSolver, MatchesTheCpuOnSavedRealFrames) {
   const auto gpu = make_displacement_backend(ComputeDevice::cuda);
   int problems = 0;
   DeviceAgreement all;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) {
-    if (e.path().extension() != ".fcdp") continue;
-    const auto p = load_displacement_problem(e.path());
+  for (const auto& p : load_displacement_problems(dir)) {
     const Solved reference = solve_on(*cpu, p->problem, p->start, {});
     const Solved result = solve_on(*gpu, p->problem, p->start, {});
     const DeviceAgreement a = compare_solves(reference.d, reference.report, result.d, result.report);
-    EXPECT_TRUE(a.within_tolerance()) << e.path() << ": rel diff " << a.max_rel_diff << ", cost rel diff "
-                                      << a.max_cost_rel_diff;
+    EXPECT_TRUE(a.within_tolerance()) << "frame " << p->frame << " level " << p->level_index << ": rel diff "
+                                      << a.max_rel_diff << ", cost rel diff " << a.max_cost_rel_diff;
     all = worst(all, a);
     ++problems;
   }

@@ -56,18 +56,8 @@ DeviceAgreement worst(const DeviceAgreement& a, const DeviceAgreement& b) {
 }
 
 DisplacementBenchResult bench_displacement(const fs::path& dir, const DisplacementBenchOptions& options) {
-  if (!fs::is_directory(dir)) throw Error("no such folder of displacement problems: " + dir.string());
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".fcdp") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  if (files.empty())
-    throw Error("no .fcdp problem files in " + dir.string() +
-                " (write them with `facecap eval refine --video V "
-                "--save-problems DIR`)");
   if (options.devices.empty() || options.repeats < 1) throw Error("bench displacement: nothing to run");
-  std::vector<std::unique_ptr<SavedDisplacementProblem>> problems;
-  for (const fs::path& f : files) problems.push_back(load_displacement_problem(f));
+  const std::vector<std::unique_ptr<SavedDisplacementProblem>> problems = load_displacement_problems(dir);
 
   DisplacementBenchResult result;
   result.problems = static_cast<int>(problems.size());

@@ -1,6 +1,7 @@
 #pragma once
-// The displacement solve's own numbering of a hierarchy level (§4.3.4), shared
-// by the CPU and CUDA backends. Only the free vertices are unknowns, and only
+// The displacement solve's own numbering of a hierarchy level (§4.3.4), as
+// the CPU solver builds it (the CUDA backend builds the same rows and columns
+// on the GPU: cuda/displacement_graph_kernels.cuh). Only the free vertices are unknowns, and only
 // the residuals of free vertices and of their rings depend on them, so every
 // pass runs over those "touched" vertices in a compact index space: free ones
 // first, [0, num_free), then the rest of the touched, [num_free, touched).

@@ -158,4 +158,18 @@ std::unique_ptr<SavedDisplacementProblem> load_displacement_problem(const std::f
   return s;
 }
 
+std::vector<std::unique_ptr<SavedDisplacementProblem>> load_displacement_problems(const std::filesystem::path& dir) {
+  if (!std::filesystem::is_directory(dir)) throw Error("no such folder of displacement problems: " + dir.string());
+  std::vector<std::unique_ptr<SavedDisplacementProblem>> problems;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".fcdp") problems.push_back(load_displacement_problem(e.path()));
+  if (problems.empty())
+    throw Error("no .fcdp problem files in " + dir.string() +
+                " (write them with `facecap eval refine --video V --save-problems DIR`)");
+  std::sort(problems.begin(), problems.end(), [](const auto& a, const auto& b) {
+    return std::pair(a->frame, a->level_index) < std::pair(b->frame, b->level_index);
+  });
+  return problems;
+}
+
 }  // namespace facecap

@@ -7,6 +7,7 @@
 // CPU/CUDA comparison and the solver's timing on any machine.
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "facecap/refine/displacement_solver.hpp"
 
@@ -26,5 +27,8 @@ void save_displacement_problem(const std::filesystem::path& path, const Displace
                                const Eigen::VectorXf& start, int frame, int level_index);
 // Throws facecap::Error naming the file when it is missing, truncated or not a problem file.
 std::unique_ptr<SavedDisplacementProblem> load_displacement_problem(const std::filesystem::path& path);
+// Every .fcdp file in `dir`, in frame then level order. Throws facecap::Error
+// when the folder is missing, holds none, or one of them is unreadable.
+std::vector<std::unique_ptr<SavedDisplacementProblem>> load_displacement_problems(const std::filesystem::path& dir);
 
 }  // namespace facecap
