@@ -114,16 +114,20 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
     std::string source, target;
     int max_frames = 120;
     bool wrinkles = false;
+    bool no_expression_ratio = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source, "Source portrait photo")->required();
   cmd->add_option("--target", a->target, "Target video")->required();
   cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
   cmd->add_flag("--wrinkles", a->wrinkles, "With the wrinkle prediction of §6.1.2 (the target is refined)");
+  cmd->add_flag("--no-expression-ratio", a->no_expression_ratio,
+                "Without the target's own fine change of appearance carried onto the new face");
   cmd->callback([a, &global] {
     const FaceModel model = load_model(global);
     SwapJobOptions o;
     o.swap.wrinkles = a->wrinkles;
+    o.swap.expression_ratio = !a->no_expression_ratio;
     o.capture.max_frames = a->max_frames;
     o.capture.quiet = true;
     const TempDir scratch("facecap-bench");
@@ -132,7 +136,7 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double n = std::max(1, s.timings.swapped);
     const SwapTimings& t = s.timings.swap;
-    const double steady_ms = (t.render_ms + t.wrinkle_ms + t.warp_ms + t.blend_ms) / n;
+    const double steady_ms = (t.render_ms + t.wrinkle_ms + t.ratio_ms + t.warp_ms + t.blend_ms) / n;
     const double with_appearance_ms = steady_ms + t.appearance_ms / n;
     nlohmann::json j = timings_json(s.target.timings);
     j["swap"] = {{"frames", s.timings.swapped},
@@ -143,6 +147,7 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
                  {"warp_ms_per_frame", t.warp_ms / n},
                  {"blend_ms_per_frame", t.blend_ms / n},
                  {"wrinkle_ms_per_frame", t.wrinkle_ms / n},
+                 {"expression_ratio_ms_per_frame", t.ratio_ms / n},
                  {"swap_ms_per_frame", steady_ms},
                  {"swap_fps", steady_ms > 0 ? 1000.0 / steady_ms : 0.0},
                  {"swap_fps_with_appearance", with_appearance_ms > 0 ? 1000.0 / with_appearance_ms : 0.0},

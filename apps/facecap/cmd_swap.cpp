@@ -51,10 +51,11 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     const SwapTimings& t = s.timings.swap;
     std::fprintf(stderr,
                  "frames %d, swapped %d, lost %d | source %.0f ms | per frame: lighting %.2f, appearance %.2f "
-                 "(first frames only), render %.2f, wrinkles %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json "
+                 "(first frames only), render %.2f, wrinkles %.2f, expression ratio %.2f, warp %.2f, blend %.2f "
+                 "ms\nwrote %s and %s.json "
                  "(synthetic-media marks)\n",
                  s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
-                 t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n, t.warp_ms / n, t.blend_ms / n,
+                 t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n, t.ratio_ms / n, t.warp_ms / n, t.blend_ms / n,
                  a->output.c_str(), a->output.c_str());
   });
 }

@@ -71,6 +71,10 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
                  "copies more of the target's own look onto the new face. 0: off")
       ->check(CLI::Range(0.0f, 100.0f))
       ->capture_default_str();
+  cmd.add_flag_callback(
+      "--no-expression-ratio", [&swap] { swap.expression_ratio = false; },
+      "Do not carry the target's own fine change of appearance since its first frames (folds and creases that "
+      "come and go with its expression, kept off the target's own texture edges) onto the new face");
   cmd.add_option("--photo-detail", swap.photo_detail_gain,
                  "Gain on the photo's mid-scale detail (0.4-3 mm), where its texture holds its own folds and shadows "
                  "that land in the wrong place on another expression; 1 keeps the photo's texture as it is")

@@ -45,26 +45,27 @@ TEST(SeamRatio, AHardEdgeOnTheOutlineStandsOutAndHolesDoNotCount) {
   EXPECT_NEAR(seam_ratio(hole_only, alpha), 1.0, 0.3);
 }
 
-// Fig. 6.7's experiment: the video's first frame swapped into the rest. The
-// issue's bar for the mean (<= 6) is met; that for the median (<= 3) is
-// not yet, and this guards what we have against getting worse.
+// Fig. 6.7's experiment: the video's first frame swapped into the rest,
+// with the bars (median <= 3, mean <= 6; the median is exact: the
+// errors are multiples of 1/3).
 TEST(SwapEval, SelfSwapStaysNearTheVideo) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30));
   EXPECT_EQ(r.frames, 29);
   EXPECT_GT(r.face_pixels_per_frame, 30000);
-  // 3.7 / 5.72 on these frames (the bars are 3 / 6); 4.0 / 6.01
-  // without the target's residual shading (residual_shading.hpp); 4.3 / 6.12 with
-  // the appearance gathered under the target's provisional lighting, 4.3 /
-  // 6.5 also with the photo's mid-scale detail as it is, the mirror's colour
-  // copied into unseen texels and no light colour; 5.0 / 7.7 with the photo's expression
-  // prior as weak as one video frame's against its 30 frames' worth of
-  // landmarks, 6.0 / 9.7 with the photo's face at the photo fit's own size as
-  // well (match_target_size off), 8.7 / 12.7 when the photo's identity
-  // weighed as one video frame (identity_evidence_frames).
-  EXPECT_LT(r.photometric_median, 4.3);
-  EXPECT_LT(r.photometric_mean, 6.0);  // the bar
+  // 2.67 / 4.20 on these frames; 3.67 / 5.72 without the target's own change
+  // of appearance (expression_ratio.hpp); 4.0 / 6.01 also without the
+  // target's residual shading (residual_shading.hpp); 4.3 / 6.12 with the
+  // appearance gathered under the target's provisional lighting, 4.3 / 6.5
+  // also with the photo's mid-scale detail as it is, the mirror's colour
+  // copied into unseen texels and no light colour; 5.0 / 7.7 with the
+  // photo's expression prior as weak as one video frame's against its 30
+  // frames' worth of landmarks, 6.0 / 9.7 with the photo's face at the photo
+  // fit's own size as well (match_target_size off), 8.7 / 12.7 when the
+  // photo's identity weighed as one video frame (identity_evidence_frames).
+  EXPECT_LE(r.photometric_median, 3.0);  // the bar
+  EXPECT_LT(r.photometric_mean, 4.6);    // the bar is 6
   // The split by region adds up to the whole, and each region has its pixels.
   double mean = 0, share = 0;
   for (const auto& region : r.regions) {
@@ -77,17 +78,19 @@ TEST(SwapEval, SelfSwapStaysNearTheVideo) {
 }
 
 // A burst of source photos (the video's first 5 frames) fixes the identity
-// at least as well as one. 3.7 / 5.63 on these frames against the photo's
-// 3.7 / 5.72 (4.0 / 5.95 and 4.0 / 6.01 without the residual shading); 6.0 / 8.7 when each burst frame weighed as one
-// video frame (before the texture changes that took the photo from 4.3 / 6.53 to 4.3 / 6.12).
+// at least as well as one. 2.67 / 4.08 on these frames against the photo's
+// 2.67 / 4.20 (before the expression ratio 3.7 / 5.63 and 3.7 / 5.72; 4.0 /
+// 5.95 and 4.0 / 6.01 also without the residual shading); 6.0 / 8.7 when
+// each burst frame weighed as one video frame (before the texture changes
+// that took the photo from 4.3 / 6.53 to 4.3 / 6.12).
 TEST(SwapEval, ABurstOfSourcePhotosDoesAtLeastAsWellAsOne) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   const SwapSelfEval r = evaluate_swap_self(*model, video.string(), short_run(30), 5);
   EXPECT_EQ(r.source_frames_used, 5);
   EXPECT_EQ(r.frames, 29);
-  EXPECT_LT(r.photometric_median, 4.3);
-  EXPECT_LT(r.photometric_mean, 5.9);
+  EXPECT_LE(r.photometric_median, 3.0);
+  EXPECT_LT(r.photometric_mean, 4.5);
 }
 
 TEST(SwapEval, PortraitIntoVideoTakesTheSourceShapeAndTheTargetExpression) {

@@ -1,5 +1,6 @@
 #include "facecap/pipeline/swap_eval.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -20,21 +21,25 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Median of values in [0, 255] from a histogram of 0.05-wide bins.
+// The per-pixel errors, the mean absolute difference over the three 8-bit
+// channels: a sum of 0..765 over 3, kept as a histogram of the sums so that
+// the median is exact (a histogram of 0.05-wide bins returned a bin's
+// centre, 0.025 above an error of exactly 3).
 struct ErrorHistogram {
-  std::vector<double> bins = std::vector<double>(5101, 0.0);
-  double sum = 0, count = 0;
-  void add(float v) {
-    bins[std::min<size_t>(bins.size() - 1, static_cast<size_t>(v / 0.05f))] += 1;
-    sum += v;
+  std::vector<double> sums = std::vector<double>(3 * 255 + 1, 0.0);
+  double total = 0, count = 0;
+  void add(int channel_sum) {
+    sums[std::clamp(channel_sum, 0, 3 * 255)] += 1;
+    total += channel_sum;
     count += 1;
   }
-  double mean() const { return count > 0 ? sum / count : 0; }
+  double mean() const { return count > 0 ? total / (3.0 * count) : 0; }
+  // The lower median: the smallest error with at least half the pixels at or below it.
   double median() const {
     double run = 0;
-    for (size_t b = 0; b < bins.size(); ++b) {
-      run += bins[b];
-      if (run >= 0.5 * count) return (b + 0.5) * 0.05;
+    for (size_t k = 0; k < sums.size(); ++k) {
+      run += sums[k];
+      if (run >= 0.5 * count && count > 0) return k / 3.0;
     }
     return 0;
   }
@@ -147,9 +152,9 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
       const float* a = result.alpha.ptr<float>(y);
       for (int x = 0; x < result.window.width; ++x) {
         if (a[x] <= 0.5f) continue;
-        const float e =
-            (std::abs(t[x][0] - m[x][0]) + std::abs(t[x][1] - m[x][1]) + std::abs(t[x][2] - m[x][2])) / 3.0f;
-        errors.add(e);
+        const int channel_sum = std::abs(t[x][0] - m[x][0]) + std::abs(t[x][1] - m[x][1]) + std::abs(t[x][2] - m[x][2]);
+        errors.add(channel_sum);
+        const float e = channel_sum / 3.0f;
         const int region = boxes.region(x, y);
         region_sum[region] += e;
         region_count[region] += 1;

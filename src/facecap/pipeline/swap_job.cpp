@@ -84,6 +84,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      {"mirror_source", options.swap.mirror_source ? "true" : "false"},
                      {"follow_light_colour", options.swap.follow_light_colour ? "true" : "false"},
                      {"residual_shading_mm", std::to_string(options.swap.residual_shading_mm)},
+                     {"expression_ratio", options.swap.expression_ratio ? "true" : "false"},
                      {"photo_detail_gain", std::to_string(options.swap.photo_detail_gain)},
                      {"source_frames_used", std::to_string(summary.source.frames_used)}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);

@@ -34,4 +34,17 @@ UvTexelMap rasterize_uv(const TriangleMesh& mesh, int size) {
   return map;
 }
 
+double millimetres_per_uv(const TriangleMesh& mesh, const Positions& shape) {
+  double length_3d = 0, length_uv = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      if (a >= shape.cols() || b >= shape.cols()) continue;
+      length_3d += (shape.col(a) - shape.col(b)).norm();
+      length_uv += (mesh.uvs[mesh.triangle_uvs[t][k]] - mesh.uvs[mesh.triangle_uvs[t][(k + 1) % 3]]).norm();
+    }
+  }
+  return length_uv > 0 ? 10.0 * length_3d / length_uv : 0;
+}
+
 }  // namespace facecap

@@ -26,6 +26,10 @@ struct UvTexelMap {
 
 UvTexelMap rasterize_uv(const TriangleMesh& mesh, int size);
 
+// Millimetres on the surface per unit of UV, over all triangle edges of
+// `mesh` with `shape` (cm) as its positions.
+double millimetres_per_uv(const TriangleMesh& mesh, const Positions& shape);
+
 // Texel coordinates of a UV (u right, v up).
 inline Vec2f uv_to_texel(const Vec2f& uv, int size) { return {uv.x() * (size - 1), (1.0f - uv.y()) * (size - 1)}; }
 

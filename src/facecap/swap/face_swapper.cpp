@@ -18,6 +18,7 @@
 #include "facecap/render/uv_raster.hpp"
 #include "facecap/swap/albedo_adaptation.hpp"
 #include "facecap/swap/background_warp.hpp"
+#include "facecap/swap/expression_ratio.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/light_colour.hpp"
 #include "facecap/swap/lit_vertices.hpp"
@@ -126,6 +127,7 @@ struct FaceSwapper::Impl {
   Positions target_vertex_albedo;
   std::vector<float> target_vertex_seen;
   std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
+  std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
 
   // Follows the target's identity (fixed once its tracker has solved it).
   void update_target_identity(const Eigen::VectorXf& identity) {
@@ -175,6 +177,9 @@ struct FaceSwapper::Impl {
       ro.low_pass_mm = options.residual_shading_mm;
       residual.emplace(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace), ro);
     }
+    if (options.expression_ratio)
+      ratio.emplace(skin, millimetres_per_uv(
+                              skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace)));
     anchors = model.landmarks.vertices;
     for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
       if (boundary[v] && (k++ % 3 == 0)) anchors.push_back(v);
@@ -320,10 +325,25 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   if (!target.lighting_final) {
     m.appearance_seen = 0;
     m.target_sum = FaceTexture();
+    if (m.ratio) m.ratio->clear_reference();
   }
-  if (m.appearance_seen < m.options.appearance_frames) {
-    FaceTexture tex = unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map,
-                                   feature_holes(m.model, target_points, target.camera));
+  const std::vector<std::vector<cv::Point>> holes = feature_holes(m.model, target_points, target.camera);
+  const bool appearance_frame = m.appearance_seen < m.options.appearance_frames;
+  cv::Mat ratio_gains;
+  double ratio_ms = 0;
+  if (m.ratio) {
+    t0 = std::chrono::steady_clock::now();
+    const FaceTexture now = m.ratio->unshade(frame, target_points, target.camera, target.lighting, holes);
+    if (appearance_frame) m.ratio->add_reference(now);
+    ratio_gains = m.ratio->gains(now);
+    ratio_ms = ms_since(t0);
+    t.ratio_ms += ratio_ms;
+  }
+  const float ratio_texels = ratio_gains.empty() ? 0.0f : float(ratio_gains.cols - 1);
+  t0 = std::chrono::steady_clock::now();
+  if (appearance_frame) {
+    FaceTexture tex =
+        unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map, holes);
     drop_non_skin(tex);
     if (m.appearance_seen == 0) m.target_first = tex;
     accumulate(m.target_sum, tex);
@@ -387,6 +407,12 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             if (!gains.empty())
               light = light.mul(
                   sample_bilinear_channels<3>(gains, coord.x() * gain_texels, (1.0f - coord.y()) * gain_texels));
+            if (ratio_gains.channels() == 3)
+              light = light.mul(sample_bilinear_channels<3>(ratio_gains, coord.x() * ratio_texels,
+                                                            (1.0f - coord.y()) * ratio_texels));
+            else if (!ratio_gains.empty())
+              light *= sample_bilinear_channels<1>(ratio_gains, coord.x() * ratio_texels,
+                                                   (1.0f - coord.y()) * ratio_texels)[0];
             colour[x] = cv::Vec3f(s[0] * light[0], s[1] * light[1], s[2] * light[2]);
             // Fade where the surface turns away too: the silhouette (the side of
             // the jaw, the cheek under a turned head) is no UV boundary.
@@ -397,7 +423,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
         }
       },
       16);
-  t.render_ms += ms_since(start) - appearance_ms;
+  t.render_ms += ms_since(start) - appearance_ms - ratio_ms;
 
   if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {
     t0 = std::chrono::steady_clock::now();
