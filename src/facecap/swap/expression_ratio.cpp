@@ -10,35 +10,46 @@ namespace facecap {
 
 namespace {
 
-// log of the mean of the channels, kept off log(0).
-cv::Mat log_luminance(const cv::Mat& image) {
-  cv::Mat grey = image;
-  if (image.channels() == 3) cv::transform(image, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
+// log of the colour (or with one channel wanted, of the mean of the
+// three), kept off log(0).
+cv::Mat log_colour(const cv::Mat& bgr, int channels) {
+  cv::Mat c = bgr;
+  if (channels == 1) cv::transform(bgr, c, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
   cv::Mat out;
-  cv::log(cv::max(grey, 0.02f), out);
+  cv::log(cv::max(c, 0.02f), out);
   return out;
 }
 
-// Normalised convolution: the weighted Gaussian mean of `value`. A wide
-// Gaussian runs on a grid a few times coarser (at most a quarter of sigma
-// per coarse texel), then is resampled.
-cv::Mat weighted_blur(const cv::Mat& value, const cv::Mat& weight, double sigma, cv::Mat* blurred_weight = nullptr) {
+// A Gaussian blur; a wide one runs on a grid a few times coarser (at most a
+// quarter of sigma per coarse texel), then is resampled.
+cv::Mat blur(const cv::Mat& image, double sigma) {
   const int factor = std::max(1, static_cast<int>(sigma / 4.0));
-  cv::Mat num = value.mul(weight), den = weight.clone();  // blurred in place below
-  if (factor > 1) {
-    const cv::Size small((value.cols + factor - 1) / factor, (value.rows + factor - 1) / factor);
-    cv::resize(num, num, small, 0, 0, cv::INTER_AREA);
-    cv::resize(den, den, small, 0, 0, cv::INTER_AREA);
+  cv::Mat out;
+  if (factor == 1) {
+    cv::GaussianBlur(image, out, cv::Size(0, 0), sigma, sigma, cv::BORDER_CONSTANT);
+    return out;
   }
-  const double s = sigma / factor;
-  cv::GaussianBlur(num, num, cv::Size(0, 0), s, s, cv::BORDER_CONSTANT);
-  cv::GaussianBlur(den, den, cv::Size(0, 0), s, s, cv::BORDER_CONSTANT);
-  if (factor > 1) {
-    cv::resize(num, num, value.size(), 0, 0, cv::INTER_LINEAR);
-    cv::resize(den, den, value.size(), 0, 0, cv::INTER_LINEAR);
-  }
-  if (blurred_weight) *blurred_weight = den;
-  return num / cv::max(den, 1e-6f);
+  const cv::Size small((image.cols + factor - 1) / factor, (image.rows + factor - 1) / factor);
+  cv::resize(image, out, small, 0, 0, cv::INTER_AREA);
+  cv::GaussianBlur(out, out, cv::Size(0, 0), sigma / factor, sigma / factor, cv::BORDER_CONSTANT);
+  cv::resize(out, out, image.size(), 0, 0, cv::INTER_LINEAR);
+  return out;
+}
+
+// `weight` (one channel) repeated over `channels` channels.
+cv::Mat repeat_channels(const cv::Mat& weight, int channels) {
+  if (channels == 1) return weight;
+  cv::Mat out;
+  cv::merge(std::vector<cv::Mat>(channels, weight), out);
+  return out;
+}
+
+// Normalised convolution, the weighted Gaussian mean of `value` (any number
+// of channels), given the weight blurred alike (`blurred_weight`).
+cv::Mat weighted_blur(const cv::Mat& value, const cv::Mat& weight, const cv::Mat& blurred_weight, double sigma) {
+  const int channels = value.channels();
+  return blur(value.mul(repeat_channels(weight, channels)), sigma) /
+         repeat_channels(cv::max(blurred_weight, 1e-6f), channels);
 }
 
 }  // namespace
@@ -72,57 +83,45 @@ cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
   weight.setTo(0, reference.weight <= 0);
   if (cv::countNonZero(weight) < 50) return ones;
   const double fine = options_.fine_mm * texels_per_mm_, coarse = options_.coarse_mm * texels_per_mm_;
-
-  std::vector<cv::Mat> now(3), before(3);
-  if (channels == 3) {
-    cv::split(frame.albedo, now);
-    cv::split(reference.albedo, before);
-  } else {
-    now[0] = frame.albedo;
-    before[0] = reference.albedo;
-  }
+  const cv::Mat log_reference = log_colour(reference.albedo, channels);
 
   // The edge gate, from the reference's log gradient per millimetre: of
   // its luminance, or with `colour` the largest of its channels' (the lips'
   // edge is more one of colour than of brightness).
   cv::Mat seen_reference;
   cv::Mat(reference.weight > 0).convertTo(seen_reference, CV_32F, 1.0 / 255);
-  cv::Mat gradient2(n, n, CV_32F, cv::Scalar(0));
-  for (int c = 0; c < channels; ++c) {
-    const cv::Mat smooth_reference = weighted_blur(log_luminance(before[c]), seen_reference, fine);
-    cv::Mat gx, gy;
-    cv::Sobel(smooth_reference, gx, CV_32F, 1, 0, 3, texels_per_mm_ / 8.0);
-    cv::Sobel(smooth_reference, gy, CV_32F, 0, 1, 3, texels_per_mm_ / 8.0);
-    gradient2 = cv::max(gradient2, gx.mul(gx) + gy.mul(gy));
-  }
+  const cv::Mat smooth_reference = weighted_blur(log_reference, seen_reference, blur(seen_reference, fine), fine);
+  cv::Mat gx, gy;
+  cv::Sobel(smooth_reference, gx, CV_32F, 1, 0, 3, texels_per_mm_ / 8.0);
+  cv::Sobel(smooth_reference, gy, CV_32F, 0, 1, 3, texels_per_mm_ / 8.0);
+  std::vector<cv::Mat> per_channel;
+  cv::split(gx.mul(gx) + gy.mul(gy), per_channel);
+  cv::Mat gradient2 = per_channel[0];
+  for (int c = 1; c < channels; ++c) gradient2 = cv::max(gradient2, per_channel[c]);
   // Over the fine blur's footprint: the change a sliding edge leaves spreads
   // that far to either side of it.
   const int reach = std::max(1, static_cast<int>(std::lround(2.0 * fine)));
   cv::dilate(gradient2, gradient2,
              cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
-  const float edge2 = options_.edge_log_per_mm * options_.edge_log_per_mm;
-  cv::Mat r2 = gradient2 / edge2;
+  const cv::Mat r2 = gradient2 / (options_.edge_log_per_mm * options_.edge_log_per_mm);
   const cv::Mat gate = 1.0f / (1.0f + r2.mul(r2));
 
-  // The change per channel (or in luminance), band-passed: at the fine
-  // scale less at the coarse scale, faded where the fine window saw little
-  // (the edge of what this frame shows), gated and clamped.
+  // The change, band-passed (at the fine scale less at the coarse scale),
+  // faded where the fine window saw little (the edge of what this frame
+  // shows), gated and clamped.
+  const cv::Mat change = log_colour(frame.albedo, channels) - log_reference;
+  const cv::Mat fine_weight = blur(weight, fine);
+  const cv::Mat band =
+      weighted_blur(change, weight, fine_weight, fine) - weighted_blur(change, weight, blur(weight, coarse), coarse);
+  double max_weight = 0;
+  cv::minMaxLoc(fine_weight, nullptr, &max_weight);
+  const cv::Mat confidence = fine_weight / (fine_weight + 0.25 * max_weight);
+  cv::Mat log_gain = band.mul(repeat_channels(confidence.mul(gate), channels));
   const float limit = std::log(options_.max_gain);
-  std::vector<cv::Mat> out(channels);
-  for (int c = 0; c < channels; ++c) {
-    const cv::Mat change = log_luminance(now[c]) - log_luminance(before[c]);
-    cv::Mat fine_weight;
-    const cv::Mat band = weighted_blur(change, weight, fine, &fine_weight) - weighted_blur(change, weight, coarse);
-    double max_weight = 0;
-    cv::minMaxLoc(fine_weight, nullptr, &max_weight);
-    const cv::Mat confidence = fine_weight / (fine_weight + 0.25 * max_weight);
-    cv::Mat log_gain = band.mul(confidence).mul(gate);
-    cv::min(cv::max(log_gain, -limit), limit, log_gain);
-    cv::exp(log_gain, out[c]);
-  }
-  cv::Mat merged;
-  cv::merge(out, merged);
-  return merged;
+  cv::min(cv::max(log_gain, -limit), limit, log_gain);
+  cv::Mat out;
+  cv::exp(log_gain, out);
+  return out;
 }
 
 }  // namespace facecap
