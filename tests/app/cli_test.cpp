@@ -213,11 +213,20 @@ TEST(Cli, SwapTakesItsSourceFromAVideo) {
   std::ifstream sidecar(out + ".json");
   const std::string mark((std::istreambuf_iterator<char>(sidecar)), std::istreambuf_iterator<char>());
   EXPECT_NE(mark.find("\"source_frames_used\": \"8\""), std::string::npos) << mark;
+  EXPECT_NE(mark.find("\"expression_ratio\": \"true\""), std::string::npos) << mark;  // the default
   const RunResult bad =
       run("swap --source " + source.string() + " --source-frames 0 --target " + target.string() + " -o " + out);
   EXPECT_EQ(bad.code, 1) << bad.out;
   EXPECT_NE(bad.out.find("--source-frames"), std::string::npos) << bad.out;
   EXPECT_TRUE(std::filesystem::exists(out));  // the good output of the first run is kept
+  const std::string plain = (dir.path() / "plain.mp4").string();
+  ASSERT_EQ(run("swap --source " + source.string() + " --source-frames 8 --target " + target.string() +
+                " --max-frames 4 --no-expression-ratio -o " + plain)
+                .code,
+            0);
+  std::ifstream plain_sidecar(plain + ".json");
+  const std::string plain_mark((std::istreambuf_iterator<char>(plain_sidecar)), std::istreambuf_iterator<char>());
+  EXPECT_NE(plain_mark.find("\"expression_ratio\": \"false\""), std::string::npos) << plain_mark;
 }
 
 TEST(Cli, ProbeDescribesAVideoAsJson) {
