@@ -72,28 +72,26 @@ FaceTexture ExpressionRatio::unshade(const cv::Mat& frame, const Positions& targ
   return t;
 }
 
-cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
-  const int n = map_.size;
-  const int channels = options_.colour ? 3 : 1;
-  cv::Mat ones(n, n, CV_32FC(channels), cv::Scalar::all(1));
-  if (reference_sum_.empty() || frame.empty()) return ones;
+void ExpressionRatio::clear_reference() {
+  reference_sum_ = FaceTexture();
+  log_reference_ = seen_reference_ = gate_ = cv::Mat();
+}
+
+void ExpressionRatio::add_reference(const FaceTexture& texture) {
+  accumulate(reference_sum_, texture);
   const FaceTexture reference = weighted_mean(reference_sum_);
-  // Seen now and in the reference; squarely seen texels count more.
-  cv::Mat weight = frame.weight.clone();
-  weight.setTo(0, reference.weight <= 0);
-  if (cv::countNonZero(weight) < 50) return ones;
-  const double fine = options_.fine_mm * texels_per_mm_, coarse = options_.coarse_mm * texels_per_mm_;
-  const cv::Mat log_reference = log_colour(reference.albedo, channels);
+  const int channels = options_.colour ? 3 : 1;
+  const double fine = options_.fine_mm * texels_per_mm_;
+  log_reference_ = log_colour(reference.albedo, channels);
+  cv::Mat(reference.weight > 0).convertTo(seen_reference_, CV_32F, 1.0 / 255);
 
   // The edge gate, from the reference's log gradient per millimetre: of
   // its luminance, or with `colour` the largest of its channels' (the lips'
   // edge is more one of colour than of brightness).
-  cv::Mat seen_reference;
-  cv::Mat(reference.weight > 0).convertTo(seen_reference, CV_32F, 1.0 / 255);
-  const cv::Mat smooth_reference = weighted_blur(log_reference, seen_reference, blur(seen_reference, fine), fine);
+  const cv::Mat smooth = weighted_blur(log_reference_, seen_reference_, blur(seen_reference_, fine), fine);
   cv::Mat gx, gy;
-  cv::Sobel(smooth_reference, gx, CV_32F, 1, 0, 3, texels_per_mm_ / 8.0);
-  cv::Sobel(smooth_reference, gy, CV_32F, 0, 1, 3, texels_per_mm_ / 8.0);
+  cv::Sobel(smooth, gx, CV_32F, 1, 0, 3, texels_per_mm_ / 8.0);
+  cv::Sobel(smooth, gy, CV_32F, 0, 1, 3, texels_per_mm_ / 8.0);
   std::vector<cv::Mat> per_channel;
   cv::split(gx.mul(gx) + gy.mul(gy), per_channel);
   cv::Mat gradient2 = per_channel[0];
@@ -104,19 +102,31 @@ cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
   cv::dilate(gradient2, gradient2,
              cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
   const cv::Mat r2 = gradient2 / (options_.edge_log_per_mm * options_.edge_log_per_mm);
-  const cv::Mat gate = 1.0f / (1.0f + r2.mul(r2));
+  gate_ = 1.0f / (1.0f + r2.mul(r2));
+}
+
+cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
+  const int n = map_.size;
+  const int channels = options_.colour ? 3 : 1;
+  cv::Mat ones(n, n, CV_32FC(channels), cv::Scalar::all(1));
+  if (reference_sum_.empty() || frame.empty()) return ones;
+  // Seen now and in the reference; squarely seen texels count more.
+  cv::Mat weight = frame.weight.clone();
+  weight.setTo(0, seen_reference_ <= 0);
+  if (cv::countNonZero(weight) < 50) return ones;
+  const double fine = options_.fine_mm * texels_per_mm_, coarse = options_.coarse_mm * texels_per_mm_;
 
   // The change, band-passed (at the fine scale less at the coarse scale),
   // faded where the fine window saw little (the edge of what this frame
   // shows), gated and clamped.
-  const cv::Mat change = log_colour(frame.albedo, channels) - log_reference;
+  const cv::Mat change = log_colour(frame.albedo, channels) - log_reference_;
   const cv::Mat fine_weight = blur(weight, fine);
   const cv::Mat band =
       weighted_blur(change, weight, fine_weight, fine) - weighted_blur(change, weight, blur(weight, coarse), coarse);
   double max_weight = 0;
   cv::minMaxLoc(fine_weight, nullptr, &max_weight);
   const cv::Mat confidence = fine_weight / (fine_weight + 0.25 * max_weight);
-  cv::Mat log_gain = band.mul(repeat_channels(confidence.mul(gate), channels));
+  cv::Mat log_gain = band.mul(repeat_channels(confidence.mul(gate_), channels));
   const float limit = std::log(options_.max_gain);
   cv::min(cv::max(log_gain, -limit), limit, log_gain);
   cv::Mat out;

@@ -56,8 +56,8 @@ class ExpressionRatio {
   FaceTexture unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
                       const ShCoeffs& lighting, const std::vector<std::vector<cv::Point>>& excluded) const;
   // The appearance frames: their mean is the reference the change is measured from.
-  void clear_reference() { reference_sum_ = FaceTexture(); }
-  void add_reference(const FaceTexture& texture) { accumulate(reference_sum_, texture); }
+  void clear_reference();
+  void add_reference(const FaceTexture& texture);
   bool has_reference() const { return !reference_sum_.empty(); }
 
   // The gain (CV_32F, or CV_32FC3 BGR with `colour`; grid_size() square over UV [0, 1]^2, row 0 at v = 1)
@@ -72,6 +72,9 @@ class ExpressionRatio {
   UvTexelMap map_;
   double texels_per_mm_ = 0;
   FaceTexture reference_sum_;
+  // Of the reference so far (updated by add_reference): its log colour (or
+  // luminance), where it was seen, and the edge gate it gives.
+  cv::Mat log_reference_, seen_reference_, gate_;
 };
 
 }  // namespace facecap
