@@ -3,8 +3,8 @@
 // by texel, as a gain on the new face (a departure from the paper, beside
 // the wrinkle prediction of §6.1.2; the classic expression ratio image).
 // Each frame the target face is unshaded into a UV texture about a
-// millimetre per texel (unshade_face); its log-luminance less that of the
-// appearance frames' mean is the change: folds that deepen with a smile, the
+// millimetre per texel (unshade_face); its log colour (per channel, or its
+// luminance) less that of the appearance frames' mean is the change: folds that deepen with a smile, the
 // shadow a lip casts, skin that stretches. It is band-passed between
 // `fine_mm` (image noise) and `coarse_mm` (the scale residual_shading.hpp
 // already covers), so neither the overall level nor the noise moves, and
@@ -58,7 +58,6 @@ class ExpressionRatio {
   // The appearance frames: their mean is the reference the change is measured from.
   void clear_reference();
   void add_reference(const FaceTexture& texture);
-  bool has_reference() const { return !reference_sum_.empty(); }
 
   // The gain (CV_32F, or CV_32FC3 BGR with `colour`; grid_size() square over UV [0, 1]^2, row 0 at v = 1)
   // for a frame unshaded by unshade(); all ones before any reference.
