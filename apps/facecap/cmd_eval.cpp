@@ -138,6 +138,10 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"size_ratio", r.size_ratio},
                 {"size_factor", r.size_factor},
                 {"identity_modes_determined", r.effective_modes},
+                {"identity_shape_rms_mm", r.identity_shape_rms_mm},
+                {"identity_shape_rms_fixed_size_mm", r.identity_shape_rms_fixed_size_mm},
+                {"shape_sd_mm", r.shape_sd_mm},
+                {"shape_sd_fixed_size_mm", r.shape_sd_fixed_size_mm},
                 {"fit_ms_per_frame", r.fit_ms_per_frame}});
   });
 }

@@ -45,12 +45,12 @@ double total_cost(const std::vector<std::unique_ptr<FrameEnergy>>& energies, con
   return total;
 }
 
-// Posterior precision of the identity from one linearisation (Gauss-Newton,
+// Posterior covariance of the identity from one linearisation (Gauss-Newton,
 // no damping): every frame's own unknowns and the focal length eliminated
-// (Schur complements, i.e. marginalised), the N(0, 1) prior included. Returns
-// ni - trace(P^-1): how many identity directions the landmarks determine,
-// each counted by its data precision over its total precision.
-double effective_identity_modes(const std::vector<FrameSystem>& sys, const Eigen::MatrixXd& shared_precision, int ni) {
+// from the precision (Schur complements, i.e. marginalised), the N(0, 1)
+// prior included, then inverted. Empty when the precision is singular.
+Eigen::MatrixXd identity_posterior_covariance(const std::vector<FrameSystem>& sys,
+                                              const Eigen::MatrixXd& shared_precision, int ni) {
   Eigen::MatrixXd p = shared_precision;
   for (const FrameSystem& s : sys) {
     Eigen::MatrixXd a = s.a;
@@ -62,9 +62,18 @@ double effective_identity_modes(const std::vector<FrameSystem>& sys, const Eigen
     if (pff > 0) p.topLeftCorner(ni, ni).noalias() -= p.topRightCorner(ni, 1) * p.bottomLeftCorner(1, ni) / pff;
   }
   const Eigen::LDLT<Eigen::MatrixXd> f(p.topLeftCorner(ni, ni));
-  if (f.info() != Eigen::Success) return 0.0;
-  const double trace = f.solve(Eigen::MatrixXd::Identity(ni, ni)).trace();
-  return std::clamp(ni - trace, 0.0, static_cast<double>(ni));
+  if (f.info() != Eigen::Success) return {};
+  return f.solve(Eigen::MatrixXd::Identity(ni, ni));
+}
+
+// Fills the report's posterior from the last linearisation. The prior's
+// precision is 1 per mode, so ni - trace(covariance) counts the directions
+// the landmarks determine, each by its data precision over its total.
+void record_posterior(const std::vector<FrameSystem>& sys, const Eigen::MatrixXd& shared_precision, int ni,
+                      IdentitySolveReport& rep) {
+  rep.identity_covariance = identity_posterior_covariance(sys, shared_precision, ni);
+  rep.effective_modes =
+      rep.identity_covariance.size() ? std::clamp(ni - rep.identity_covariance.trace(), 0.0, double(ni)) : 0.0;
 }
 
 }  // namespace
@@ -183,14 +192,14 @@ IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<Frame
         if (decrease < 1e-7 * (1.0 + cost)) {
           ++rep.iterations;
           rep.final_cost = cost;
-          rep.effective_modes = effective_identity_modes(sys, u, ni);
+          record_posterior(sys, u, ni, rep);
           return rep;
         }
       } else {
         lambda *= 4.0;
       }
     }
-    if (!accepted || rep.iterations + 1 == o.max_iterations) rep.effective_modes = effective_identity_modes(sys, u, ni);
+    if (!accepted || rep.iterations + 1 == o.max_iterations) record_posterior(sys, u, ni, rep);
     if (!accepted) break;
   }
   rep.final_cost = cost;

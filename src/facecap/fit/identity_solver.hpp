@@ -37,6 +37,12 @@ struct IdentitySolveReport {
   // precision over its posterior precision (0..modes), at the last
   // linearisation: what identity_size.hpp needs.
   double effective_modes = 0;
+  // Posterior covariance of the identity coefficients at the last
+  // linearisation, the frames' poses, expressions and the focal length
+  // marginalised (modes x modes; empty if it could not be formed). It is the
+  // solve's own belief: calibrated when the landmark sigma matches the
+  // detector's error (identity_uncertainty.hpp).
+  Eigen::MatrixXd identity_covariance;
 };
 
 IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<FrameEnergy>>& energies,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 
 #include "facecap/core/geometry.hpp"
@@ -81,6 +82,16 @@ Positions fitted_shape(const FaceModel& model, const IdentityEstimate& id, const
   return model.evaluate(id.identity.cast<float>(), w, regions::kFace);
 }
 
+// RMS distance (mm) between two point sets, each centred on its centroid;
+// with `fit_scale`, `fitted` is first scaled about its centroid by the least-
+// squares factor (the size taken out).
+double centred_rms_mm(const Positions& truth, const Positions& fitted, bool fit_scale) {
+  const Eigen::Matrix3Xd t = truth.cast<double>().colwise() - truth.cast<double>().rowwise().mean();
+  Eigen::Matrix3Xd f = fitted.cast<double>().colwise() - fitted.cast<double>().rowwise().mean();
+  if (fit_scale && f.squaredNorm() > 0) f *= t.cwiseProduct(f).sum() / f.squaredNorm();
+  return 10.0 * std::sqrt((t - f).squaredNorm() / double(std::max<Eigen::Index>(1, t.cols())));
+}
+
 }  // namespace
 
 TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options) {
@@ -99,9 +110,13 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   r.identity_error = (id.identity - perf.identity.head(id.identity.size()).cast<double>()).norm();
   r.size_factor = id.size_factor;
   r.effective_modes = id.effective_modes;
-  r.size_ratio = align_rigid(model.evaluate(perf.identity, Eigen::VectorXf(), regions::kFace),
-                             fitted_shape(model, id, Eigen::VectorXf()), true)
-                     .scale;
+  const Positions true_neutral = model.evaluate(perf.identity, Eigen::VectorXf(), regions::kFace);
+  const Positions fitted_neutral = fitted_shape(model, id, Eigen::VectorXf());
+  r.size_ratio = align_rigid(true_neutral, fitted_neutral, true).scale;
+  r.identity_shape_rms_mm = centred_rms_mm(true_neutral, fitted_neutral, false);
+  r.identity_shape_rms_fixed_size_mm = centred_rms_mm(true_neutral, fitted_neutral, true);
+  r.shape_sd_mm = id.shape_sd_mm;
+  r.shape_sd_fixed_size_mm = id.shape_sd_fixed_size_mm;
   int valid = 0;
   std::vector<double> true_yaw, fitted_yaw;
   for (const CoarseFit& fit : fits) {

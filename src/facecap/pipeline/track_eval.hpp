@@ -53,6 +53,15 @@ struct TrackEvalResult {
   double size_ratio = 0;
   double size_factor = 1;      // the size correction the tracker applied (identity_size.hpp)
   double effective_modes = 0;  // identity directions the landmarks determined (of 50)
+  // The neutral face region's error, RMS over vertices in mm (both centred, no
+  // rotation), in all and with the size taken out (least-squares scale)...
+  double identity_shape_rms_mm = 0;
+  double identity_shape_rms_fixed_size_mm = 0;
+  // ...and what the identity solve's posterior predicts for them
+  // (shape_uncertainty.hpp): equal on average when the fit's noise model and
+  // prior are the truth's.
+  double shape_sd_mm = 0;
+  double shape_sd_fixed_size_mm = 0;
   double fit_ms_per_frame = 0;
 };
 
