@@ -211,6 +211,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                 {"levels", r.levels},
                 {"finest_vertices", r.finest_vertices},
                 {"lighting_error_rel", r.lighting_error_rel},
+                {"shading_error_rel", r.shading_error_rel},
                 {"albedo_corr", r.albedo_corr},
                 {"normal_error_deg", r.normal_error_deg},
                 {"normal_error_coarse_deg", r.normal_error_coarse_deg},

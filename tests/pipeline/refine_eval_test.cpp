@@ -5,11 +5,64 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SVD>
+#include <cmath>
+
 #include "facecap/core/error.hpp"
+#include "facecap/render/shading.hpp"
 
 #include "test_support.hpp"
 
 namespace facecap {
+
+// The two lighting measures against constructed errors: a face's visible
+// normals (camera frame, facing the camera within about 70 deg) leave some
+// coefficient directions nearly unseen.
+TEST(RefineEval, ShadingErrorMeasuresWhatTheImageDetermines) {
+  Positions normals(3, 0);
+  std::vector<Vec3f> list;
+  for (double a = -1.2; a <= 1.2001; a += 0.1) {
+    for (double b = -1.2; b <= 1.2001; b += 0.1) {
+      list.emplace_back(float(std::sin(a) * std::cos(b)), float(std::sin(b)), float(-std::cos(a) * std::cos(b)));
+    }
+  }
+  normals.resize(3, Eigen::Index(list.size()));
+  for (size_t i = 0; i < list.size(); ++i) normals.col(Eigen::Index(i)) = list[i];
+  const std::vector<bool> visible(list.size(), true);
+  ShCoeffs truth;
+  truth << 0.75, 0.2, 0.1, 0.25, -0.05, 0.0, -0.02, 0.06, -0.01;  // like the renders' (seed 2)
+
+  // Scale is free in both.
+  EXPECT_NEAR(scaled_lighting_error(2.5 * truth, truth), 0.0, 1e-12);
+  EXPECT_NEAR(scaled_shading_error(2.5 * truth, truth, normals, visible), 0.0, 1e-12);
+
+  // The directions of coefficient space these normals see least and most
+  // (singular vectors of the SH basis over them, viewer frame).
+  Eigen::MatrixXd basis(list.size(), 9);
+  for (size_t i = 0; i < list.size(); ++i) {
+    const Vec3f v = to_viewer_frame(list[i]);
+    basis.row(Eigen::Index(i)) = sh_basis<double>(v.x(), v.y(), v.z()).transpose();
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(basis, Eigen::ComputeThinV);
+  const ShCoeffs least = svd.matrixV().col(8), most = svd.matrixV().col(0);
+  // The same coefficient error, 0.2 of the lighting, along each.
+  const ShCoeffs unseen =
+      truth + 0.2 * truth.norm() * (least - least.dot(truth) / truth.squaredNorm() * truth).normalized();
+  const ShCoeffs seen =
+      truth + 0.2 * truth.norm() * (most - most.dot(truth) / truth.squaredNorm() * truth).normalized();
+  EXPECT_NEAR(scaled_lighting_error(unseen, truth), 0.2, 0.02);
+  EXPECT_NEAR(scaled_lighting_error(seen, truth), 0.2, 0.02);
+  // The image barely sees one and plainly sees the other: the smallest
+  // singular value is 0.028 of the largest, and the shading errors are 0.043
+  // and 0.79 of the shading's spread.
+  const double e_unseen = scaled_shading_error(unseen, truth, normals, visible);
+  const double e_seen = scaled_shading_error(seen, truth, normals, visible);
+  EXPECT_LT(e_unseen, 0.1 * e_seen);
+  EXPECT_GT(e_seen, 0.5);
+  // Invisible normals count for nothing.
+  std::vector<bool> none(list.size(), false);
+  EXPECT_EQ(scaled_shading_error(seen, truth, normals, none), 0.0);
+}
 
 TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
   FACECAP_REQUIRE_MODEL(model);
@@ -26,6 +79,11 @@ TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
   // (their colour is the eye white's, the teeth's) this was 0.39 (12 frames);
   // now 0.21. The issue's bar is 0.10.
   EXPECT_LT(r.lighting_error_rel, 0.3);
+  // Judged by the shading it gives the face: 0.38 of the shading's spread is
+  // wrong (8 frames). The alternation keeps what the first frame's estimate,
+  // made against a uniform albedo, says: with only that estimate made
+  // against the true albedo this is 0.04-0.14 on seeds 1-4 (note on issue 4).
+  EXPECT_LT(r.shading_error_rel, 0.5);
   // Refined depth stays within a fraction of a millimetre of the truth.
   EXPECT_LT(r.vertex_error_mm, 0.2);
   EXPECT_TRUE(std::isfinite(r.normal_error_deg));

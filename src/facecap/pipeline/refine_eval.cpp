@@ -7,6 +7,7 @@
 #include "facecap/core/progress.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/render/photometric.hpp"
+#include "facecap/render/shading.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 
 namespace facecap {
@@ -14,11 +15,6 @@ namespace facecap {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
-  const double k = l.squaredNorm() > 0 ? l.dot(truth) / l.squaredNorm() : 1.0;
-  return (k * l - truth).norm() / truth.norm();
-}
 
 struct SurfaceImage {
   RasterBuffers buffers;
@@ -35,6 +31,36 @@ SurfaceImage render_surface(const Positions& points, const std::vector<Triangle>
 }
 
 }  // namespace
+
+double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
+  const double k = l.squaredNorm() > 0 ? l.dot(truth) / l.squaredNorm() : 1.0;
+  return (k * l - truth).norm() / truth.norm();
+}
+
+double scaled_shading_error(const ShCoeffs& l, const ShCoeffs& truth, const Positions& camera_normals,
+                            const std::vector<bool>& visible) {
+  std::vector<double> est, tru;
+  for (Eigen::Index i = 0; i < camera_normals.cols(); ++i) {
+    if (!visible[i]) continue;
+    const Vec3f n = to_viewer_frame(Vec3f(camera_normals.col(i)));
+    est.push_back(sh_shade(l, double(n.x()), double(n.y()), double(n.z())));
+    tru.push_back(sh_shade(truth, double(n.x()), double(n.y()), double(n.z())));
+  }
+  if (est.size() < 2) return 0.0;
+  double et = 0, ee = 0, mean = 0;
+  for (size_t i = 0; i < est.size(); ++i) {
+    et += est[i] * tru[i];
+    ee += est[i] * est[i];
+    mean += tru[i] / double(tru.size());
+  }
+  const double k = ee > 0 ? et / ee : 1.0;
+  double err = 0, spread = 0;
+  for (size_t i = 0; i < est.size(); ++i) {
+    err += (k * est[i] - tru[i]) * (k * est[i] - tru[i]);
+    spread += (tru[i] - mean) * (tru[i] - mean);
+  }
+  return spread > 0 ? std::sqrt(err / spread) : 0.0;
+}
 
 std::vector<bool> face_skin_mask() {
   std::vector<bool> mask(regions::kFace.num_vertices(), false);
@@ -95,6 +121,8 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
     const Refinement ref = refiner.refine(image, coarse, perf.camera, o.true_shading ? &known : nullptr);
     refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     r.lighting_error_rel += scaled_lighting_error(ref.lighting, f.lighting);
+    r.shading_error_rel +=
+        scaled_shading_error(ref.lighting, f.lighting, vertex_normals(coarse, face.triangles), ref.visible);
     for (int v = 0; v < face.num_vertices; ++v) seen[v] = seen[v] || ref.visible[v];
 
     // The three surfaces, per pixel.
@@ -127,6 +155,7 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
   }
   progress.finish();
   r.lighting_error_rel /= std::max(1, r.frames);
+  r.shading_error_rel /= std::max(1, r.frames);
   r.refine_ms_per_frame = refine_ms / std::max(1, r.frames);
   if (all.pixels > 0) {
     r.normal_error_deg = all.mean_refined();

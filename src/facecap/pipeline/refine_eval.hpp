@@ -9,6 +9,7 @@
 //    and the refined mesh rendered with the recovered albedo and lighting.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/refine/refiner.hpp"
@@ -31,9 +32,11 @@ struct RefineEvalResult {
   int frames = 0;
   int levels = 0;
   int finest_vertices = 0;
-  // ||k l - l_true|| / ||l_true|| with the best scale k: albedo times
-  // lighting is only determined up to a common factor.
-  double lighting_error_rel = 0;
+  double lighting_error_rel = 0;  // scaled_lighting_error, mean over frames
+  // The same lighting judged by the shading it gives the face's visible
+  // vertices' normals (scaled_shading_error): well conditioned where the
+  // coefficients are not.
+  double shading_error_rel = 0;
   double albedo_corr = 0;  // Pearson, RGB of the vertices seen
   double normal_error_deg =
       0;  // refined finest level vs the true detailed surface: geometric (triangle) normals per pixel
@@ -61,6 +64,17 @@ Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options);
 // instead of 10: for the edits, where the lighting feeds a shading ratio or
 // a re-shading whose scale only has to be consistent within one video.
 RefineOptions lighting_only_refinement();
+
+// ||k l - l_true|| / ||l_true||, k the best scale (albedo times lighting is
+// only determined up to a common factor).
+double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth);
+// The lighting judged by the shading it gives `camera_normals` where
+// `visible`: RMS of k s - s_true (s = l . SH(n), k the best scale) over the
+// RMS of s_true about its mean. Seen from one side, 1, n_z and 3 n_z^2 - 1
+// are nearly collinear, so coefficient vectors far apart shade a face alike:
+// this measures what an image determines.
+double scaled_shading_error(const ShCoeffs& l, const ShCoeffs& truth, const Positions& camera_normals,
+                            const std::vector<bool>& visible);
 
 RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineEvalOptions& options);
 
