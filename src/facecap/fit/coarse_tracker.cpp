@@ -4,7 +4,6 @@
 #include <chrono>
 
 #include "facecap/fit/identity_size.hpp"
-#include "facecap/fit/shape_uncertainty.hpp"
 
 namespace facecap {
 
@@ -71,16 +70,13 @@ void CoarseTracker::initialize() {
   if (!kept.empty() && kept.size() < observed.size()) {
     solve = fitter_.fit_identity(kept, kept_frames, identity, focal);
   }
-  const IdentitySizeCorrection size(model_, fitter_.identity_modes(), fitter_.landmark_vertices());
   if (fitter_.options().unbiased_size) {
+    const IdentitySizeCorrection size(model_, fitter_.identity_modes(), fitter_.landmark_vertices());
     identity_.size_factor = size.factor(identity, solve.effective_modes);
     identity = size.scale(identity, identity_.size_factor);
   }
-  // The posterior of the solve, scaled with the face (c (a + m) - m).
-  const Eigen::MatrixXd covariance = identity_.size_factor * identity_.size_factor * solve.identity_covariance;
-  const ShapeUncertainty uncertainty(model_, fitter_.identity_modes());
-  identity_.shape_sd_mm = uncertainty.rms_mm(covariance);
-  identity_.shape_sd_fixed_size_mm = uncertainty.fixed_size_rms_mm(covariance, identity + size.mean_coefficients());
+  // The solve's posterior, scaled with the face (c (a + m) - m).
+  identity_.covariance = identity_.size_factor * identity_.size_factor * solve.identity_covariance;
   identity_.identity = identity;
   identity_.focal = focal;
   identity_.effective_modes = solve.effective_modes;

@@ -38,13 +38,12 @@ struct IdentityEstimate {
   double solve_ms = 0.0;         // time of the joint identity and focal solve
   double effective_modes = 0.0;  // identity directions the landmarks determined (identity_solver.hpp)
   double size_factor = 1.0;      // how much larger the size correction made the face (identity_size.hpp)
-  // The solve's posterior RMS standard deviation of a face-region vertex, mm
-  // (shape_uncertainty.hpp): in all, and with the face's size held. A
-  // diagnostic for `eval track`, not shown to users: the identity solve
-  // weighs any number of frames as identity_evidence_frames' (a photo as 30
-  // frames'), so a photo's posterior claims as much as a video's.
-  double shape_sd_mm = 0.0;
-  double shape_sd_fixed_size_mm = 0.0;
+  // Posterior covariance of `identity` (identity_solver.hpp), for
+  // shape_uncertainty.hpp's diagnostics in `eval track`. Not shown to users:
+  // the identity solve weighs any number of frames as
+  // identity_evidence_frames' (a photo as 30 frames'), so a photo's posterior
+  // claims as much as a video's.
+  Eigen::MatrixXd covariance;
 };
 
 class CoarseTracker {

@@ -41,7 +41,7 @@ struct IdentitySolveReport {
   // linearisation, the frames' poses, expressions and the focal length
   // marginalised (modes x modes; empty if it could not be formed). It is the
   // solve's own belief: calibrated when the landmark sigma matches the
-  // detector's error (identity_uncertainty.hpp).
+  // detector's error (shape_uncertainty.hpp).
   Eigen::MatrixXd identity_covariance;
 };
 

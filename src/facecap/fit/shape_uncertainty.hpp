@@ -21,8 +21,9 @@
 //    pessimistic, as the landmarks are better than the fit assumes;
 //  - with the sigma set to the truth's 1 px (a temporary hack), it is
 //    0.63-0.73 mm against a measured 0.9-1.4: optimistic, so something the
-//    posterior leaves out (the expression prior's pull, the linearisation)
-//    costs more than the noise;
+//    posterior leaves out costs more than the noise (not the expression
+//    prior: one 8 times weaker measured the same; perhaps the linearisation
+//    along the size-depth ray);
 //  - with exact landmarks and a tiny sigma the fit recovers the shape to
 //    0.01 mm and the size to 1e-5: the solve and the model are exact, and
 //    the noise is what the error is made of;

@@ -1,5 +1,6 @@
 #include "facecap/pipeline/refine_eval.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -40,8 +41,9 @@ double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
 double scaled_shading_error(const ShCoeffs& l, const ShCoeffs& truth, const Positions& camera_normals,
                             const std::vector<bool>& visible) {
   std::vector<double> est, tru;
-  for (Eigen::Index i = 0; i < camera_normals.cols(); ++i) {
-    if (!visible[i]) continue;
+  const Eigen::Index count = std::min<Eigen::Index>(camera_normals.cols(), Eigen::Index(visible.size()));
+  for (Eigen::Index i = 0; i < count; ++i) {
+    if (!visible[size_t(i)]) continue;
     const Vec3f n = to_viewer_frame(Vec3f(camera_normals.col(i)));
     est.push_back(sh_shade(l, double(n.x()), double(n.y()), double(n.z())));
     tru.push_back(sh_shade(truth, double(n.x()), double(n.y()), double(n.z())));

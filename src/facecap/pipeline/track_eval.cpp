@@ -9,6 +9,8 @@
 #include "facecap/core/progress.hpp"
 #include "facecap/core/rigid_alignment.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/fit/identity_size.hpp"
+#include "facecap/fit/shape_uncertainty.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 #include "facecap/synth/synthesize.hpp"
 
@@ -115,8 +117,10 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   r.size_ratio = align_rigid(true_neutral, fitted_neutral, true).scale;
   r.identity_shape_rms_mm = centred_rms_mm(true_neutral, fitted_neutral, false);
   r.identity_shape_rms_fixed_size_mm = centred_rms_mm(true_neutral, fitted_neutral, true);
-  r.shape_sd_mm = id.shape_sd_mm;
-  r.shape_sd_fixed_size_mm = id.shape_sd_fixed_size_mm;
+  const ShapeUncertainty uncertainty(model, static_cast<int>(id.identity.size()));
+  const IdentitySizeCorrection size(model, static_cast<int>(id.identity.size()));
+  r.shape_sd_mm = uncertainty.rms_mm(id.covariance);
+  r.shape_sd_fixed_size_mm = uncertainty.fixed_size_rms_mm(id.covariance, id.identity + size.mean_coefficients());
   int valid = 0;
   std::vector<double> true_yaw, fitted_yaw;
   for (const CoarseFit& fit : fits) {
