@@ -88,8 +88,12 @@ Positions fitted_shape(const FaceModel& model, const IdentityEstimate& id, const
 // with `fit_scale`, `fitted` is first scaled about its centroid by the least-
 // squares factor (the size taken out).
 double centred_rms_mm(const Positions& truth, const Positions& fitted, bool fit_scale) {
-  const Eigen::Matrix3Xd t = truth.cast<double>().colwise() - truth.cast<double>().rowwise().mean();
-  Eigen::Matrix3Xd f = fitted.cast<double>().colwise() - fitted.cast<double>().rowwise().mean();
+  const auto centred = [](const Positions& p) -> Eigen::Matrix3Xd {
+    const Eigen::Matrix3Xd d = p.cast<double>();
+    return d.colwise() - d.rowwise().mean();
+  };
+  const Eigen::Matrix3Xd t = centred(truth);
+  Eigen::Matrix3Xd f = centred(fitted);
   if (fit_scale && f.squaredNorm() > 0) f *= t.cwiseProduct(f).sum() / f.squaredNorm();
   return 10.0 * std::sqrt((t - f).squaredNorm() / double(std::max<Eigen::Index>(1, t.cols())));
 }
