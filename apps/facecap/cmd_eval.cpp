@@ -220,6 +220,8 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                 {"normal_error_detail_coarse_deg", r.normal_error_detail_coarse_deg},
                 {"normal_error_flat_deg", r.normal_error_flat_deg},
                 {"normal_error_flat_coarse_deg", r.normal_error_flat_coarse_deg},
+                {"normal_error_oracle_deg", r.normal_error_oracle_deg},
+                {"normal_error_detail_oracle_deg", r.normal_error_detail_oracle_deg},
                 {"true_shading", a->options.true_shading},
                 {"vertex_error_mm", r.vertex_error_mm},
                 {"vertex_error_coarse_mm", r.vertex_error_coarse_mm},

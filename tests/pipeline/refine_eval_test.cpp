@@ -102,6 +102,13 @@ TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
               r.normal_error_coarse_deg, 1e-6);
   EXPECT_GT(r.normal_error_detail_coarse_deg, 3.0);
   EXPECT_LT(r.normal_error_flat_coarse_deg, 0.1);
+  // The finest level displaced by the truth's own wrinkles (the oracle) meets
+  // the bar, half the coarse error: the hierarchy can hold the detail,
+  // it is the solve that does not find it. Seeds 1 and 2, 30 frames: 0.22 of
+  // 0.68 and 0.66 deg; 1.8 and 1.7 deg on the wrinkles' pixels against 5.9
+  // and 5.7.
+  EXPECT_LT(r.normal_error_oracle_deg, 0.5 * r.normal_error_coarse_deg);
+  EXPECT_LT(r.normal_error_detail_oracle_deg, 0.4 * r.normal_error_detail_coarse_deg);
 }
 
 TEST(RefineEval, WithTheTrueShadingTheSolveRecoversSomeWrinkles) {

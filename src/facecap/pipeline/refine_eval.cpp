@@ -10,6 +10,7 @@
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/synth/synth_renderer.hpp"
+#include "facecap/synth/wrinkles.hpp"
 
 namespace facecap {
 
@@ -29,6 +30,19 @@ SurfaceImage render_surface(const Positions& points, const std::vector<Triangle>
   rasterize(points, triangles, cam, s.buffers);
   s.normals = face_normal_image(s.buffers, triangles, points);
   return s;
+}
+
+// The truth's wrinkles on one level of the refiner's hierarchy: the synthetic
+// displacement function at each vertex's place on the neutral mean face
+// (prolonged through the levels with the refiner's own stencils, as the
+// renderer prolongs it through its subdivision).
+Eigen::VectorXf true_level_displacements(const FaceModel& model, const MeshHierarchy& hierarchy, int level) {
+  Eigen::Map<const Positions> neutral(model.neutral.data(), 3, model.num_vertices);
+  const Eigen::MatrixXf place =
+      hierarchy.prolong_from_coarse(Positions(neutral.leftCols(regions::kFace.num_vertices())), level);
+  Eigen::VectorXf d(place.cols());
+  for (Eigen::Index v = 0; v < place.cols(); ++v) d[v] = wrinkle_displacement(Vec3f(place.col(v)));
+  return d;
 }
 
 }  // namespace
@@ -97,17 +111,20 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
 
   RefineEvalResult r;
   double refine_ms = 0;
-  // Sums of the refined and the coarse normal error over all, detail and flat pixels.
+  // Sums of the refined, the coarse and the oracle's normal error over all,
+  // detail and flat pixels.
   struct ErrorSums {
-    double refined = 0, coarse = 0;
+    double refined = 0, coarse = 0, oracle = 0;
     long pixels = 0;
-    void add(double e_refined, double e_coarse) {
+    void add(double e_refined, double e_coarse, double e_oracle) {
       refined += e_refined;
       coarse += e_coarse;
+      oracle += e_oracle;
       ++pixels;
     }
     double mean_refined() const { return pixels > 0 ? refined / pixels : 0.0; }
     double mean_coarse() const { return pixels > 0 ? coarse / pixels : 0.0; }
+    double mean_oracle() const { return pixels > 0 ? oracle / pixels : 0.0; }
   };
   ErrorSums all, detail, flat;
   double depth_sum = 0, depth_coarse_sum = 0;
@@ -133,19 +150,29 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
     const SurfaceImage refined = render_surface(ref.positions, refiner.hierarchy().level(ref.levels - 1).triangles,
                                                 perf.camera, o.width, o.height);
     const SurfaceImage base = render_surface(coarse, face.triangles, perf.camera, o.width, o.height);
+    // The oracle: the finest level displaced by the truth's own wrinkles.
+    const int finest = ref.levels - 1;
+    const MeshLevel& finest_level = refiner.hierarchy().level(finest);
+    const Positions finest_base = refiner.hierarchy().prolong_from_coarse(coarse, finest);
+    const SurfaceImage oracle =
+        render_surface(displaced_positions(finest_base, level_normals(finest_level, finest_base),
+                                           true_level_displacements(model, refiner.hierarchy(), finest)),
+                       finest_level.triangles, perf.camera, o.width, o.height);
     for (int y = 0; y < o.height; ++y) {
       for (int x = 0; x < o.width; ++x) {
         const size_t i = size_t(y) * o.width + x;
-        if (!truth.buffers.covered(x, y) || !refined.buffers.covered(x, y) || !base.buffers.covered(x, y)) continue;
+        if (!truth.buffers.covered(x, y) || !refined.buffers.covered(x, y) || !base.buffers.covered(x, y) ||
+            !oracle.buffers.covered(x, y))
+          continue;
         const cv::Vec3f nt = truth.normals.at<cv::Vec3f>(y, x), nr = refined.normals.at<cv::Vec3f>(y, x),
-                        nc = base.normals.at<cv::Vec3f>(y, x);
+                        nc = base.normals.at<cv::Vec3f>(y, x), no = oracle.normals.at<cv::Vec3f>(y, x);
         auto angle = [](const cv::Vec3f& a, const cv::Vec3f& b) {
           const double c = a.dot(b) / std::max(1e-12, double(cv::norm(a) * cv::norm(b)));
           return std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg;
         };
-        const double e_refined = angle(nr, nt), e_coarse = angle(nc, nt);
-        all.add(e_refined, e_coarse);
-        (e_coarse > RefineEvalResult::kDetailAngleDeg ? detail : flat).add(e_refined, e_coarse);
+        const double e_refined = angle(nr, nt), e_coarse = angle(nc, nt), e_oracle = angle(no, nt);
+        all.add(e_refined, e_coarse, e_oracle);
+        (e_coarse > RefineEvalResult::kDetailAngleDeg ? detail : flat).add(e_refined, e_coarse, e_oracle);
         depth_sum += 10.0 * std::abs(refined.buffers.depth[i] - truth.buffers.depth[i]);
         depth_coarse_sum += 10.0 * std::abs(base.buffers.depth[i] - truth.buffers.depth[i]);
       }
@@ -167,6 +194,8 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
     r.normal_error_detail_coarse_deg = detail.mean_coarse();
     r.normal_error_flat_deg = flat.mean_refined();
     r.normal_error_flat_coarse_deg = flat.mean_coarse();
+    r.normal_error_oracle_deg = all.mean_oracle();
+    r.normal_error_detail_oracle_deg = detail.mean_oracle();
     r.vertex_error_mm = depth_sum / all.pixels;
     r.vertex_error_coarse_mm = depth_coarse_sum / all.pixels;
   }

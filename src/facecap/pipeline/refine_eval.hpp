@@ -50,6 +50,11 @@ struct RefineEvalResult {
   double normal_error_detail_coarse_deg = 0;
   double normal_error_flat_deg = 0;
   double normal_error_flat_coarse_deg = 0;
+  // The oracle: the finest level displaced by the truth's own wrinkle
+  // function, scored the same way. What the hierarchy can represent, so the
+  // floor under normal_error_deg that a perfect solve would reach.
+  double normal_error_oracle_deg = 0;
+  double normal_error_detail_oracle_deg = 0;
   double vertex_error_mm = 0;  // |depth - true depth| per pixel
   double vertex_error_coarse_mm = 0;
   double refine_ms_per_frame = 0;
