@@ -12,7 +12,7 @@
 namespace facecap {
 
 TEST(Landmarks, NmeIsMeanErrorOverOuterEyeDistance) {
-  Landmarks truth{};
+  Landmarks truth = zero_landmarks();
   for (int i = 0; i < kNumLandmarks; ++i) truth[i] = Vec2f(float(i), 0.0f);
   truth[36] = Vec2f(0, 0);
   truth[45] = Vec2f(50, 0);

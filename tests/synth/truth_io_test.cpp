@@ -19,7 +19,7 @@ TEST(TruthIo, RoundTripsEveryFrameParameter) {
   t.performance = make_performance(*model, o);
   t.expression_names = model->expression_names;
   for (int f = 0; f < 4; ++f) {
-    Landmarks lm{};
+    Landmarks lm = zero_landmarks();
     lm[5] = Vec2f(float(f), 2.5f);
     t.landmarks.push_back(lm);
     t.vertex_landmarks.push_back(lm);

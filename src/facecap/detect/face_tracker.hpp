@@ -37,7 +37,7 @@ struct FaceTrackerOptions {
 
 struct TrackedFace {
   TrackStatus status = TrackStatus::kLost;
-  Landmarks landmarks{};
+  Landmarks landmarks = zero_landmarks();
   Box box;                      // the box the shape predictor ran on
   int faces_seen = 0;           // faces found when the detector ran this frame (0 if it did not run)
   bool detector_ran = false;    // any detector run: the per-frame check or a full-frame search

@@ -12,6 +12,13 @@ namespace facecap {
 
 inline constexpr int kNumLandmarks = 68;
 using Landmarks = std::array<Vec2f, kNumLandmarks>;
+// All 68 at the origin. `Landmarks lm{}` does not zero them: Eigen's default
+// constructor leaves a vector's coefficients uninitialised.
+inline Landmarks zero_landmarks() {
+  Landmarks lm;
+  lm.fill(Vec2f::Zero());
+  return lm;
+}
 
 // Axis-aligned box in pixels.
 struct Box {

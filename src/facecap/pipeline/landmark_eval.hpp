@@ -21,7 +21,7 @@ struct LandmarkEvalResult {
   float mean_error_px = 0;
   float max_error_px = 0;
   RegionNme regions;
-  Landmarks detected{};
+  Landmarks detected = zero_landmarks();
 };
 
 // The face used is the detection that overlaps the annotation best. Throws

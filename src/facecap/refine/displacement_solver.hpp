@@ -63,7 +63,7 @@ struct DisplacementProblem {
   Positions base;          // camera-space positions of the level (cm)
   Positions base_normals;  // unit vertex normals of the base surface
   Positions albedo;        // RGB per vertex
-  ShCoeffs lighting;
+  ShCoeffs lighting = ShCoeffs::Zero();
   const VertexSamples* samples = nullptr;
   Eigen::VectorXf prolonged;  // pd: from the coarser level (empty at level 0: no E_hier)
   Eigen::VectorXf previous;   // d of the previous frame (empty: no E_temp)

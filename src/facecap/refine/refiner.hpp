@@ -82,7 +82,7 @@ struct RefineTimings {
 };
 
 struct Refinement {
-  ShCoeffs lighting;
+  ShCoeffs lighting = ShCoeffs::Zero();
   Positions positions;          // refined finest level, camera space (cm)
   Positions normals;            // of the refined finest level
   Positions albedo;             // finest level, RGB
@@ -100,7 +100,7 @@ std::vector<Triangle> masked_triangles(const std::vector<Triangle>& triangles, c
 // estimates, which are still made and reported. `eval refine --true-shading`
 // measures the displacement solve alone this way.
 struct KnownShading {
-  ShCoeffs lighting;
+  ShCoeffs lighting = ShCoeffs::Zero();
   Positions albedo;  // 3 x N RGB on the coarse mesh
 };
 
@@ -140,7 +140,7 @@ class Refiner {
   struct AlbedoFrame {
     VertexSamples samples;
     Positions normals;
-    ShCoeffs lighting;
+    ShCoeffs lighting = ShCoeffs::Zero();
   };
   std::vector<AlbedoFrame> albedo_frames_;
   int frame_count_ = 0;
