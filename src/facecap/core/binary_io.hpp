@@ -20,7 +20,9 @@ class ByteWriter {
   void pod(const T& v) {
     raw(&v, sizeof(T));
   }
-  void raw(const void* p, size_t n) { bytes_.append(static_cast<const char*>(p), n); }
+  void raw(const void* p, size_t n) {
+    if (n > 0) bytes_.append(static_cast<const char*>(p), n);
+  }
   void floats(const float* p, size_t n) { raw(p, n * sizeof(float)); }
   void ints(const std::vector<int>& v) {
     pod(static_cast<uint32_t>(v.size()));
@@ -49,6 +51,7 @@ class ByteReader {
   }
   void raw(void* p, size_t n) {
     if (n > data_.size()) throw Error(what_ + " is truncated: " + path_.string());
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not get
     std::memcpy(p, data_.data(), n);
     data_.remove_prefix(n);
   }
