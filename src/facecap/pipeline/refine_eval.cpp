@@ -131,6 +131,7 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
   KnownShading known;
   if (o.true_shading) known.albedo = renderer.appearance().vertex_albedo.leftCols(face.num_vertices);
   std::vector<bool> seen(face.num_vertices, false);
+  Eigen::VectorXf true_wrinkles;  // on the finest level
   Progress progress("refine eval", o.frames, o.quiet);
   for (const SynthFrame& f : perf.frames) {
     const cv::Mat image = renderer.render(f, rng);
@@ -144,19 +145,19 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
         scaled_shading_error(ref.lighting, f.lighting, vertex_normals(coarse, face.triangles), ref.visible);
     for (int v = 0; v < face.num_vertices; ++v) seen[v] = seen[v] || ref.visible[v];
 
-    // The three surfaces, per pixel.
+    // The four surfaces, per pixel.
     const SurfaceImage truth =
         render_surface(renderer.detailed_face(f), renderer.detail_mesh()->triangles, perf.camera, o.width, o.height);
-    const SurfaceImage refined = render_surface(ref.positions, refiner.hierarchy().level(ref.levels - 1).triangles,
-                                                perf.camera, o.width, o.height);
-    const SurfaceImage base = render_surface(coarse, face.triangles, perf.camera, o.width, o.height);
-    // The oracle: the finest level displaced by the truth's own wrinkles.
     const int finest = ref.levels - 1;
     const MeshLevel& finest_level = refiner.hierarchy().level(finest);
+    const SurfaceImage refined = render_surface(ref.positions, finest_level.triangles, perf.camera, o.width, o.height);
+    const SurfaceImage base = render_surface(coarse, face.triangles, perf.camera, o.width, o.height);
+    // The oracle: the finest level displaced by the truth's own wrinkles
+    // (the hierarchy is fixed after the first frame, and so are they).
+    if (true_wrinkles.size() == 0) true_wrinkles = true_level_displacements(model, refiner.hierarchy(), finest);
     const Positions finest_base = refiner.hierarchy().prolong_from_coarse(coarse, finest);
     const SurfaceImage oracle =
-        render_surface(displaced_positions(finest_base, level_normals(finest_level, finest_base),
-                                           true_level_displacements(model, refiner.hierarchy(), finest)),
+        render_surface(displaced_positions(finest_base, level_normals(finest_level, finest_base), true_wrinkles),
                        finest_level.triangles, perf.camera, o.width, o.height);
     for (int y = 0; y < o.height; ++y) {
       for (int x = 0; x < o.width; ++x) {
