@@ -196,6 +196,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                   {"frames", r.frames},
                   {"photometric_coarse", r.photometric_coarse},
                   {"photometric_refined", r.photometric_refined},
+                  {"photometric_shading_floor", r.photometric_shading_floor},
                   {"reduction", r.photometric_coarse > 0 ? 1.0 - r.photometric_refined / r.photometric_coarse : 0.0},
                   {"refine_ms_per_frame", r.refine_ms_per_frame},
                   {"device", to_string(a->options.refine.device)}});

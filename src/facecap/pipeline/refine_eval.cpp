@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <random>
+#include <utility>
 
+#include "facecap/core/image_sampling.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/render/photometric.hpp"
@@ -43,6 +46,54 @@ Eigen::VectorXf true_level_displacements(const FaceModel& model, const MeshHiera
   Eigen::VectorXf d(place.cols());
   for (Eigen::Index v = 0; v < place.cols(); ++v) d[v] = wrinkle_displacement(Vec3f(place.col(v)));
   return d;
+}
+
+// The range of l^T SH(n) over the normals that face the camera (viewer
+// frame, n_z >= 0), sampled on a latitude-longitude grid.
+std::pair<double, double> shading_range_facing(const ShCoeffs& lighting) {
+  constexpr double kPi = 3.14159265358979323846;
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (int i = 0; i <= 45; ++i) {
+    const double polar = 0.5 * kPi * i / 45;
+    for (int j = 0; j < 180; ++j) {
+      const double azimuth = 2 * kPi * j / 180;
+      const double s = sh_shade<double>(lighting, std::sin(polar) * std::cos(azimuth),
+                                        std::sin(polar) * std::sin(azimuth), std::cos(polar));
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+  }
+  return {lo, hi};
+}
+
+// The finest level's albedo with each observed vertex's shading replaced by
+// the value that best matches its own colour in the frame (least squares
+// over the three channels), within what a normal facing the camera can
+// receive from the frame's lighting: the shading any displacement could
+// give that vertex, at best, each vertex on its own. Rendered like the
+// refinement, it is the floor of the photometric error that displacements
+// reach with this albedo and lighting (colour, texture finer than the level
+// and the interpolation between vertices remain).
+Positions shading_floor_albedo(const cv::Mat& image, const Refinement& ref, const PinholeCamera& cam) {
+  const auto [lo, hi] = shading_range_facing(ref.lighting);
+  Positions albedo = ref.albedo;
+  for (Eigen::Index v = 0; v < albedo.cols(); ++v) {
+    if (!ref.visible[size_t(v)]) continue;
+    const Vec3f n = to_viewer_frame(ref.normals.col(v));
+    const double shade = sh_shade<double>(ref.lighting, n.x(), n.y(), n.z());
+    if (shade <= 0) continue;
+    const Vec2f px = cam.project(Vec3f(ref.positions.col(v)));
+    const Vec3f observed = sample_bilinear_rgb8(image, px.x(), px.y());
+    double num = 0, den = 0;
+    for (int c = 0; c < 3; ++c) {
+      num += albedo(c, v) * observed[c];
+      den += double(albedo(c, v)) * albedo(c, v);
+    }
+    if (den <= 0) continue;
+    const double best = std::clamp(num / den, lo, hi);
+    albedo.col(v) *= float(best / shade);
+  }
+  return albedo;
 }
 
 }  // namespace
@@ -234,16 +285,21 @@ RefineVideoResult evaluate_refine_video(const FaceModel& model, const std::strin
     refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const PhotometricError coarse_error = photometric_error(
         f.image, coarse, skin, vertex_normals(coarse, face.triangles), refiner.coarse_albedo(), ref.lighting, cam);
-    const PhotometricError refined_error = photometric_error(
-        f.image, ref.positions, masked_triangles(refiner.hierarchy().level(ref.levels - 1).triangles, ref.data_mask),
-        ref.normals, ref.albedo, ref.lighting, cam);
+    const std::vector<Triangle> refined_skin =
+        masked_triangles(refiner.hierarchy().level(ref.levels - 1).triangles, ref.data_mask);
+    const PhotometricError refined_error =
+        photometric_error(f.image, ref.positions, refined_skin, ref.normals, ref.albedo, ref.lighting, cam);
     r.photometric_coarse += coarse_error.mean_abs;
     r.photometric_refined += refined_error.mean_abs;
+    r.photometric_shading_floor += photometric_error(f.image, ref.positions, refined_skin, ref.normals,
+                                                     shading_floor_albedo(f.image, ref, cam), ref.lighting, cam)
+                                       .mean_abs;
     ++r.frames;
   });
   if (r.frames > 0) {
     r.photometric_coarse /= r.frames;
     r.photometric_refined /= r.frames;
+    r.photometric_shading_floor /= r.frames;
     r.refine_ms_per_frame = refine_ms / r.frames;
   }
   return r;

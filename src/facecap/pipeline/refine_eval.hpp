@@ -88,6 +88,9 @@ struct RefineVideoResult {
   double photometric_coarse =
       0;  // mean absolute difference, 0-255, over skin pixels (narrow face area), mean over frames
   double photometric_refined = 0;
+  // The refined finest level with each observed vertex's grey level fitted to
+  // its own colour: the floor one displacement per vertex can reach.
+  double photometric_shading_floor = 0;
   double refine_ms_per_frame = 0;
 };
 
