@@ -10,7 +10,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand(
       "track",
       "Capture head pose, focal length, identity and 53 expression weights per frame: DIR/frames.csv, "
-      "DIR/frames.jsonl, DIR/identity.json, and optionally meshes and an overlay video");
+      "DIR/frames.jsonl, DIR/identity.json, and optionally meshes, an animated glTF and an overlay video");
   struct Args {
     std::string input, out, mesh_space = "model";
     TrackOptions options;
@@ -25,6 +25,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--overlay", a->options.overlay,
                 "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio (with --refine also "
                 "DIR/shaded.mp4 and DIR/heatmap.mp4)");
+  cmd->add_flag("--gltf", a->options.gltf,
+                "Write DIR/animation.glb: the face with its 53 blend shapes as morph targets, head pose and weights "
+                "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "
+                "textured with the albedo)");
   cmd->add_flag("--refine", a->options.refine,
                 "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
   add_device_option(*cmd, a->options.refine_options.device);
@@ -58,6 +62,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                    s.refine_ms / std::max(1, s.refined_frames));
     }
     std::printf("%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
+    if (a->options.gltf) std::printf("%s\n", (std::filesystem::path(a->out) / "animation.glb").string().c_str());
   });
 }
 

@@ -108,8 +108,9 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
     f << "P6 320 240 255\n" << std::string(320 * 240 * 3, char(128));
   }
   std::filesystem::create_directories(dir.path() / "out");
-  std::ofstream(dir.path() / "out" / "identity.json") << "{}";  // an earlier run's
-  const RunResult r = run("track " + image.string() + " -o " + (dir.path() / "out").string());
+  std::ofstream(dir.path() / "out" / "identity.json") << "{}";    // an earlier run's
+  std::ofstream(dir.path() / "out" / "animation.glb") << "glTF";  // an earlier run's
+  const RunResult r = run("track " + image.string() + " -o " + (dir.path() / "out").string() + " --gltf");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("no face found in " + image.string()), std::string::npos) << r.out;
@@ -119,6 +120,7 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
   ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
   EXPECT_EQ(row.rfind("0,0,lost,", 0), 0u) << row;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "identity.json"));  // no identity was seen here
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "animation.glb"));  // nor a face to animate
 }
 
 TEST(Cli, EditsOfAVideoWithNoFaceWriteNothingAndSaySo) {

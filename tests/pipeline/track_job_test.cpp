@@ -9,6 +9,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -85,12 +86,25 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   TempDir out;
   TrackOptions o;
   o.capture.quiet = true;
-  run_track(*model, frames.path().string(), out.path(), o);
+  o.gltf = true;
+  const TrackSummary s = run_track(*model, frames.path().string(), out.path(), o);
   const auto csv = lines(out.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
   EXPECT_EQ(csv[32].find("nan"), std::string::npos);
   EXPECT_EQ(csv[34].find("lost"), std::string::npos) << csv[34];  // back
+
+  // The animation keys the tracked frames only: players interpolate across the lost one.
+  const test::Glb g = test::Glb::read(out.path() / "animation.glb");
+  const auto& sampler = g.doc["animations"][0]["samplers"][0];
+  const std::vector<float> times = g.floats(sampler["input"]);
+  EXPECT_EQ(int(times.size()), 36 - s.capture.lost);
+  EXPECT_GE(s.capture.lost, 1);
+  // Images have no timeline: they are keyed 1/30 s apart, and frame 31 has no key.
+  for (float t : times) EXPECT_GT(std::abs(t - 31 / 30.0), 1e-4);
+  EXPECT_NEAR(times.back(), 35 / 30.0, 1e-6);
+  EXPECT_EQ(g.doc["meshes"][0]["primitives"][0]["targets"].size(), 53u);
+  EXPECT_FALSE(g.doc.contains("images"));  // no albedo without --refine
 }
 
 TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
@@ -103,6 +117,7 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   o.meshes = true;
   o.overlay = true;
   o.refine = true;
+  o.gltf = true;
   const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
   EXPECT_EQ(s.refined_frames, 32 - s.capture.lost);
   const auto csv = lines(dir.path() / "frames.csv");
@@ -112,6 +127,10 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   for (size_t i = 1; i < csv.size(); ++i) EXPECT_EQ(csv[i].find("nan"), std::string::npos);
   const cv::Mat albedo = cv::imread((dir.path() / "albedo.png").string());
   ASSERT_FALSE(albedo.empty());
+  // The animated glTF carries the same albedo as its texture.
+  const test::Glb g = test::Glb::read(dir.path() / "animation.glb");
+  const auto& view = g.doc["bufferViews"][int(g.doc["images"][0]["bufferView"])];
+  EXPECT_EQ(size_t(view["byteLength"]), fs::file_size(dir.path() / "albedo.png"));
   EXPECT_GT(cv::mean(albedo)[2], 20.0);  // skin, not black
   for (const char* video_name : {"overlay.mp4", "shaded.mp4", "heatmap.mp4"}) {
     EXPECT_EQ(open_input((dir.path() / video_name).string())->info().frames, 32) << video_name;

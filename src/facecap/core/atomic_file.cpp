@@ -45,14 +45,18 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-void write_text_file(const fs::path& path, const std::string& text) {
+void write_binary_file(const fs::path& path, const void* data, size_t bytes) {
   AtomicFile file(path);
   {
     std::ofstream out(file.temp_path(), std::ios::binary);
-    out << text;
+    out.write(static_cast<const char*>(data), std::streamsize(bytes));
     if (!out.flush()) throw Error("cannot write " + path.string());
   }
   file.commit();
+}
+
+void write_text_file(const fs::path& path, const std::string& text) {
+  write_binary_file(path, text.data(), text.size());
 }
 
 }  // namespace facecap

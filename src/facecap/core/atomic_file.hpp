@@ -4,6 +4,7 @@
 // interrupted run never leaves a half-written file under the final name (and
 // never destroys a good file that was there). Uncommitted temporaries are
 // removed by the destructor.
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -30,7 +31,8 @@ class AtomicFile {
 // Throws facecap::Error unless `dir` exists (or can be created) and is writable.
 void ensure_writable_dir(const std::filesystem::path& dir);
 
-// Writes text atomically.
+// Writes text, or bytes, atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
+void write_binary_file(const std::filesystem::path& path, const void* data, size_t bytes);
 
 }  // namespace facecap

@@ -9,8 +9,10 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
+#include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/video_writer.hpp"
+#include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/render/overlay.hpp"
@@ -68,6 +70,7 @@ class FrameWriter {
               const TrackOptions& options)
       : model_(model),
         info_(info),
+        input_(input),
         dir_(dir),
         options_(options),
         csv_(dir / "frames.csv"),
@@ -131,6 +134,7 @@ class FrameWriter {
     o << '\n';
     jsonl_.stream() << row.dump() << '\n';
     if (ok) write_mesh(f, ref, coarse);
+    if (ok && options_.gltf) add_animation_key(f);
     write_videos(f, ref, coarse, camera);
   }
 
@@ -164,11 +168,24 @@ class FrameWriter {
       std::error_code ec;
       fs::remove(dir_ / "identity.json", ec);
     }
+    std::vector<uint8_t> albedo_png;
     if (refiner != nullptr && refiner->initialised()) {
       const cv::Mat tex = bake_uv_texture(face_mesh_, refiner->coarse_albedo());
-      AtomicFile file(dir_ / "albedo.png");
-      if (!cv::imwrite(file.temp_path().string(), tex)) throw Error("cannot write " + (dir_ / "albedo.png").string());
-      file.commit();
+      if (!cv::imencode(".png", tex, albedo_png)) throw Error("cannot encode the albedo texture");
+      write_binary_file(dir_ / "albedo.png", albedo_png.data(), albedo_png.size());
+    }
+    if (options_.gltf) {
+      // Like identity.json: no tracked frame, no face to animate.
+      if (id.frames_used > 0 && !animation_keys_.empty()) {
+        GltfAnimatedMesh glb =
+            face_animation(model_, id.identity, animation_keys_, {id.focal, info_.width, info_.height});
+        glb.base_colour_png = std::move(albedo_png);
+        glb.animation_name = fs::path(input_).stem().string();
+        write_glb(dir_ / "animation.glb", glb);
+      } else {
+        std::error_code ec;
+        fs::remove(dir_ / "animation.glb", ec);
+      }
     }
     csv_.commit();
     jsonl_.commit();
@@ -177,6 +194,16 @@ class FrameWriter {
   }
 
   int meshes_written() const { return meshes_; }
+
+  // Images have no timeline: a folder's are keyed 1/30 s apart. A key no
+  // later than the one before (a video's repeated timestamp) is dropped, as
+  // glTF needs increasing key times.
+  void add_animation_key(const CapturedFrame& f) {
+    const bool images = info_.kind == InputKind::kImage || info_.kind == InputKind::kImageFolder;
+    const double time = images ? f.index / 30.0 : f.time;
+    if (!animation_keys_.empty() && time <= animation_keys_.back().time) return;
+    animation_keys_.push_back({time, f.fit.pose, f.fit.expression});
+  }
   void set_refiner(const Refiner* r) { refiner_ = r; }
 
  private:
@@ -255,6 +282,7 @@ class FrameWriter {
 
   const FaceModel& model_;
   InputInfo info_;
+  std::string input_;
   fs::path dir_;
   const TrackOptions& options_;
   StagedText csv_;
@@ -265,6 +293,7 @@ class FrameWriter {
   const Refiner* refiner_ = nullptr;
   std::optional<std::vector<Vec2f>> refined_uvs_;
   std::vector<Polygon> refined_polygons_;
+  std::vector<FaceAnimationKey> animation_keys_;
   int meshes_ = 0;
 };
 

@@ -7,6 +7,10 @@
 //   DIR/identity.json  identity weights, focal length, image size, conventions
 //   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with UVs
 //   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
+//   DIR/animation.glb  (--gltf) the whole capture as one animated glTF: the
+//                      face with the 53 blend shapes as morph targets, head
+//                      pose and weights keyed per frame, the fitted camera
+//                      (face_animation.hpp); with --refine its albedo texture
 // With --refine (shading-based refinement, §4.2-4.3) also:
 //   lighting columns l0..l8 per frame, DIR/albedo.png (ICT UV layout),
 //   refined finest-level meshes with --meshes, and with --overlay
@@ -28,6 +32,7 @@ struct TrackOptions {
   bool meshes = false;
   MeshSpace mesh_space = MeshSpace::kModel;
   bool overlay = false;
+  bool gltf = false;
   bool refine = false;
   RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)

@@ -1,0 +1,42 @@
+#pragma once
+// A tracked video as one animated glTF (`facecap track --gltf`): the face
+// region of the ICT model with the video's identity as its rest shape, the 53
+// expression blend shapes as morph targets under their ARKit names, one key
+// per tracked frame (head pose and weights), and the fitted camera at the
+// origin, so that looking through it reproduces the video's view. Lost frames
+// have no key; players interpolate across them.
+//
+// Axes: glTF's world is the OpenCV camera frame turned half a turn about x
+// (F = diag(1, -1, -1): y up, the camera looking down -z), in metres. With
+// the pose's X_camera = R F X_model + t, the node carries rotation F R F and
+// translation F t, and the mesh is in ICT model space (y up, z out of the
+// face), which needs no change of axes.
+#include <vector>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/io/gltf_writer.hpp"
+#include "facecap/model/face_model.hpp"
+
+namespace facecap {
+
+struct FaceAnimationKey {
+  double time = 0;  // seconds
+  HeadPose pose;
+  Eigen::VectorXf expression;  // the model's expression weights
+};
+
+struct FaceAnimationCamera {
+  double focal_px = 0;
+  int width = 0, height = 0;
+};
+
+// The mesh is split where the UV layout has seams. `identity`: the leading
+// identity modes (as IdentityEstimate holds them).
+GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& identity,
+                                const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera);
+
+// Which model vertex (face region, region-local) each glTF vertex of
+// face_animation() copies.
+std::vector<int> face_animation_source_vertices(const FaceModel& model);
+
+}  // namespace facecap

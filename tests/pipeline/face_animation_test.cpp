@@ -1,0 +1,105 @@
+#include "facecap/pipeline/face_animation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/model/regions.hpp"
+#include "io/glb_reader.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace {
+
+// What a glTF player computes for vertex i at key k: the node's rotation and
+// translation applied to the rest position plus the weighted morph offsets.
+Eigen::Vector3f played_vertex(const test::Glb& g, int i, int key) {
+  const auto& prim = g.doc["meshes"][0]["primitives"][0];
+  const std::vector<float> rest = g.floats(prim["attributes"]["POSITION"]);
+  Eigen::Vector3f p(rest[i * 3], rest[i * 3 + 1], rest[i * 3 + 2]);
+  const auto& anim = g.doc["animations"][0];
+  std::map<std::string, std::vector<float>> out;
+  for (const auto& ch : anim["channels"])
+    out[ch["target"]["path"]] = g.floats(anim["samplers"][int(ch["sampler"])]["output"]);
+  const size_t targets = prim["targets"].size();
+  for (size_t j = 0; j < targets; ++j) {
+    const float w = out["weights"][key * targets + j];
+    if (w == 0) continue;
+    const std::vector<float> t = g.floats(prim["targets"][j]["POSITION"]);
+    p += w * Eigen::Vector3f(t[i * 3], t[i * 3 + 1], t[i * 3 + 2]);
+  }
+  const float* r = &out["rotation"][key * 4];
+  const Eigen::Quaternionf q(r[3], r[0], r[1], r[2]);
+  const float* t = &out["translation"][key * 3];
+  return q * p + Eigen::Vector3f(t[0], t[1], t[2]);
+}
+
+}  // namespace
+
+TEST(FaceAnimation, PlayedBackItReproducesTheTrackedMeshAndTheCameraView) {
+  FACECAP_REQUIRE_MODEL(model);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  Eigen::VectorXd identity(model->num_identity());
+  for (auto& x : identity) x = normal(rng);
+  std::vector<FaceAnimationKey> keys;
+  for (int k = 0; k < 3; ++k) {
+    FaceAnimationKey key;
+    key.time = 0.04 * k;
+    key.pose.rotation = Vec3d(0.1 * normal(rng), 0.4 * normal(rng), 0.1 * normal(rng));
+    key.pose.translation = Vec3d(2 * normal(rng), 2 * normal(rng), 55 + 5 * normal(rng));
+    key.expression = Eigen::VectorXf::Zero(model->num_expressions());
+    for (int j = 0; j < 6; ++j) key.expression[(k * 11 + j * 7) % model->num_expressions()] = unit(rng);
+    keys.push_back(key);
+  }
+  const FaceAnimationCamera camera{900.0, 1280, 720};
+  TempDir dir;
+  write_glb(dir.path() / "a.glb", face_animation(*model, identity, keys, camera));
+  const test::Glb g = test::Glb::read(dir.path() / "a.glb");
+
+  const std::vector<int> source = face_animation_source_vertices(*model);
+  const auto& prim = g.doc["meshes"][0]["primitives"][0];
+  ASSERT_EQ(size_t(g.doc["accessors"][int(prim["attributes"]["POSITION"])]["count"]), source.size());
+  EXPECT_GE(source.size(), size_t(regions::kFace.num_vertices()));  // split at UV seams, never merged
+  EXPECT_EQ(g.doc["meshes"][0]["extras"]["targetNames"][0], model->expression_names[0]);
+  const double yfov = g.doc["cameras"][0]["perspective"]["yfov"];
+  const double aspect = g.doc["cameras"][0]["perspective"]["aspectRatio"];
+  EXPECT_NEAR(aspect, 1280.0 / 720.0, 1e-9);
+
+  const Eigen::Vector3f flip(1, -1, -1);  // glTF's world is the OpenCV camera frame turned about x
+  const PinholeCamera cam = PinholeCamera::centered(camera.focal_px, camera.width, camera.height);
+  for (int k = 0; k < 3; ++k) {
+    const Positions truth =
+        to_camera(model->evaluate(identity.cast<float>(), keys[k].expression, regions::kFace), keys[k].pose);
+    double worst_cm = 0, worst_px = 0;
+    for (size_t i = 0; i < source.size(); i += 37) {
+      const Eigen::Vector3f world = played_vertex(g, int(i), k);
+      const Eigen::Vector3f cam_cm = flip.cwiseProduct(world) * 100.0f;
+      worst_cm = std::max(worst_cm, double((cam_cm - truth.col(source[i])).norm()));
+      // Through the glTF camera (looking down -z, y up) to pixels whose
+      // centres are at integers, against the tracker's pinhole projection.
+      const double t = std::tan(0.5 * yfov);
+      const double xn = world.x() / -world.z() / (t * aspect), yn = world.y() / -world.z() / t;
+      const Vec2d glt((xn + 1) * 0.5 * camera.width - 0.5, (1 - yn) * 0.5 * camera.height - 0.5);
+      const Vec2d pin = cam.project(Vec3d(truth.col(source[i]).cast<double>()));
+      worst_px = std::max(worst_px, (glt - pin).cwiseAbs().maxCoeff());
+    }
+    EXPECT_LT(worst_cm, 1e-3) << "key " << k;
+    // glTF's camera has no principal point: ours sits at half the image
+    // size, half a pixel from the centre of a grid with integer centres.
+    EXPECT_LT(worst_px, 0.5 + 1e-3) << "key " << k;
+  }
+}
+
+TEST(FaceAnimation, TooManyWeightsIsAnError) {
+  FACECAP_REQUIRE_MODEL(model);
+  FaceAnimationKey key;
+  key.expression = Eigen::VectorXf::Zero(model->num_expressions() + 1);
+  EXPECT_THROW(face_animation(*model, Eigen::VectorXd::Zero(model->num_identity()), {key}, {}), Error);
+}
+
+}  // namespace facecap
