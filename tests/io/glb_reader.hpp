@@ -1,6 +1,7 @@
 #pragma once
 // Reads a .glb back for tests: the container's header and chunks, checked
 // against the specification's layout, and float accessors decoded.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -39,29 +40,48 @@ struct Glb {
     return g;
   }
 
-  // The accessor's floats, element after element.
+  // The accessor's floats, element after element (a sparse accessor's
+  // zeros filled in).
   std::vector<float> floats(int accessor) const {
     const auto& a = doc.at("accessors").at(accessor);
     if (a.at("componentType") != 5126) throw std::runtime_error("not a float accessor");
     const std::string type = a.at("type");
     const size_t n = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
-    const auto& v = doc.at("bufferViews").at(int(a.at("bufferView")));
-    const size_t at = size_t(v.value("byteOffset", 0)) + size_t(a.value("byteOffset", 0));
-    const size_t count = size_t(a.at("count")) * n;
-    if (at + count * 4 > size_t(v.value("byteOffset", 0)) + size_t(v.at("byteLength")) || at + count * 4 > bin.size())
-      throw std::runtime_error("accessor outside its view");
-    std::vector<float> out(count);
-    std::memcpy(out.data(), bin.data() + at, count * 4);
+    const size_t count = size_t(a.at("count"));
+    std::vector<float> out(count * n, 0.0f);
+    if (a.contains("bufferView"))
+      copy(a.at("bufferView"), size_t(a.value("byteOffset", 0)), out.data(), out.size() * 4);
+    if (a.contains("sparse")) {
+      const auto& sp = a.at("sparse");
+      const size_t moving = sp.at("count");
+      if (sp.at("indices").at("componentType") != 5125) throw std::runtime_error("sparse indices not uint32");
+      std::vector<uint32_t> index(moving);
+      std::vector<float> values(moving * n);
+      copy(sp.at("indices").at("bufferView"), 0, index.data(), moving * 4);
+      copy(sp.at("values").at("bufferView"), 0, values.data(), values.size() * 4);
+      for (size_t k = 0; k < moving; ++k) {
+        if (index[k] >= count || (k > 0 && index[k] <= index[k - 1])) throw std::runtime_error("bad sparse index");
+        std::copy(values.begin() + k * n, values.begin() + (k + 1) * n, out.begin() + index[k] * n);
+      }
+    }
     return out;
   }
 
   std::vector<uint32_t> indices(int accessor) const {
     const auto& a = doc.at("accessors").at(accessor);
-    const auto& v = doc.at("bufferViews").at(int(a.at("bufferView")));
-    const size_t at = size_t(v.value("byteOffset", 0)) + size_t(a.value("byteOffset", 0));
     std::vector<uint32_t> out(size_t(a.at("count")));
-    std::memcpy(out.data(), bin.data() + at, out.size() * 4);
+    copy(a.at("bufferView"), size_t(a.value("byteOffset", 0)), out.data(), out.size() * 4);
     return out;
+  }
+
+ private:
+  // `bytes` from buffer view `view` at `offset`, checked to lie inside it.
+  void copy(int view, size_t offset, void* to, size_t bytes) const {
+    const auto& v = doc.at("bufferViews").at(view);
+    const size_t begin = size_t(v.value("byteOffset", 0)) + offset;
+    if (offset + bytes > size_t(v.at("byteLength")) || begin + bytes > bin.size())
+      throw std::runtime_error("accessor outside its view");
+    std::memcpy(to, bin.data() + begin, bytes);
   }
 };
 

@@ -17,18 +17,21 @@ namespace {
 GltfAnimatedMesh square() {
   GltfAnimatedMesh m;
   m.name = "square";
-  m.positions.resize(3, 4);
-  m.positions << 0, 1, 1, 0,  //
+  GltfPrimitive p;
+  p.name = "square";
+  p.positions.resize(3, 4);
+  p.positions << 0, 1, 1, 0,  //
       0, 0, 1, 1,             //
       0, 0, 0, 0;
-  m.normals = Positions::Zero(3, 4);
-  m.normals.row(2).setOnes();
-  m.uvs.resize(2, 4);
-  m.uvs << 0, 1, 1, 0, 1, 1, 0, 0;
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  m.morph_targets = {Positions::Zero(3, 4), Positions::Zero(3, 4)};
-  m.morph_targets[0](2, 2) = 0.5f;
-  m.morph_targets[1](0, 1) = -0.25f;
+  p.normals = Positions::Zero(3, 4);
+  p.normals.row(2).setOnes();
+  p.uvs.resize(2, 4);
+  p.uvs << 0, 1, 1, 0, 1, 1, 0, 0;
+  p.triangles = {{0, 1, 2}, {0, 2, 3}};
+  p.morph_targets = {Positions::Zero(3, 4), Positions::Zero(3, 4)};
+  p.morph_targets[0](2, 2) = 0.5f;
+  p.morph_targets[1](0, 1) = -0.25f;
+  m.primitives.push_back(p);
   m.morph_target_names = {"lift", "squeeze"};
   m.times = {0.0f, 0.5f, 1.0f};
   m.translations = {Eigen::Vector3f(0, 0, -1), Eigen::Vector3f(0.1f, 0, -1), Eigen::Vector3f(0.2f, 0, -1)};
@@ -59,7 +62,7 @@ TEST(GltfWriter, WritesAGlbWhoseAccessorsReadBackAsGiven) {
   EXPECT_EQ(position["max"], nlohmann::json({1.0, 1.0, 0.0}));
   const std::vector<float> p = g.floats(prim["attributes"]["POSITION"]);
   for (int i = 0; i < 4; ++i)
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(p[i * 3 + c], m.positions(c, i));
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(p[i * 3 + c], m.primitives[0].positions(c, i));
   EXPECT_EQ(g.indices(prim["indices"]), (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
   EXPECT_EQ(g.floats(prim["attributes"]["TEXCOORD_0"]).size(), 8u);
   EXPECT_EQ(g.floats(prim["attributes"]["NORMAL"]).size(), 12u);
@@ -67,7 +70,11 @@ TEST(GltfWriter, WritesAGlbWhoseAccessorsReadBackAsGiven) {
   // Morph targets: offsets, names and bounds.
   ASSERT_EQ(prim["targets"].size(), 2u);
   const std::vector<float> lift = g.floats(prim["targets"][0]["POSITION"]);
-  EXPECT_EQ(lift[2 * 3 + 2], 0.5f);
+  ASSERT_EQ(lift.size(), 12u);
+  for (int k = 0; k < 12; ++k) EXPECT_EQ(lift[k], k == 2 * 3 + 2 ? 0.5f : 0.0f) << k;
+  // One vertex of four moves: stored sparse, the others zero.
+  EXPECT_EQ(g.doc["accessors"][int(prim["targets"][0]["POSITION"])]["sparse"]["count"], 1);
+  EXPECT_EQ(g.doc["accessors"][int(prim["targets"][0]["POSITION"])]["max"], nlohmann::json({0.0, 0.0, 0.5}));
   EXPECT_EQ(g.doc["accessors"][int(prim["targets"][1]["POSITION"])]["min"][0], -0.25);
   EXPECT_EQ(g.doc["meshes"][0]["extras"]["targetNames"], nlohmann::json({"lift", "squeeze"}));
   EXPECT_EQ(g.doc["meshes"][0]["weights"].size(), 2u);
@@ -108,7 +115,7 @@ TEST(GltfWriter, WritesAGlbWhoseAccessorsReadBackAsGiven) {
 TEST(GltfWriter, EmbedsTheTextureImage) {
   TempDir dir;
   GltfAnimatedMesh m = square();
-  m.base_colour_png = {0x89, 'P', 'N', 'G', 1, 2, 3};
+  m.primitives[0].base_colour_png = {0x89, 'P', 'N', 'G', 1, 2, 3};
   write_glb(dir.path() / "t.glb", m);
   const test::Glb g = test::Glb::read(dir.path() / "t.glb");
   const auto& image = g.doc["images"][0];
@@ -116,6 +123,27 @@ TEST(GltfWriter, EmbedsTheTextureImage) {
   const auto& view = g.doc["bufferViews"][int(image["bufferView"])];
   EXPECT_EQ(g.bin.substr(size_t(view["byteOffset"]), 7), std::string("\x89PNG\x01\x02\x03", 7));
   EXPECT_EQ(g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
+}
+
+TEST(GltfWriter, EachPartHasItsMaterialAndTheMeshsTargets) {
+  TempDir dir;
+  GltfAnimatedMesh m = square();
+  GltfPrimitive second = m.primitives[0];
+  second.name = "second";
+  second.uvs.resize(2, 0);
+  second.colours = Positions::Constant(3, 4, 0.5f);
+  second.base_colour = Eigen::Vector3f(1.0f, 0.5f, 0.25f);
+  m.primitives.push_back(second);
+  write_glb(dir.path() / "two.glb", m);
+  const test::Glb g = test::Glb::read(dir.path() / "two.glb");
+  const auto& prims = g.doc["meshes"][0]["primitives"];
+  ASSERT_EQ(prims.size(), 2u);
+  EXPECT_EQ(prims[1]["targets"].size(), 2u);
+  EXPECT_EQ(prims[1]["material"], 1);
+  EXPECT_FALSE(prims[1]["attributes"].contains("TEXCOORD_0"));
+  EXPECT_EQ(g.floats(prims[1]["attributes"]["COLOR_0"]), std::vector<float>(12, 0.5f));
+  EXPECT_EQ(g.doc["materials"][1]["name"], "second");
+  EXPECT_EQ(g.doc["materials"][1]["pbrMetallicRoughness"]["baseColorFactor"], nlohmann::json({1.0, 0.5, 0.25, 1.0}));
 }
 
 TEST(GltfWriter, AStaticMeshHasNoAnimation) {
@@ -143,22 +171,26 @@ TEST(GltfWriter, InconsistentInputIsAnErrorAndLeavesTheOldFile) {
   m.times[2] = 0.5f;
   expect_rejected(m, "times not increasing");
   m = square();
-  m.positions(1, 2) = std::nanf("");
+  m.primitives[0].positions(1, 2) = std::nanf("");
   expect_rejected(m, "NaN position");
   m = square();
   m.weights(0, 1) = std::numeric_limits<float>::infinity();
   expect_rejected(m, "infinite weight");
   m = square();
-  m.triangles.push_back({0, 1, 4});
+  m.primitives[0].triangles.push_back({0, 1, 4});
   expect_rejected(m, "index out of range");
   m = square();
   m.morph_target_names.pop_back();
   expect_rejected(m, "names missing");
   m = square();
+  m.primitives.push_back(m.primitives[0]);
+  m.primitives[1].morph_targets.pop_back();
+  expect_rejected(m, "a part lacks a target");
+  m = square();
   m.rotations.pop_back();
   expect_rejected(m, "keys missing");
   m = square();
-  m.uvs.resize(2, 3);
+  m.primitives[0].uvs.resize(2, 3);
   expect_rejected(m, "UVs short");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);  // no temporaries left
 }

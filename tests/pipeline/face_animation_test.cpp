@@ -16,8 +16,8 @@ namespace {
 
 // What a glTF player computes for vertex i at key k: the node's rotation and
 // translation applied to the rest position plus the weighted morph offsets.
-Eigen::Vector3f played_vertex(const test::Glb& g, int i, int key) {
-  const auto& prim = g.doc["meshes"][0]["primitives"][0];
+Eigen::Vector3f played_vertex(const test::Glb& g, int part, int i, int key) {
+  const auto& prim = g.doc["meshes"][0]["primitives"][part];
   const std::vector<float> rest = g.floats(prim["attributes"]["POSITION"]);
   Eigen::Vector3f p(rest[i * 3], rest[i * 3 + 1], rest[i * 3 + 2]);
   const auto& anim = g.doc["animations"][0];
@@ -61,10 +61,21 @@ TEST(FaceAnimation, PlayedBackItReproducesTheTrackedMeshAndTheCameraView) {
   write_glb(dir.path() / "a.glb", face_animation(*model, identity, keys, camera));
   const test::Glb g = test::Glb::read(dir.path() / "a.glb");
 
-  const std::vector<int> source = face_animation_source_vertices(*model);
-  const auto& prim = g.doc["meshes"][0]["primitives"][0];
-  ASSERT_EQ(size_t(g.doc["accessors"][int(prim["attributes"]["POSITION"])]["count"]), source.size());
-  EXPECT_GE(source.size(), size_t(regions::kFace.num_vertices()));  // split at UV seams, never merged
+  const std::vector<std::vector<int>> sources = face_animation_source_vertices(*model);
+  const auto& prims = g.doc["meshes"][0]["primitives"];
+  ASSERT_EQ(prims.size(), 2u);  // the face, and the mouth and eyes behind its holes
+  ASSERT_EQ(sources.size(), 2u);
+  for (size_t part = 0; part < 2; ++part)
+    ASSERT_EQ(size_t(g.doc["accessors"][int(prims[part]["attributes"]["POSITION"])]["count"]), sources[part].size());
+  EXPECT_GE(sources[0].size(), size_t(regions::kFace.num_vertices()));  // split at UV seams, never merged
+  int teeth = 0, eyeballs = 0;
+  for (int v : sources[1]) {
+    teeth += v >= regions::kTeeth.first_vertex && v <= regions::kTeeth.last_vertex;
+    eyeballs += v >= regions::kEyeballLeft.first_vertex && v <= regions::kEyeballRight.last_vertex;
+    EXPECT_TRUE(v < regions::kHeadAndNeck.first_vertex || v > regions::kHeadAndNeck.last_vertex) << v;
+  }
+  EXPECT_GT(teeth, 1000);
+  EXPECT_GT(eyeballs, 1000);
   EXPECT_EQ(g.doc["meshes"][0]["extras"]["targetNames"][0], model->expression_names[0]);
   const double yfov = g.doc["cameras"][0]["perspective"]["yfov"];
   const double aspect = g.doc["cameras"][0]["perspective"]["aspectRatio"];
@@ -73,25 +84,27 @@ TEST(FaceAnimation, PlayedBackItReproducesTheTrackedMeshAndTheCameraView) {
   const Eigen::Vector3f flip(1, -1, -1);  // glTF's world is the OpenCV camera frame turned about x
   const PinholeCamera cam = PinholeCamera::centered(camera.focal_px, camera.width, camera.height);
   for (int k = 0; k < 3; ++k) {
-    const Positions truth =
-        to_camera(model->evaluate(identity.cast<float>(), keys[k].expression, regions::kFace), keys[k].pose);
-    double worst_cm = 0, worst_px = 0;
-    for (size_t i = 0; i < source.size(); i += 37) {
-      const Eigen::Vector3f world = played_vertex(g, int(i), k);
-      const Eigen::Vector3f cam_cm = flip.cwiseProduct(world) * 100.0f;
-      worst_cm = std::max(worst_cm, double((cam_cm - truth.col(source[i])).norm()));
-      // Through the glTF camera (looking down -z, y up) to pixels whose
-      // centres are at integers, against the tracker's pinhole projection.
-      const double t = std::tan(0.5 * yfov);
-      const double xn = world.x() / -world.z() / (t * aspect), yn = world.y() / -world.z() / t;
-      const Vec2d glt((xn + 1) * 0.5 * camera.width - 0.5, (1 - yn) * 0.5 * camera.height - 0.5);
-      const Vec2d pin = cam.project(Vec3d(truth.col(source[i]).cast<double>()));
-      worst_px = std::max(worst_px, (glt - pin).cwiseAbs().maxCoeff());
+    const Positions truth = to_camera(model->evaluate(identity.cast<float>(), keys[k].expression), keys[k].pose);
+    for (size_t part = 0; part < 2; ++part) {
+      double worst_cm = 0, worst_px = 0;
+      for (size_t i = 0; i < sources[part].size(); i += 37) {
+        const Eigen::Vector3f world = played_vertex(g, int(part), int(i), k);
+        const Eigen::Vector3f cam_cm = flip.cwiseProduct(world) * 100.0f;
+        const Vec3f expected = truth.col(sources[part][i]);
+        worst_cm = std::max(worst_cm, double((cam_cm - expected).norm()));
+        // Through the glTF camera (looking down -z, y up) to pixels whose
+        // centres are at integers, against the tracker's pinhole projection.
+        const double t = std::tan(0.5 * yfov);
+        const double xn = world.x() / -world.z() / (t * aspect), yn = world.y() / -world.z() / t;
+        const Vec2d glt((xn + 1) * 0.5 * camera.width - 0.5, (1 - yn) * 0.5 * camera.height - 0.5);
+        const Vec2d pin = cam.project(Vec3d(expected.cast<double>()));
+        worst_px = std::max(worst_px, (glt - pin).cwiseAbs().maxCoeff());
+      }
+      EXPECT_LT(worst_cm, 1e-3) << "key " << k << " part " << part;
+      // glTF's camera has no principal point: ours sits at half the image
+      // size, half a pixel from the centre of a grid with integer centres.
+      EXPECT_LT(worst_px, 0.5 + 1e-3) << "key " << k << " part " << part;
     }
-    EXPECT_LT(worst_cm, 1e-3) << "key " << k;
-    // glTF's camera has no principal point: ours sits at half the image
-    // size, half a pixel from the centre of a grid with integer centres.
-    EXPECT_LT(worst_px, 0.5 + 1e-3) << "key " << k;
   }
 }
 

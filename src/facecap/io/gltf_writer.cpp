@@ -79,6 +79,37 @@ class GlbBuilder {
     return add_accessor(a);
   }
 
+  // A morph target's offsets: where at most a third of the vertices move,
+  // as a sparse accessor (the indices and offsets of the moving ones only;
+  // the rest read as zero), which is smaller and exact.
+  int offsets(const Positions& offsets) {
+    const size_t n = size_t(offsets.cols());
+    std::vector<uint32_t> moving;
+    for (size_t i = 0; i < n; ++i)
+      if (!offsets.col(Eigen::Index(i)).isZero(0.0f)) moving.push_back(uint32_t(i));
+    if (moving.empty() || moving.size() * 3 > n) return floats(offsets.data(), n, 3, kArrayBuffer, true);
+    std::vector<float> values;
+    values.reserve(moving.size() * 3);
+    Eigen::Vector3f lo = Eigen::Vector3f::Zero(), hi = Eigen::Vector3f::Zero();  // the zeros count too
+    for (uint32_t i : moving) {
+      const Eigen::Vector3f d = offsets.col(i);
+      values.insert(values.end(), d.data(), d.data() + 3);
+      lo = lo.cwiseMin(d);
+      hi = hi.cwiseMax(d);
+    }
+    const int index_view = view(moving.data(), moving.size() * sizeof(uint32_t));
+    const int value_view = view(values.data(), values.size() * sizeof(float));
+    return add_accessor({{"componentType", kFloat},
+                         {"count", n},
+                         {"type", "VEC3"},
+                         {"min", {lo.x(), lo.y(), lo.z()}},
+                         {"max", {hi.x(), hi.y(), hi.z()}},
+                         {"sparse",
+                          {{"count", moving.size()},
+                           {"indices", {{"bufferView", index_view}, {"componentType", kUnsignedInt}}},
+                           {"values", {{"bufferView", value_view}}}}}});
+  }
+
   int indices(const std::vector<Triangle>& triangles) {
     std::vector<uint32_t> flat;
     flat.reserve(triangles.size() * 3);
@@ -122,26 +153,69 @@ class GlbBuilder {
   std::vector<uint8_t> bin_;
 };
 
-void validate(const GltfAnimatedMesh& m) {
-  const Eigen::Index n = m.positions.cols();
-  require(n > 0 && !m.triangles.empty(), "the mesh is empty");
-  require(m.positions.allFinite(), "a vertex position is not finite");
-  require(m.normals.size() == 0 || (m.normals.cols() == n && m.normals.allFinite()), "normals do not match the mesh");
-  require(m.uvs.size() == 0 || (m.uvs.cols() == n && m.uvs.allFinite()), "UVs do not match the mesh");
-  for (const Triangle& t : m.triangles)
+void validate(const GltfPrimitive& p, size_t targets) {
+  const Eigen::Index n = p.positions.cols();
+  require(n > 0 && !p.triangles.empty(), "part " + p.name + " is empty");
+  require(p.positions.allFinite(), "a vertex position is not finite");
+  require(p.normals.size() == 0 || (p.normals.cols() == n && p.normals.allFinite()), "normals do not match the mesh");
+  require(p.uvs.size() == 0 || (p.uvs.cols() == n && p.uvs.allFinite()), "UVs do not match the mesh");
+  require(p.colours.size() == 0 || (p.colours.cols() == n && p.colours.allFinite()), "colours do not match the mesh");
+  for (const Triangle& t : p.triangles)
     for (int k : t) require(k >= 0 && k < n, "a triangle indexes a missing vertex");
-  require(m.morph_target_names.size() == m.morph_targets.size(), "morph targets and their names differ in number");
-  for (const Positions& t : m.morph_targets)
+  require(p.morph_targets.size() == targets, "part " + p.name + " lacks morph targets the mesh names");
+  for (const Positions& t : p.morph_targets)
     require(t.cols() == n && t.allFinite(), "a morph target does not match the mesh");
+}
+
+void validate(const GltfAnimatedMesh& m) {
+  require(!m.primitives.empty(), "the mesh has no parts");
+  for (const GltfPrimitive& p : m.primitives) validate(p, m.morph_target_names.size());
   const size_t keys = m.times.size();
   require(m.translations.size() == keys && m.rotations.size() == keys, "keys differ in number");
-  require(m.weights.cols() == Eigen::Index(keys) && m.weights.rows() == Eigen::Index(m.morph_targets.size()),
+  require(m.weights.cols() == Eigen::Index(keys) && m.weights.rows() == Eigen::Index(m.morph_target_names.size()),
           "the weights are not targets x keys");
   require(m.weights.allFinite(), "a morph weight is not finite");
   for (size_t k = 0; k < keys; ++k) {
     require(std::isfinite(m.times[k]) && (k == 0 || m.times[k] > m.times[k - 1]), "key times must increase");
     require(m.translations[k].allFinite() && m.rotations[k].coeffs().allFinite(), "a key's transform is not finite");
   }
+}
+
+// The part's accessors and its material (appended to the document).
+json write_primitive(GlbBuilder& b, const GltfPrimitive& p) {
+  const size_t n = size_t(p.positions.cols());
+  json attributes = {{"POSITION", b.floats(p.positions.data(), n, 3, kArrayBuffer, true)}};
+  if (p.normals.size() > 0) attributes["NORMAL"] = b.floats(p.normals.data(), n, 3, kArrayBuffer, false);
+  if (p.uvs.size() > 0) attributes["TEXCOORD_0"] = b.floats(p.uvs.data(), n, 2, kArrayBuffer, false);
+  if (p.colours.size() > 0) attributes["COLOR_0"] = b.floats(p.colours.data(), n, 3, kArrayBuffer, false);
+  json& doc = b.doc();
+  // The factor multiplies the texture: white when there is one.
+  const Eigen::Vector3f factor = p.base_colour_png.empty() ? p.base_colour : Eigen::Vector3f::Ones();
+  json pbr = {{"metallicFactor", 0.0},
+              {"roughnessFactor", 0.7},
+              {"baseColorFactor", {factor.x(), factor.y(), factor.z(), 1.0}}};
+  if (!p.base_colour_png.empty()) {
+    const int v = b.view(p.base_colour_png.data(), p.base_colour_png.size());
+    if (!doc.contains("samplers"))
+      doc["samplers"] = json::array({{{"magFilter", kLinear},
+                                      {"minFilter", kLinearMipmapLinear},
+                                      {"wrapS", kClampToEdge},
+                                      {"wrapT", kClampToEdge}}});
+    doc["images"].push_back({{"bufferView", v}, {"mimeType", "image/png"}});
+    doc["textures"].push_back({{"source", doc["images"].size() - 1}, {"sampler", 0}});
+    pbr["baseColorTexture"] = {{"index", doc["textures"].size() - 1}};
+  }
+  doc["materials"].push_back({{"name", p.name}, {"pbrMetallicRoughness", pbr}});
+  json primitive = {{"attributes", attributes},
+                    {"indices", b.indices(p.triangles)},
+                    {"material", doc["materials"].size() - 1},
+                    {"mode", kTriangles}};
+  if (!p.morph_targets.empty()) {
+    json targets = json::array();
+    for (const Positions& t : p.morph_targets) targets.push_back({{"POSITION", b.offsets(t)}});
+    primitive["targets"] = targets;
+  }
+  return primitive;
 }
 
 json node_transform(const Eigen::Vector3f& t, const Eigen::Quaternionf& q) {
@@ -157,38 +231,13 @@ void write_glb(const std::filesystem::path& path, const GltfAnimatedMesh& m) {
   doc["asset"] = {{"version", "2.0"}, {"generator", std::string("facecap ") + kFacecapVersion}};
   if (!m.asset_extras.empty()) doc["asset"]["extras"] = m.asset_extras;
 
-  const size_t n = size_t(m.positions.cols());
-  json attributes = {{"POSITION", b.floats(m.positions.data(), n, 3, kArrayBuffer, true)}};
-  if (m.normals.size() > 0) attributes["NORMAL"] = b.floats(m.normals.data(), n, 3, kArrayBuffer, false);
-  if (m.uvs.size() > 0) attributes["TEXCOORD_0"] = b.floats(m.uvs.data(), n, 2, kArrayBuffer, false);
-  json primitive = {
-      {"attributes", attributes}, {"indices", b.indices(m.triangles)}, {"material", 0}, {"mode", kTriangles}};
-  json mesh = {{"name", m.name}};
-  if (!m.morph_targets.empty()) {
-    json targets = json::array();
-    for (const Positions& t : m.morph_targets)
-      targets.push_back({{"POSITION", b.floats(t.data(), n, 3, kArrayBuffer, true)}});
-    primitive["targets"] = targets;
-    mesh["weights"] = std::vector<float>(m.morph_targets.size(), 0.0f);
+  json mesh = {{"name", m.name}, {"primitives", json::array()}};
+  for (const GltfPrimitive& p : m.primitives) mesh["primitives"].push_back(write_primitive(b, p));
+  if (!m.morph_target_names.empty()) {
+    mesh["weights"] = std::vector<float>(m.morph_target_names.size(), 0.0f);
     mesh["extras"] = {{"targetNames", m.morph_target_names}};  // read by Blender and three.js
   }
-  mesh["primitives"] = json::array({primitive});
   doc["meshes"] = json::array({mesh});
-
-  json pbr = {{"metallicFactor", 0.0}, {"roughnessFactor", 0.7}};
-  if (!m.base_colour_png.empty()) {
-    const int v = b.view(m.base_colour_png.data(), m.base_colour_png.size());
-    doc["images"] = json::array({{{"bufferView", v}, {"mimeType", "image/png"}}});
-    doc["samplers"] = json::array({{{"magFilter", kLinear},
-                                    {"minFilter", kLinearMipmapLinear},
-                                    {"wrapS", kClampToEdge},
-                                    {"wrapT", kClampToEdge}}});
-    doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
-    pbr["baseColorTexture"] = {{"index", 0}};
-  } else {
-    pbr["baseColorFactor"] = {0.8, 0.8, 0.8, 1.0};
-  }
-  doc["materials"] = json::array({{{"name", m.name + " material"}, {"pbrMetallicRoughness", pbr}}});
 
   json node = {{"name", m.name}, {"mesh", 0}};
   if (!m.times.empty()) node.update(node_transform(m.translations[0], m.rotations[0]));
@@ -221,7 +270,8 @@ void write_glb(const std::filesystem::path& path, const GltfAnimatedMesh& m) {
     };
     animate(b.floats(t.data(), keys, 3, 0, false), "translation");
     animate(b.floats(r.data(), keys, 4, 0, false), "rotation");
-    if (!m.morph_targets.empty()) animate(b.floats(m.weights.data(), keys * m.weights.rows(), 1, 0, false), "weights");
+    if (!m.morph_target_names.empty())
+      animate(b.floats(m.weights.data(), keys * m.weights.rows(), 1, 0, false), "weights");
     doc["animations"] = json::array({{{"name", m.animation_name}, {"samplers", samplers}, {"channels", channels}}});
   }
 

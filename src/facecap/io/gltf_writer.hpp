@@ -1,6 +1,6 @@
 #pragma once
-// Binary glTF 2.0 (.glb) output of one animated mesh: a mesh with morph
-// targets (blend shapes) on a node whose translation, rotation and morph
+// Binary glTF 2.0 (.glb) output of one animated mesh: a mesh (one or more
+// parts, each with its material) with morph targets (blend shapes) on a node whose translation, rotation and morph
 // weights are keyed per frame, and optionally the perspective camera that saw
 // it, at the scene's origin. Blender (File > Import > glTF 2.0) reads it as a
 // mesh with shape keys, an action and a camera; three.js's GLTFLoader as a
@@ -26,15 +26,24 @@ struct GltfCamera {
   double znear = 0.01;  // metres
 };
 
-struct GltfAnimatedMesh {
-  std::string name = "mesh";
+// One part of the mesh, with its own material. Every part has the mesh's
+// morph targets.
+struct GltfPrimitive {
+  std::string name = "part";
   Positions positions;   // 3 x N
   Positions normals;     // 3 x N unit normals, or empty
   Eigen::Matrix2Xf uvs;  // 2 x N, or empty
+  Positions colours;     // 3 x N linear RGB in [0, 1] (COLOR_0), or empty
   std::vector<Triangle> triangles;
-  std::vector<Positions> morph_targets;  // 3 x N position offsets each
+  std::vector<Positions> morph_targets;           // 3 x N position offsets each
+  Eigen::Vector3f base_colour{0.8f, 0.8f, 0.8f};  // linear RGB
+  std::vector<uint8_t> base_colour_png;           // embedded as the base colour texture (empty: none)
+};
+
+struct GltfAnimatedMesh {
+  std::string name = "mesh";
+  std::vector<GltfPrimitive> primitives;
   std::vector<std::string> morph_target_names;
-  std::vector<uint8_t> base_colour_png;  // embedded as the base colour texture (empty: plain grey)
 
   // One key per frame: time (seconds, strictly increasing), the node's
   // transform, and the morph weights (targets x keys).

@@ -13,23 +13,26 @@ namespace {
 
 constexpr float kMetresPerCentimetre = 0.01f;
 
-// glTF vertices: one per distinct (model vertex, UV) pair of the face
-// region's triangles, so that a UV seam gets a vertex on each side.
-struct SplitMesh {
-  std::vector<int> source;  // model vertex (region-local) per glTF vertex
-  std::vector<int> uv;      // UV index per glTF vertex (-1: none)
+// One part's glTF vertices: `source` holds the model vertex (whole-head
+// index) of each, `uv` its UV index (-1: none).
+struct Part {
+  std::vector<int> source;
+  std::vector<int> uv;
   std::vector<Triangle> triangles;
 };
 
-SplitMesh split_at_uv_seams(const TriangleMesh& mesh) {
-  SplitMesh out;
+// One glTF vertex per distinct (model vertex, UV) pair of the triangles, so
+// that a UV seam gets a vertex on each side. `first_vertex` offsets the
+// mesh's (region-local) indices to the model's.
+Part split_at_uv_seams(const TriangleMesh& mesh, int first_vertex, bool keep_uvs) {
+  Part out;
   std::map<std::pair<int, int>, int> index;
-  const bool has_uv = !mesh.triangle_uvs.empty();
+  const bool has_uv = keep_uvs && !mesh.triangle_uvs.empty();
   out.triangles.reserve(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     Triangle tri;
     for (int k = 0; k < 3; ++k) {
-      const int v = mesh.triangles[t][k];
+      const int v = mesh.triangles[t][k] + first_vertex;
       const int uv = has_uv ? mesh.triangle_uvs[t][k] : -1;
       const auto [it, added] = index.try_emplace({v, uv}, int(out.source.size()));
       if (added) {
@@ -43,49 +46,94 @@ SplitMesh split_at_uv_seams(const TriangleMesh& mesh) {
   return out;
 }
 
-// Region-local 3 x N columns gathered into glTF vertex order, in metres.
-Positions gather_metres(const Positions& region, const std::vector<int>& source) {
+Part face_part(const FaceModel& model) {
+  return split_at_uv_seams(model.region_mesh(regions::kFace), regions::kFace.first_vertex, true);
+}
+
+// What shows through the face's eye and mouth holes: the mouth socket, gums,
+// tongue, teeth, eye sockets and eyeballs, with the polygons that join them
+// to the face; not the back of the head, nor the eyes' transparent layers.
+Part interior_part(const FaceModel& model) {
+  auto inside = [](int v) {
+    return v <= regions::kEyeballRight.last_vertex &&
+           (v < regions::kHeadAndNeck.first_vertex || v > regions::kHeadAndNeck.last_vertex);
+  };
+  std::vector<Polygon> chosen;
+  for (const Polygon& p : model.polygons) {
+    bool keep = true, all_face = true;
+    for (int k = 0; k < p.size(); ++k) {
+      keep = keep && inside(p.v[k]);
+      all_face = all_face && p.v[k] <= regions::kFace.last_vertex;
+    }
+    if (keep && !all_face) chosen.push_back(p);
+  }
+  return split_at_uv_seams(triangulate(chosen, model.uvs, model.num_vertices), 0, false);
+}
+
+// Linear RGB of the interior by region: eyeballs and teeth pale, the rest
+// of the mouth pink to dark, where it joins the face a skin tone.
+Eigen::Vector3f interior_colour(int v) {
+  if (v <= regions::kFace.last_vertex) return {0.55f, 0.38f, 0.32f};
+  if (v <= regions::kMouthSocket.last_vertex) return {0.30f, 0.08f, 0.08f};
+  if (v <= regions::kEyeSocketRight.last_vertex) return {0.25f, 0.12f, 0.12f};
+  if (v <= regions::kGumsAndTongue.last_vertex) return {0.60f, 0.22f, 0.22f};
+  if (v <= regions::kTeeth.last_vertex) return {0.85f, 0.82f, 0.72f};
+  return {0.85f, 0.85f, 0.82f};
+}
+
+// Whole-head 3N values gathered into a part's vertex order, in metres.
+Positions gather_metres(const Eigen::VectorXf& head, const std::vector<int>& source) {
   Positions out(3, source.size());
-  for (size_t i = 0; i < source.size(); ++i) out.col(i) = region.col(source[i]) * kMetresPerCentimetre;
+  for (size_t i = 0; i < source.size(); ++i) out.col(i) = head.segment<3>(3 * source[i]) * kMetresPerCentimetre;
   return out;
+}
+
+GltfPrimitive make_primitive(const FaceModel& model, const Eigen::VectorXf& rest, const Part& part) {
+  GltfPrimitive p;
+  p.positions = gather_metres(rest, part.source);
+  p.normals = vertex_normals(p.positions, part.triangles);
+  p.triangles = part.triangles;
+  for (int j = 0; j < model.num_expressions(); ++j)
+    p.morph_targets.push_back(gather_metres(model.expression_basis.col(j), part.source));
+  return p;
 }
 
 }  // namespace
 
-std::vector<int> face_animation_source_vertices(const FaceModel& model) {
-  return split_at_uv_seams(model.region_mesh(regions::kFace)).source;
+std::vector<std::vector<int>> face_animation_source_vertices(const FaceModel& model) {
+  return {face_part(model).source, interior_part(model).source};
 }
 
 GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& identity,
                                 const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera) {
-  const Region& face = regions::kFace;
-  const TriangleMesh mesh = model.region_mesh(face);
-  const SplitMesh split = split_at_uv_seams(mesh);
-  const int n = face.num_vertices();
-
   GltfAnimatedMesh out;
   out.name = "face";
-  const Eigen::VectorXf shape = model.identity_shape(identity.cast<float>(), face);
-  const Eigen::Map<const Positions> rest(shape.data(), 3, n);
-  out.positions = gather_metres(rest, split.source);
+  const Region all{"all", 0, model.num_vertices - 1, 0, int(model.polygons.size()) - 1};
+  const Eigen::VectorXf rest = model.identity_shape(identity.cast<float>(), all);
+
+  const Part face = face_part(model);
+  GltfPrimitive skin = make_primitive(model, rest, face);
+  skin.name = "face";
   // Normals from the unsplit mesh, so that both sides of a seam agree.
-  const Positions normals = vertex_normals(rest, mesh.triangles);
-  out.normals.resize(3, Eigen::Index(split.source.size()));
-  for (size_t i = 0; i < split.source.size(); ++i) out.normals.col(i) = normals.col(split.source[i]);
-  if (!mesh.triangle_uvs.empty()) {
-    out.uvs.resize(2, Eigen::Index(split.uv.size()));
-    for (size_t i = 0; i < split.uv.size(); ++i) {
-      const Vec2f& t = mesh.uvs[split.uv[i]];
-      out.uvs.col(i) = Eigen::Vector2f(t.x(), 1.0f - t.y());  // glTF's v runs down the image
-    }
+  const Positions region_normals =
+      vertex_normals(Eigen::Map<const Positions>(rest.data(), 3, regions::kFace.num_vertices()),
+                     model.region_mesh(regions::kFace).triangles);
+  for (size_t i = 0; i < face.source.size(); ++i) skin.normals.col(i) = region_normals.col(face.source[i]);
+  skin.uvs.resize(2, Eigen::Index(face.uv.size()));
+  for (size_t i = 0; i < face.uv.size(); ++i) {
+    const Vec2f& t = model.uvs[face.uv[i]];
+    skin.uvs.col(i) = Eigen::Vector2f(t.x(), 1.0f - t.y());  // glTF's v runs down the image
   }
-  out.triangles = split.triangles;
-  const Eigen::Index row0 = 3 * face.first_vertex;
-  for (int j = 0; j < model.num_expressions(); ++j) {
-    const Eigen::VectorXf delta = model.expression_basis.block(row0, j, 3 * n, 1);
-    out.morph_targets.push_back(gather_metres(Eigen::Map<const Positions>(delta.data(), 3, n), split.source));
-    out.morph_target_names.push_back(model.expression_names[j]);
-  }
+  out.primitives.push_back(std::move(skin));
+
+  const Part inner = interior_part(model);
+  GltfPrimitive mouth_and_eyes = make_primitive(model, rest, inner);
+  mouth_and_eyes.name = "mouth and eyes";
+  mouth_and_eyes.base_colour = Eigen::Vector3f::Ones();
+  mouth_and_eyes.colours.resize(3, Eigen::Index(inner.source.size()));
+  for (size_t i = 0; i < inner.source.size(); ++i) mouth_and_eyes.colours.col(i) = interior_colour(inner.source[i]);
+  out.primitives.push_back(std::move(mouth_and_eyes));
+  out.morph_target_names = model.expression_names;
 
   // Keys: the node's transform is F R F and F t (the header's axes).
   const Eigen::Matrix3d flip = Eigen::Vector3d(1, -1, -1).asDiagonal();
@@ -110,10 +158,11 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& i
     c.aspect_ratio = double(camera.width) / camera.height;
     out.camera = c;
   }
-  out.asset_extras = {{"model", "ICT Face Model Light (ICT-FaceKit, MIT): face region, the video's identity"},
-                      {"morph_targets", "the 53 ICT expression blend shapes under their ARKit names"},
-                      {"units", "metres"},
-                      {"camera", "the fitted pinhole camera at the origin, principal point at the image centre"}};
+  out.asset_extras = {
+      {"model", "ICT Face Model Light (ICT-FaceKit, MIT): face region, mouth and eyes, the video's identity"},
+      {"morph_targets", "the 53 ICT expression blend shapes under their ARKit names"},
+      {"units", "metres"},
+      {"camera", "the fitted pinhole camera at the origin, principal point at the image centre"}};
   return out;
 }
 

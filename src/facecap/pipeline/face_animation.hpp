@@ -1,7 +1,9 @@
 #pragma once
 // A tracked video as one animated glTF (`facecap track --gltf`): the face
-// region of the ICT model with the video's identity as its rest shape, the 53
-// expression blend shapes as morph targets under their ARKit names, one key
+// region of the ICT model with the video's identity as its rest shape, and
+// behind its holes the mouth, teeth, tongue and eyeballs (a second part,
+// coloured per vertex), the 53 expression blend shapes as morph targets under
+// their ARKit names, one key
 // per tracked frame (head pose and weights), and the fitted camera at the
 // origin, so that looking through it reproduces the video's view. Lost frames
 // have no key; players interpolate across them.
@@ -30,13 +32,12 @@ struct FaceAnimationCamera {
   int width = 0, height = 0;
 };
 
-// The mesh is split where the UV layout has seams. `identity`: the leading
-// identity modes (as IdentityEstimate holds them).
+// The face part is split where the UV layout has seams. `identity`: the
+// leading identity modes (as IdentityEstimate holds them).
 GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& identity,
                                 const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera);
 
-// Which model vertex (face region, region-local) each glTF vertex of
-// face_animation() copies.
-std::vector<int> face_animation_source_vertices(const FaceModel& model);
+// Per part of face_animation(), the model vertex each glTF vertex copies.
+std::vector<std::vector<int>> face_animation_source_vertices(const FaceModel& model);
 
 }  // namespace facecap

@@ -179,7 +179,7 @@ class FrameWriter {
       if (id.frames_used > 0 && !animation_keys_.empty()) {
         GltfAnimatedMesh glb =
             face_animation(model_, id.identity, animation_keys_, {id.focal, info_.width, info_.height});
-        glb.base_colour_png = std::move(albedo_png);
+        glb.primitives.front().base_colour_png = std::move(albedo_png);  // the face part
         glb.animation_name = fs::path(input_).stem().string();
         write_glb(dir_ / "animation.glb", glb);
       } else {
