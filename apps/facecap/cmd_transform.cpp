@@ -11,7 +11,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                                  "Change a speaking face's expression (anger, disgust, fear, happiness, sadness, "
                                  "surprise, neutral) with the lips kept in sync; writes a video marked as synthetic");
   struct Args {
-    std::string input, output, to = "happiness", from = "neutral", method = "cyclegan", schedule, plot, models;
+    std::string input, output, to = "happiness", from = "neutral", method = "cyclegan", schedule, plot, gltf, models;
     double intensity = 1.0;
     int window = 1;
     TransformJobOptions options;
@@ -28,6 +28,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--window", a->window, "Smoothing window half-width k (2k + 1 frames)")->capture_default_str();
   cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
+  cmd->add_option("--gltf", a->gltf,
+                  "Also write the transformed performance as an animated glTF (.glb, as track --gltf; marked as "
+                  "synthetic, with a sidecar .json)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
@@ -44,6 +47,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     o.transform.method = a->method == "linear" ? MappingMethod::kLinear : MappingMethod::kCycleGan;
     o.transform.window = a->window;
     o.plot = a->plot;
+    o.gltf = a->gltf;
     if (!a->models.empty()) o.models_dir = a->models;
     o.description = a->schedule.empty() ? a->from + " to " + a->to : "schedule " + a->schedule;
     o.capture.quiet = global.quiet;
@@ -55,6 +59,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                  "%.2f ms\nwrote %s and %s.json (synthetic-media marks)\n",
                  s.capture.frames, s.capture.lost, s.timings.mapping_ms / n, s.timings.lighting_ms / n,
                  s.timings.render_ms / n, a->output.c_str(), a->output.c_str());
+    if (!a->gltf.empty()) std::fprintf(stderr, "wrote %s and %s.json\n", a->gltf.c_str(), a->gltf.c_str());
   });
 }
 

@@ -154,6 +154,7 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
         "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
         "transform " + video.string() + " --to happiness --init-frames 0 -o " + out,
+        "transform " + video.string() + " --to happiness --gltf /proc/facecap-test/a.glb -o " + out,
         "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out}) {
     const RunResult r = run(args);
     EXPECT_EQ(r.code, 1) << args << ": " << r.out;

@@ -9,6 +9,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
+#include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -37,6 +38,7 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   const fs::path out = dir.path() / "happy.mp4";
   TransformJobOptions o = short_run(60);
   o.plot = dir.path() / "curves.png";
+  o.gltf = dir.path() / "happy.glb";
   const TransformEval r = evaluate_transform(*model, video.string(), Emotion::kHappiness, o, out);
   EXPECT_EQ(r.frames, 60);
   EXPECT_GE(r.valid_frames, 58);
@@ -56,6 +58,22 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   const auto j = nlohmann::json::parse(side);
   EXPECT_EQ(j.at("synthetic"), true);
   EXPECT_EQ(j.at("edit"), "expression-transform");
+
+  // The glTF carries the transformed weights (the speaker hardly smiles;
+  // the result does), one key per frame with a face, and both marks.
+  const test::Glb g = test::Glb::read(o.gltf);
+  EXPECT_EQ(g.doc["asset"]["extras"]["synthetic"], "true");
+  EXPECT_TRUE(fs::exists(o.gltf.string() + ".json"));
+  const auto& anim = g.doc["animations"][0];
+  std::vector<float> weights;
+  for (const auto& ch : anim["channels"])
+    if (ch["target"]["path"] == "weights") weights = g.floats(anim["samplers"][int(ch["sampler"])]["output"]);
+  const int targets = model->num_expressions(), keys = int(weights.size()) / targets;
+  EXPECT_EQ(keys, r.valid_frames);
+  const int smile = model->expression_index("mouthSmile_L");
+  double mean_smile = 0;
+  for (int k = 0; k < keys; ++k) mean_smile += weights[size_t(k) * targets + smile] / keys;
+  EXPECT_GE(mean_smile, 0.3);
 }
 
 TEST(TransformEval, AddressKeepsItsAudio) {

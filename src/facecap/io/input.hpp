@@ -27,6 +27,12 @@ struct InputInfo {
   double duration = 0;        // seconds, 0 when unknown
 };
 
+// Whether the frames' times mean anything: a video's and a camera's do; a
+// still's and an image folder's are all 0.
+inline bool has_timeline(const InputInfo& info) {
+  return info.kind == InputKind::kVideo || info.kind == InputKind::kCamera;
+}
+
 struct Frame {
   cv::Mat image;  // BGR, 8 bit; empty when this frame could not be decoded
   int index = 0;

@@ -100,6 +100,13 @@ GltfPrimitive make_primitive(const FaceModel& model, const Eigen::VectorXf& rest
 
 }  // namespace
 
+void append_animation_key(std::vector<FaceAnimationKey>& keys, bool timeline, int index, double time,
+                          const HeadPose& pose, const Eigen::VectorXf& expression) {
+  const double t = timeline ? time : index / 30.0;
+  if (!keys.empty() && t <= keys.back().time) return;
+  keys.push_back({t, pose, expression});
+}
+
 std::vector<std::vector<int>> face_animation_source_vertices(const FaceModel& model) {
   return {face_part(model).source, interior_part(model).source};
 }

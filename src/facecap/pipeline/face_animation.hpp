@@ -27,6 +27,12 @@ struct FaceAnimationKey {
   Eigen::VectorXf expression;  // the model's expression weights
 };
 
+// Appends the key of frame `index`. Images have no timeline (`timeline`
+// false): they are keyed 1/30 s apart. A key no later than the last one (a
+// video's repeated timestamp) is dropped, as glTF needs increasing times.
+void append_animation_key(std::vector<FaceAnimationKey>& keys, bool timeline, int index, double time,
+                          const HeadPose& pose, const Eigen::VectorXf& expression);
+
 struct FaceAnimationCamera {
   double focal_px = 0;
   int width = 0, height = 0;

@@ -134,7 +134,8 @@ class FrameWriter {
     o << '\n';
     jsonl_.stream() << row.dump() << '\n';
     if (ok) write_mesh(f, ref, coarse);
-    if (ok && options_.gltf) add_animation_key(f);
+    if (ok && options_.gltf)
+      append_animation_key(animation_keys_, has_timeline(info_), f.index, f.time, f.fit.pose, f.fit.expression);
     write_videos(f, ref, coarse, camera);
   }
 
@@ -195,15 +196,6 @@ class FrameWriter {
 
   int meshes_written() const { return meshes_; }
 
-  // Images have no timeline: a folder's are keyed 1/30 s apart. A key no
-  // later than the one before (a video's repeated timestamp) is dropped, as
-  // glTF needs increasing key times.
-  void add_animation_key(const CapturedFrame& f) {
-    const bool images = info_.kind == InputKind::kImage || info_.kind == InputKind::kImageFolder;
-    const double time = images ? f.index / 30.0 : f.time;
-    if (!animation_keys_.empty() && time <= animation_keys_.back().time) return;
-    animation_keys_.push_back({time, f.fit.pose, f.fit.expression});
-  }
   void set_refiner(const Refiner* r) { refiner_ = r; }
 
  private:

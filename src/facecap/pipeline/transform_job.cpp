@@ -12,8 +12,10 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
+#include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 
 namespace facecap {
@@ -41,6 +43,9 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   }
   if (options.transform.from != Emotion::kNeutral) mapper.pair(options.transform.from);
 
+  // An unwritable glTF path fails before the work, as the video's does.
+  if (!options.gltf.empty()) ensure_writable_dir(fs::absolute(options.gltf).parent_path());
+
   SyntheticMark mark;
   mark.kind = "expression-transform";
   mark.description = "The facial expression was changed by facecap (" + options.description +
@@ -62,6 +67,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
 
   TransformSummary summary;
   std::map<int, Pending> pending;
+  std::vector<FaceAnimationKey> keys;  // for the glTF
   auto emit = [&](const std::vector<TransformedFrame>& done) {
     for (const TransformedFrame& t : done) {
       auto it = pending.find(t.index);
@@ -81,6 +87,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
         summary.timings.render_ms += ms_since(t0);
       }
       writer.write(out);
+      if (t.valid && !options.gltf.empty())
+        append_animation_key(keys, has_timeline(info), t.index, t.time, p.frame.fit.pose, t.weights);
       summary.frames.push_back(t);
       pending.erase(it);
     }
@@ -115,6 +123,14 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
   write_synthetic_sidecar(output, mark);
+  if (!options.gltf.empty()) {
+    const IdentityEstimate& id = summary.capture.identity;
+    GltfAnimatedMesh glb = face_animation(model, id.identity, keys, {id.focal, info.width, info.height});
+    glb.animation_name = fs::path(input).stem().string() + " (" + options.description + ")";
+    glb.asset_extras.merge(synthetic_metadata(mark));
+    write_glb(options.gltf, glb);
+    write_synthetic_sidecar(options.gltf, mark);
+  }
   if (!options.plot.empty()) write_weight_plot(options.plot, summary.frames, model.expression_names);
   return summary;
 }

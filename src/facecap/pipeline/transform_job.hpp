@@ -20,7 +20,10 @@ struct TransformJobOptions {
   TransformOptions transform;
   std::filesystem::path models_dir = default_expression_models_dir();
   std::filesystem::path plot;  // PNG of weight curves (empty: none)
-  std::string description;     // for the synthetic mark, e.g. "neutral to happiness"
+  // The transformed performance as an animated glTF (face_animation.hpp),
+  // marked as synthetic like the video (empty: none).
+  std::filesystem::path gltf;
+  std::string description;  // for the synthetic mark, e.g. "neutral to happiness"
 };
 
 struct TransformTimings {
