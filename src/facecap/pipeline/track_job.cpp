@@ -195,7 +195,6 @@ class FrameWriter {
   }
 
   int meshes_written() const { return meshes_; }
-
   void set_refiner(const Refiner* r) { refiner_ = r; }
 
  private:
