@@ -14,11 +14,13 @@ namespace {
 constexpr float kMetresPerCentimetre = 0.01f;
 
 // One part's glTF vertices: `source` holds the model vertex (whole-head
-// index) of each, `uv` its UV index (-1: none).
+// index) of each, `uv` its UV index (-1: none); its triangles in glTF
+// vertices, and the same in model vertices (unsplit).
 struct Part {
   std::vector<int> source;
   std::vector<int> uv;
   std::vector<Triangle> triangles;
+  std::vector<Triangle> model_triangles;
 };
 
 // One glTF vertex per distinct (model vertex, UV) pair of the triangles, so
@@ -30,9 +32,10 @@ Part split_at_uv_seams(const TriangleMesh& mesh, int first_vertex, bool keep_uvs
   const bool has_uv = keep_uvs && !mesh.triangle_uvs.empty();
   out.triangles.reserve(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    Triangle tri;
+    Triangle tri, model_tri;
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.triangles[t][k] + first_vertex;
+      model_tri[k] = v;
       const int uv = has_uv ? mesh.triangle_uvs[t][k] : -1;
       const auto [it, added] = index.try_emplace({v, uv}, int(out.source.size()));
       if (added) {
@@ -42,6 +45,7 @@ Part split_at_uv_seams(const TriangleMesh& mesh, int first_vertex, bool keep_uvs
       tri[k] = it->second;
     }
     out.triangles.push_back(tri);
+    out.model_triangles.push_back(model_tri);
   }
   return out;
 }
@@ -88,10 +92,14 @@ Positions gather_metres(const Eigen::VectorXf& head, const std::vector<int>& sou
   return out;
 }
 
+// Normals from the unsplit triangles, so that both sides of a UV seam agree.
 GltfPrimitive make_primitive(const FaceModel& model, const Eigen::VectorXf& rest, const Part& part) {
   GltfPrimitive p;
   p.positions = gather_metres(rest, part.source);
-  p.normals = vertex_normals(p.positions, part.triangles);
+  const Positions normals =
+      vertex_normals(Eigen::Map<const Positions>(rest.data(), 3, model.num_vertices), part.model_triangles);
+  p.normals.resize(3, Eigen::Index(part.source.size()));
+  for (size_t i = 0; i < part.source.size(); ++i) p.normals.col(i) = normals.col(part.source[i]);
   p.triangles = part.triangles;
   for (int j = 0; j < model.num_expressions(); ++j)
     p.morph_targets.push_back(gather_metres(model.expression_basis.col(j), part.source));
@@ -121,11 +129,6 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& i
   const Part face = face_part(model);
   GltfPrimitive skin = make_primitive(model, rest, face);
   skin.name = "face";
-  // Normals from the unsplit mesh, so that both sides of a seam agree.
-  const Positions region_normals =
-      vertex_normals(Eigen::Map<const Positions>(rest.data(), 3, regions::kFace.num_vertices()),
-                     model.region_mesh(regions::kFace).triangles);
-  for (size_t i = 0; i < face.source.size(); ++i) skin.normals.col(i) = region_normals.col(face.source[i]);
   skin.uvs.resize(2, Eigen::Index(face.uv.size()));
   for (size_t i = 0; i < face.uv.size(); ++i) {
     const Vec2f& t = model.uvs[face.uv[i]];
