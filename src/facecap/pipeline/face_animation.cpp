@@ -154,7 +154,7 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& i
       throw Error("an animation key has more expression weights than the model");
     out.times.push_back(float(key.time));
     out.translations.push_back((flip * key.pose.translation).cast<float>() * kMetresPerCentimetre);
-    Eigen::Quaternionf q(Eigen::Matrix3f((flip * key.pose.rotation_matrix() * flip).cast<float>()));
+    Eigen::Quaternionf q(Eigen::Matrix3f((flip * key.pose.model_to_camera_rotation()).cast<float>()));  // F (R F)
     q.normalize();
     // The shorter way round from the previous key, so that players
     // interpolating linearly do not spin the head.
