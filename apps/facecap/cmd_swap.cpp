@@ -27,6 +27,10 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--target", a->target, "Video (or image folder, or cam:N) whose face is replaced")->required();
   cmd->add_option("-o,--output", a->output, "Output video (.mp4); OUT.mp4.json is its synthetic-media sidecar")
       ->required();
+  cmd->add_option("--gltf", a->options.gltf,
+                  "Also write the swapped performance as an animated glTF (.glb, as track --gltf): the source's face "
+                  "at the target's size with its harmonised texture, keyed by the target's pose and expression; "
+                  "marked as synthetic, with a sidecar OUT.glb.json");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
@@ -57,6 +61,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                  s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
                  t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n, t.ratio_ms / n, t.warp_ms / n, t.blend_ms / n,
                  a->output.c_str(), a->output.c_str());
+    if (!a->options.gltf.empty())
+      std::fprintf(stderr, "wrote %s and %s.json\n", a->options.gltf.c_str(), a->options.gltf.c_str());
   });
 }
 

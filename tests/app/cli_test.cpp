@@ -187,6 +187,13 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // A glTF path that cannot be written fails before the work, naming it.
+  const RunResult no_gltf = run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out +
+                                " --gltf /proc/facecap-test/a.glb");
+  EXPECT_EQ(no_gltf.code, 1) << no_gltf.out;
+  EXPECT_EQ(lines(no_gltf.out), 1) << no_gltf.out;
+  EXPECT_NE(no_gltf.out.find("/proc/facecap-test"), std::string::npos) << no_gltf.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
   // A gain on the photo's detail outside [0, 1], or a residual shading
   // width outside [0, 100] mm, is refused by name before any work.
   for (const auto& [flag, value] : std::vector<std::pair<std::string, std::string>>{{"--photo-detail", "2"},

@@ -1,6 +1,8 @@
 #pragma once
 // Reads a .glb back for tests: the container's header and chunks, checked
 // against the specification's layout, and float accessors decoded.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -64,6 +66,43 @@ struct Glb {
         std::copy(values.begin() + k * n, values.begin() + (k + 1) * n, out.begin() + index[k] * n);
       }
     }
+    return out;
+  }
+
+  // The output of the first animation's channel on `path` ("translation",
+  // "rotation", "weights"), key after key.
+  std::vector<float> channel(const std::string& path) const {
+    const auto& anim = doc.at("animations").at(0);
+    for (const auto& ch : anim.at("channels"))
+      if (ch.at("target").at("path") == path) return floats(anim.at("samplers").at(int(ch.at("sampler"))).at("output"));
+    throw std::runtime_error("no " + path + " channel");
+  }
+
+  // What a glTF player computes for every vertex of the first mesh's
+  // primitive `part` at key `key`: the rest position plus the weighted morph
+  // offsets, under the node's rotation and translation (metres).
+  Eigen::Matrix3Xf played_part(int part, int key) const {
+    const auto& prim = doc.at("meshes").at(0).at("primitives").at(part);
+    const std::vector<float> rest = floats(prim.at("attributes").at("POSITION"));
+    Eigen::Matrix3Xf p = Eigen::Map<const Eigen::Matrix3Xf>(rest.data(), 3, Eigen::Index(rest.size() / 3));
+    const std::vector<float> weights = channel("weights");
+    const size_t targets = prim.at("targets").size();
+    for (size_t j = 0; j < targets; ++j) {
+      const float w = weights.at(key * targets + j);
+      if (w == 0) continue;
+      const std::vector<float> t = floats(prim.at("targets").at(j).at("POSITION"));
+      p += w * Eigen::Map<const Eigen::Matrix3Xf>(t.data(), 3, p.cols());
+    }
+    const std::vector<float> r = channel("rotation"), t = channel("translation");
+    const Eigen::Quaternionf q(r.at(key * 4 + 3), r[key * 4], r[key * 4 + 1], r[key * 4 + 2]);
+    return (q.toRotationMatrix() * p).colwise() + Eigen::Vector3f(t.at(key * 3), t[key * 3 + 1], t[key * 3 + 2]);
+  }
+
+  // The encoded bytes of image `image` (stored in a buffer view).
+  std::string image_bytes(int image) const {
+    const int view = doc.at("images").at(image).at("bufferView");
+    std::string out(size_t(doc.at("bufferViews").at(view).at("byteLength")), '\0');
+    copy(view, 0, out.data(), out.size());
     return out;
   }
 

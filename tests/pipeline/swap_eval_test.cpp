@@ -10,6 +10,9 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
+#include "facecap/model/regions.hpp"
+#include "facecap/pipeline/face_animation.hpp"
+#include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -175,6 +178,74 @@ TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {
   const double inside = cv::mean(d(window))[1];
   EXPECT_GT(inside, 0.05);
   EXPECT_LT(inside, 20.0);
+}
+
+// `swap --gltf`: the source's face, placed as the swap places it (at the
+// target face's size), performing the target's keys, with the harmonised
+// texture, and marked as synthetic.
+TEST(SwapJob, TheGltfIsTheSourceFacePerformingTheTargetsKeys) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  TempDir dir;
+  SwapJobOptions o = short_run(20);
+  o.gltf = dir.path() / "swap.glb";
+  std::vector<CapturedFrame> tracked;
+  o.on_frame = [&](const CapturedFrame& f, const SwappedFrame&) {
+    if (f.status != TrackStatus::kLost) tracked.push_back(f);
+  };
+  const SwapSummary s = run_swap(*model, photo.string(), video.string(), dir.path() / "swap.mp4", o);
+  ASSERT_EQ(int(tracked.size()), s.timings.swapped);
+  const test::Glb g = test::Glb::read(o.gltf);
+  EXPECT_EQ(g.doc["asset"]["extras"]["synthetic"], "true");
+  EXPECT_EQ(g.doc["asset"]["extras"]["facecap_edit"], "face-swap");
+  EXPECT_TRUE(fs::exists(o.gltf.string() + ".json"));
+  ASSERT_EQ(g.channel("translation").size(), 3 * tracked.size());
+
+  // What the swap renders: the source's identity shape with the frame's
+  // expression, scaled onto the target's neutral face, under the frame's pose.
+  const Eigen::VectorXf none;
+  const Eigen::VectorXf source_shape = model->identity_shape(s.source.face.identity, regions::kFace);
+  const Eigen::VectorXf target_shape = model->identity_shape(s.target.identity.identity.cast<float>(), regions::kFace);
+  const SizeMatch size = match_size(model->with_expression(source_shape, none, regions::kFace),
+                                    model->with_expression(target_shape, none, regions::kFace));
+  const std::vector<int> face = face_animation_source_vertices(*model)[0];
+  const Eigen::Vector3f flip(1, -1, -1);  // glTF's world is the OpenCV camera frame turned about x
+  for (const size_t k : {size_t(0), tracked.size() / 2, tracked.size() - 1}) {
+    const CapturedFrame& f = tracked[k];
+    const Positions swapped =
+        to_camera(size.apply(model->with_expression(source_shape, f.fit.expression, regions::kFace)), f.fit.pose);
+    const Positions own = to_camera(model->with_expression(target_shape, f.fit.expression, regions::kFace), f.fit.pose);
+    const Eigen::Matrix3Xf played = g.played_part(0, int(k));
+    double worst_cm = 0, from_own_mm = 0;
+    for (size_t i = 0; i < face.size(); ++i) {
+      const Eigen::Vector3f cam_cm = flip.cwiseProduct(played.col(Eigen::Index(i))) * 100.0f;
+      worst_cm = std::max(worst_cm, double((cam_cm - swapped.col(face[i])).norm()));
+      from_own_mm += 10.0 * (cam_cm - own.col(face[i])).norm() / double(face.size());
+    }
+    EXPECT_LT(worst_cm, 1e-3) << "key " << k;
+    // Not the target's own face (Biden's into the webcam speaker's).
+    EXPECT_GT(from_own_mm, 1.0) << "key " << k;
+  }
+
+  // The face part is textured with the harmonised albedo in ICT's UV layout.
+  const int material = g.doc["meshes"][0]["primitives"][0]["material"];
+  const int image =
+      g.doc["textures"][int(g.doc["materials"][material]["pbrMetallicRoughness"]["baseColorTexture"]["index"])]
+           ["source"];
+  const std::string png = g.image_bytes(image);
+  const cv::Mat texture = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  ASSERT_EQ(texture.rows, 1024);
+  ASSERT_EQ(texture.cols, 1024);
+  // Filled everywhere (the mirror completion and the fill), skin-coloured
+  // (red over blue), and with the photo's detail (not a flat colour).
+  cv::Mat grey;
+  cv::cvtColor(texture, grey, cv::COLOR_BGR2GRAY);
+  EXPECT_GT(cv::countNonZero(grey), 0.9 * double(grey.total()));
+  cv::Scalar mean, sd;
+  cv::meanStdDev(texture, mean, sd);
+  EXPECT_GT(mean[2], mean[0] + 10);
+  EXPECT_GT(sd[1], 5.0);
 }
 
 TEST(SwapJob, APhotoWithoutAFaceIsAClearErrorAndWritesNothing) {

@@ -64,10 +64,7 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   const test::Glb g = test::Glb::read(o.gltf);
   EXPECT_EQ(g.doc["asset"]["extras"]["synthetic"], "true");
   EXPECT_TRUE(fs::exists(o.gltf.string() + ".json"));
-  const auto& anim = g.doc["animations"][0];
-  std::vector<float> weights;
-  for (const auto& ch : anim["channels"])
-    if (ch["target"]["path"] == "weights") weights = g.floats(anim["samplers"][int(ch["sampler"])]["output"]);
+  const std::vector<float> weights = g.channel("weights");
   const int targets = model->num_expressions(), keys = int(weights.size()) / targets;
   EXPECT_EQ(keys, r.valid_frames);
   const int smile = model->expression_index("mouthSmile_L");

@@ -93,16 +93,16 @@ Positions gather_metres(const Eigen::VectorXf& head, const std::vector<int>& sou
 }
 
 // Normals from the unsplit triangles, so that both sides of a UV seam agree.
-GltfPrimitive make_primitive(const FaceModel& model, const Eigen::VectorXf& rest, const Part& part) {
+GltfPrimitive make_primitive(const FaceModel& model, const FaceAnimationRest& rest, const Part& part) {
   GltfPrimitive p;
-  p.positions = gather_metres(rest, part.source);
+  p.positions = gather_metres(rest.head, part.source);
   const Positions normals =
-      vertex_normals(Eigen::Map<const Positions>(rest.data(), 3, model.num_vertices), part.model_triangles);
+      vertex_normals(Eigen::Map<const Positions>(rest.head.data(), 3, model.num_vertices), part.model_triangles);
   p.normals.resize(3, Eigen::Index(part.source.size()));
   for (size_t i = 0; i < part.source.size(); ++i) p.normals.col(i) = normals.col(part.source[i]);
   p.triangles = part.triangles;
   for (int j = 0; j < model.num_expressions(); ++j)
-    p.morph_targets.push_back(gather_metres(model.expression_basis.col(j), part.source));
+    p.morph_targets.push_back(gather_metres(model.expression_basis.col(j), part.source) * rest.blend_shape_scale);
   return p;
 }
 
@@ -119,12 +119,24 @@ std::vector<std::vector<int>> face_animation_source_vertices(const FaceModel& mo
   return {face_part(model).source, interior_part(model).source};
 }
 
+FaceAnimationRest identity_rest(const FaceModel& model, const Eigen::VectorXf& identity) {
+  const Region all{"all", 0, model.num_vertices - 1, 0, int(model.polygons.size()) - 1};
+  return {model.identity_shape(identity, all), 1.0f};
+}
+
 GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& identity,
                                 const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera) {
+  return face_animation(model, identity_rest(model, identity.cast<float>()), keys, camera);
+}
+
+GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest& rest,
+                                const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera) {
+  if (rest.head.size() != 3 * Eigen::Index(model.num_vertices))
+    throw Error("the animation's rest shape does not have the model's vertex count");
+  if (!rest.head.allFinite() || !std::isfinite(rest.blend_shape_scale))
+    throw Error("the animation's rest shape is not finite");
   GltfAnimatedMesh out;
   out.name = "face";
-  const Region all{"all", 0, model.num_vertices - 1, 0, int(model.polygons.size()) - 1};
-  const Eigen::VectorXf rest = model.identity_shape(identity.cast<float>(), all);
 
   const Part face = face_part(model);
   GltfPrimitive skin = make_primitive(model, rest, face);

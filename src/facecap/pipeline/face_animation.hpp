@@ -38,8 +38,23 @@ struct FaceAnimationCamera {
   int width = 0, height = 0;
 };
 
-// The face part is split where the UV layout has seams. `identity`: the
-// leading identity modes (as IdentityEstimate holds them).
+// The mesh at rest: every model vertex in model space (3N values, cm), and
+// the factor the expression blend shapes are scaled by. A face scaled about
+// its centre (the swap's size match, swap/size_match.hpp) moves each vertex's
+// blend-shape offsets by the same factor.
+struct FaceAnimationRest {
+  Eigen::VectorXf head;
+  float blend_shape_scale = 1.0f;
+};
+
+// neutral + B_id identity over the whole head. `identity`: the leading
+// identity modes (as IdentityEstimate holds them).
+FaceAnimationRest identity_rest(const FaceModel& model, const Eigen::VectorXf& identity);
+
+// The face part is split where the UV layout has seams.
+GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest& rest,
+                                const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera);
+// The same with the rest shape of a tracked identity.
 GltfAnimatedMesh face_animation(const FaceModel& model, const Eigen::VectorXd& identity,
                                 const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera);
 

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <opencv2/imgcodecs.hpp>
 
+#include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 
 namespace facecap {
@@ -64,8 +68,36 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   return r;
 }
 
+namespace {
+
+// The swapped face as face_animation() writes it: the source's whole head
+// placed as the swap places its face (at the target's size), its harmonised
+// texture on the face part, and the marks in asset.extras.
+GltfAnimatedMesh swapped_animation(const FaceModel& model, const FaceSwapper& swapper, const SourceFace& source,
+                                   const std::vector<FaceAnimationKey>& keys, const FaceAnimationCamera& camera,
+                                   const SyntheticMark& mark) {
+  FaceAnimationRest rest = identity_rest(model, source.identity);
+  if (const std::optional<SizeMatch> size = swapper.size_match()) {
+    const Positions placed = size->apply(Eigen::Map<const Positions>(rest.head.data(), 3, model.num_vertices));
+    rest.head = Eigen::Map<const Eigen::VectorXf>(placed.data(), placed.size());
+    rest.blend_shape_scale = float(size->scale);
+  }
+  GltfAnimatedMesh glb = face_animation(model, rest, keys, camera);
+  const cv::Mat texture = swapper.harmonised_texture();
+  if (!texture.empty() && !cv::imencode(".png", texture, glb.primitives.front().base_colour_png))
+    throw Error("cannot encode the swapped face's texture");
+  glb.asset_extras["model"] =
+      "ICT Face Model Light (ICT-FaceKit, MIT): face region, mouth and eyes, the source's identity";
+  glb.asset_extras.merge(synthetic_metadata(mark));
+  return glb;
+}
+
+}  // namespace
+
 SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
                      const fs::path& output, const SwapJobOptions& options) {
+  // An unwritable glTF path fails before the work, as the video's does.
+  if (!options.gltf.empty()) ensure_writable_dir(fs::absolute(options.gltf).parent_path());
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();
   summary.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames);
@@ -108,6 +140,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     refine.hierarchy.levels = 2;
   }
   Refiner refiner = make_face_refiner(model, refine);
+  std::vector<FaceAnimationKey> keys;
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
   summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
@@ -132,6 +165,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
       summary.timings.lighting_ms += ms_since(l0);
       result = swapper.swap(f.image, t, &summary.timings.swap);
       ++summary.timings.swapped;
+      if (!options.gltf.empty()) append_animation_key(keys, has_timeline(info), f.index, f.time, t.pose, t.expression);
     }
     writer.write(result.image);
     if (options.on_frame) options.on_frame(f, result);
@@ -141,6 +175,14 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
   write_synthetic_sidecar(output, mark);
+  if (!options.gltf.empty()) {
+    GltfAnimatedMesh glb = swapped_animation(model, swapper, summary.source.face, keys,
+                                             {summary.target.identity.focal, info.width, info.height}, mark);
+    glb.animation_name =
+        fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")";
+    write_glb(options.gltf, glb);
+    write_synthetic_sidecar(options.gltf, mark);
+  }
   return summary;
 }
 

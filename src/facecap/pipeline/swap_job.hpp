@@ -33,6 +33,12 @@ struct SwapJobOptions {
   CaptureOptions capture;
   SwapOptions swap;
   int source_frames = 30;  // frames of a source video or folder the identity is solved from
+  // The swapped performance as an animated glTF (face_animation.hpp): the
+  // source's identity at the size the swap gives it, performing the target's
+  // keys (pose and expression), textured with the source's harmonised albedo
+  // (FaceSwapper::harmonised_texture), and marked as synthetic, with a
+  // sidecar GLTF.json. Empty: none.
+  std::filesystem::path gltf;
   // Called with each output frame (and the target frame it came from).
   std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
 };

@@ -307,6 +307,11 @@ cv::Mat FaceSwapper::harmonised_texture() const {
   return out;
 }
 
+std::optional<SizeMatch> FaceSwapper::size_match() const {
+  if (!impl_->options.match_target_size || impl_->target_identity.size() == 0) return std::nullopt;
+  return impl_->size;
+}
+
 SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, SwapTimings* timings) {
   Impl& m = *impl_;
   SwapTimings local;

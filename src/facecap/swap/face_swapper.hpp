@@ -13,10 +13,12 @@
 // boundary of the face (§6.3).
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 
 #include "facecap/core/camera.hpp"
 #include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/model/face_model.hpp"
+#include "facecap/swap/size_match.hpp"
 
 namespace facecap {
 
@@ -142,8 +144,14 @@ class FaceSwapper {
 
   SwappedFrame swap(const cv::Mat& frame, const TargetFrame& target, SwapTimings* timings = nullptr);
 
-  // The harmonised albedo texture (BGR 8-bit), once a target frame has been seen.
+  // The harmonised albedo texture (BGR 8-bit, the ICT UV layout of
+  // bake_uv_texture), once a target frame has been seen.
   cv::Mat harmonised_texture() const;
+
+  // How the source's model-space shape is placed at the target face's size
+  // (SwapOptions::match_target_size), once a target frame has been seen;
+  // none with the option off.
+  std::optional<SizeMatch> size_match() const;
 
  private:
   struct Impl;
