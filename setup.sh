@@ -16,6 +16,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg libavformat-dev libavcodec-dev libavutil-dev zlib1g-dev
   libtorch-dev
+  blender python3-numpy  # tests only: Blender's own importer opens the animated glTF output
 )
 
 step "Checking Debian packages"

@@ -1,8 +1,6 @@
 // The facecap program end to end: exit codes and one-line errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -13,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/command.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/refine/compute_device.hpp"
 #include "test_support.hpp"
@@ -21,23 +20,13 @@ namespace facecap {
 
 namespace {
 
-struct RunResult {
-  int code = -1;
-  std::string out;  // stdout and stderr together
-};
+using RunResult = test::CommandResult;
 
 RunResult run(const std::string& args) {
-  const std::string cmd = std::string(FACECAP_BINARY) + " -q " + args + " 2>&1";
-  RunResult r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (pipe && std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int status = pipe ? ::pclose(pipe) : -1;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return test::run_command(std::string(FACECAP_BINARY) + " -q " + args + " 2>&1");
 }
 
-int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+int lines(const std::string& s) { return test::count_lines(s); }
 
 }  // namespace
 
