@@ -152,6 +152,26 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
   }
 }
 
+// An output path that is a folder is refused up front, by name, for the
+// video and for the glTF of both edits; the folder is left alone.
+TEST(Cli, EditsRefuseAFolderAsTheirOutput) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
+  TempDir dir;
+  const std::string folder = dir.path().string(), out = (dir.path() / "out.mp4").string();
+  const std::string swap = "swap --source " + portrait.string() + " --target " + video.string();
+  const std::string transform = "transform " + video.string() + " --to happiness";
+  for (const std::string& args : {swap + " -o " + folder, swap + " -o " + out + " --gltf " + folder,
+                                  transform + " -o " + folder, transform + " -o " + out + " --gltf " + folder}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find("is a folder"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+  }
+}
+
 TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");

@@ -55,4 +55,25 @@ TEST(AtomicFile, UnwritableFolderIsAClearError) {
   }
 }
 
+// An output path that names a folder fails when the output is opened, before
+// the work that would fill it, and the folder is left as it was.
+TEST(AtomicFile, AFolderAsTheOutputIsAClearErrorUpFront) {
+  TempDir dir;
+  const auto folder = dir.path() / "out.mp4";
+  std::filesystem::create_directories(folder);
+  write_text_file(folder / "kept.txt", "x");
+  for (const auto& check : {+[](const std::filesystem::path& p) { AtomicFile f(p); },
+                            +[](const std::filesystem::path& p) { ensure_writable_file(p); }}) {
+    try {
+      check(folder);
+      ADD_FAILURE() << "expected an error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(folder.string()), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(slurp(folder / "kept.txt"), "x");
+  EXPECT_NO_THROW(ensure_writable_file(dir.path() / "new" / "out.glb"));  // a missing folder is made
+}
+
 }  // namespace facecap

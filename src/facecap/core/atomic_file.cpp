@@ -22,8 +22,14 @@ void ensure_writable_dir(const fs::path& dir) {
   if (::access(d.c_str(), W_OK) != 0) throw Error("output folder is not writable: " + d.string());
 }
 
+void ensure_writable_file(const fs::path& path) {
+  ensure_writable_dir(path.parent_path());
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error("cannot write " + path.string() + ": it is a folder");
+}
+
 AtomicFile::AtomicFile(fs::path final_path) : final_(std::move(final_path)) {
-  ensure_writable_dir(final_.parent_path());
+  ensure_writable_file(final_);
   static std::atomic<int> counter{0};
   // Keep the extension last so that tools choosing a format by name (ffmpeg, OpenCV) still do.
   const std::string tag = ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);

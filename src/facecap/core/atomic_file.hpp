@@ -12,7 +12,7 @@ namespace facecap {
 
 class AtomicFile {
  public:
-  // Checks that the destination folder exists and is writable (throws facecap::Error).
+  // Checks that the destination can be written (ensure_writable_file).
   explicit AtomicFile(std::filesystem::path final_path);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
@@ -30,6 +30,11 @@ class AtomicFile {
 
 // Throws facecap::Error unless `dir` exists (or can be created) and is writable.
 void ensure_writable_dir(const std::filesystem::path& dir);
+
+// Throws facecap::Error unless `path` can be written: its folder exists (or
+// can be created) and is writable, and the path is not itself a folder. For
+// checking an output before the work that fills it.
+void ensure_writable_file(const std::filesystem::path& path);
 
 // Writes text, or bytes, atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);

@@ -96,8 +96,9 @@ GltfAnimatedMesh swapped_animation(const FaceModel& model, const FaceSwapper& sw
 
 SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
                      const fs::path& output, const SwapJobOptions& options) {
-  // An unwritable glTF path fails before the work, as the video's does.
-  if (!options.gltf.empty()) ensure_writable_dir(fs::absolute(options.gltf).parent_path());
+  // Unwritable outputs fail before the work (the source's fit included).
+  ensure_writable_file(fs::absolute(output));
+  if (!options.gltf.empty()) ensure_writable_file(fs::absolute(options.gltf));
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();
   summary.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames);

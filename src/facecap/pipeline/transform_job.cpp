@@ -44,7 +44,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (options.transform.from != Emotion::kNeutral) mapper.pair(options.transform.from);
 
   // An unwritable glTF path fails before the work, as the video's does.
-  if (!options.gltf.empty()) ensure_writable_dir(fs::absolute(options.gltf).parent_path());
+  if (!options.gltf.empty()) ensure_writable_file(fs::absolute(options.gltf));
 
   SyntheticMark mark;
   mark.kind = "expression-transform";
