@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
@@ -71,6 +72,14 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   double mean_smile = 0;
   for (int k = 0; k < keys; ++k) mean_smile += weights[size_t(k) * targets + smile] / keys;
   EXPECT_GE(mean_smile, 0.3);
+  // The face is textured with the albedo the lighting was estimated against.
+  ASSERT_TRUE(g.doc.contains("images"));
+  const std::string png = g.image_bytes(0);
+  const cv::Mat albedo = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  EXPECT_EQ(albedo.size(), cv::Size(1024, 1024));
+  EXPECT_EQ(g.doc["materials"][int(g.doc["meshes"][0]["primitives"][0]["material"])]["pbrMetallicRoughness"]
+                 ["baseColorTexture"]["index"],
+            0);
 }
 
 TEST(TransformEval, AddressKeepsItsAudio) {

@@ -4,14 +4,17 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <utility>
 
+#include "facecap/core/error.hpp"
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
+#include "facecap/render/uv_bake.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 #include "facecap/synth/wrinkles.hpp"
 
@@ -138,6 +141,14 @@ std::vector<bool> face_skin_mask() {
 Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options) {
   const std::vector<Polygon> polygons(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
   return Refiner(polygons, regions::kFace.num_vertices(), options, face_skin_mask());
+}
+
+std::vector<uint8_t> face_albedo_png(const FaceModel& model, const Refiner& refiner) {
+  std::vector<uint8_t> png;
+  if (!refiner.initialised()) return png;
+  const cv::Mat texture = bake_uv_texture(model.region_mesh(regions::kFace), refiner.coarse_albedo());
+  if (!cv::imencode(".png", texture, png)) throw Error("cannot encode the albedo texture");
+  return png;
 }
 
 RefineOptions lighting_only_refinement() {

@@ -69,6 +69,10 @@ Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options);
 // instead of 10: for the edits, where the lighting feeds a shading ratio or
 // a re-shading whose scale only has to be consistent within one video.
 RefineOptions lighting_only_refinement();
+// A face refiner's albedo baked into the ICT UV layout (bake_uv_texture) as
+// PNG bytes: `track --refine`'s albedo.png and the face texture of the
+// animated glTF. Empty until the refiner has an albedo.
+std::vector<uint8_t> face_albedo_png(const FaceModel& model, const Refiner& refiner);
 
 // ||k l - l_true|| / ||l_true||, k the best scale (albedo times lighting is
 // only determined up to a common factor).

@@ -4,7 +4,6 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
@@ -18,7 +17,6 @@
 #include "facecap/render/overlay.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
-#include "facecap/render/uv_bake.hpp"
 
 namespace facecap {
 
@@ -170,11 +168,8 @@ class FrameWriter {
       fs::remove(dir_ / "identity.json", ec);
     }
     std::vector<uint8_t> albedo_png;
-    if (refiner != nullptr && refiner->initialised()) {
-      const cv::Mat tex = bake_uv_texture(face_mesh_, refiner->coarse_albedo());
-      if (!cv::imencode(".png", tex, albedo_png)) throw Error("cannot encode the albedo texture");
-      write_binary_file(dir_ / "albedo.png", albedo_png.data(), albedo_png.size());
-    }
+    if (refiner != nullptr) albedo_png = face_albedo_png(model_, *refiner);
+    if (!albedo_png.empty()) write_binary_file(dir_ / "albedo.png", albedo_png.data(), albedo_png.size());
     if (options_.gltf) {
       // Like identity.json: no tracked frame, no face to animate.
       if (id.frames_used > 0 && !animation_keys_.empty()) {

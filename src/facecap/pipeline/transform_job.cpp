@@ -126,6 +126,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (!options.gltf.empty()) {
     const IdentityEstimate& id = summary.capture.identity;
     GltfAnimatedMesh glb = face_animation(model, id.identity, keys, {id.focal, info.width, info.height});
+    glb.primitives.front().base_colour_png = face_albedo_png(model, refiner);  // the face part
     glb.animation_name = fs::path(input).stem().string() + " (" + options.description + ")";
     glb.asset_extras.merge(synthetic_metadata(mark));
     write_glb(options.gltf, glb);
