@@ -50,11 +50,12 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
   track->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
   add_device_option(*track, a->refine_options.device);
   track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)");
+  add_start_option(*track, a->capture.start_seconds);
   track->add_flag("--refine", a->refine,
                   "Also the shading refinement, on its own thread (lighting, albedo, each level's displacement solve)");
   track->callback([a, &global] {
     const FaceModel model = load_model(global);
-    auto source = open_input(a->input);
+    auto source = open_input(a->input, a->capture.start_seconds);
     a->capture.quiet = true;
     a->capture.keep_images = a->refine;
     // Refinement timings, summed on the stage's thread.

@@ -32,6 +32,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                   "at the target's size with its harmonised texture, keyed by the target's pose and expression; "
                   "marked as synthetic, with a sidecar OUT.glb.json");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held (counted once the target's "

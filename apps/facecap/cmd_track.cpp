@@ -37,6 +37,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->callback([a, &global] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
     a->options.capture.fit.check();

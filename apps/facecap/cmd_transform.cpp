@@ -33,6 +33,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                   "synthetic, with a sidecar .json)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->callback([a, &global] {
     const auto to = parse_emotion(a->to), from = parse_emotion(a->from);

@@ -26,6 +26,9 @@ void parse_size(const std::string& s, int& width, int& height);
 // --init-frames: the frames the identity and focal length are solved from
 // (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
 void add_init_frames_option(CLI::App& cmd, int& init_frames);
+// --start SECONDS: where track, transform, swap and bench track start reading
+// a video (CaptureOptions::start_seconds).
+void add_start_option(CLI::App& cmd, double& start_seconds);
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.

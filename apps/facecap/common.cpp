@@ -1,4 +1,6 @@
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "commands.hpp"
@@ -35,6 +37,20 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames) {
                  "Frames with a face the identity and focal length are solved from, before the first output; more "
                  "frames show more head poses, and weigh together as much as 30")
       ->capture_default_str();
+}
+
+void add_start_option(CLI::App& cmd, double& start_seconds) {
+  cmd.add_option("--start", start_seconds,
+                 "Start this many seconds into the video (frames keep their own numbers and times; an output video "
+                 "and its audio start there)")
+      ->check(
+          [](const std::string& text) {
+            char* end = nullptr;
+            const double seconds = std::strtod(text.c_str(), &end);
+            const bool ok = end != text.c_str() && *end == '\0' && std::isfinite(seconds) && seconds >= 0;
+            return ok ? std::string() : "must be 0 or more seconds, not " + text;
+          },
+          "SECONDS");
 }
 
 void add_device_option(CLI::App& cmd, ComputeDevice& device) {

@@ -86,6 +86,21 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
   r = run("track " + video.string() + " -o " + dir.path().string() + " --init-frames 0");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
+  // A start before 0 or not a number is named; one past the end, or into an
+  // image, is a one-line error that writes nothing.
+  for (const char* start : {"-1", "soon"}) {
+    r = run("track " + video.string() + " -o " + (dir.path() / "out").string() + " --start " + start);
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.out.find("--start"), std::string::npos) << r.out;
+  }
+  FACECAP_REQUIRE_DATA(image, "portrait_obama.jpg");
+  for (const std::string& input : {video.string() + " --start 3600", image.string() + " --start 1"}) {
+    r = run("track " + input + " -o " + (dir.path() / "out").string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find("cannot start"), std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frames.csv"));
 }
 
 TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {

@@ -15,9 +15,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string open_error(const std::string& spec) {
+std::string open_error(const std::string& spec, double start_seconds = 0) {
   try {
-    open_input(spec);
+    open_input(spec, start_seconds);
   } catch (const Error& e) {
     return e.what();
   }
@@ -102,6 +102,44 @@ TEST(Input, TruncatedVideosAreRejectedWhereverTheIndexSits) {
   write_prefix(webcam, dir.path() / "cut_b.mp4", 0.4);
   const std::string b = open_error((dir.path() / "cut_b.mp4").string());
   EXPECT_NE(b.find("truncated"), std::string::npos) << b;
+}
+
+// Starting part-way gives exactly the frames a read from the start gives
+// there, with their own indices and times.
+TEST(Input, StartingPartWayGivesTheFramesOfASequentialRead) {
+  for (const char* name : {"talking_webcam_400x300.mp4", "address_720p_a.mp4"}) {
+    FACECAP_REQUIRE_DATA(video, name);
+    auto whole = open_input(video.string());
+    const double fps = whole->info().fps;
+    ASSERT_GT(fps, 0.0);
+    std::vector<cv::Mat> frames;
+    for (Frame f; frames.size() < 80 && whole->read(f);) frames.push_back(f.image.clone());
+    ASSERT_EQ(frames.size(), 80u);
+    // At a frame's time, and just after it (the next frame is the first at or
+    // after); frames between keyframes and at the clip's start.
+    for (const auto& [seconds, first] :
+         std::vector<std::pair<double, int>>{{50 / fps, 50}, {50.5 / fps, 51}, {7 / fps, 7}, {0.5 / fps, 1}}) {
+      auto part = open_input(video.string(), seconds);
+      EXPECT_EQ(part->info().first_frame, first);
+      for (int k = 0; k < 3; ++k) {
+        Frame f;
+        ASSERT_TRUE(part->read(f));
+        EXPECT_EQ(f.index, first + k);
+        EXPECT_NEAR(f.time, (first + k) / fps, 1e-9);
+        EXPECT_EQ(cv::norm(f.image, frames[size_t(first + k)], cv::NORM_INF), 0.0) << name << " frame " << first + k;
+      }
+    }
+  }
+}
+
+TEST(Input, AStartPastTheEndOrWithoutATimelineIsAClearError) {
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(image, "portrait_obama.jpg");
+  EXPECT_NE(open_error(video.string(), 1000).find("long"), std::string::npos) << open_error(video.string(), 1000);
+  EXPECT_NE(open_error(video.string(), -1).find("0 or more"), std::string::npos);
+  EXPECT_NE(open_error(image.string(), 1).find("only a video file"), std::string::npos);
+  EXPECT_NE(open_error(image.parent_path().string(), 1).find("only a video file"), std::string::npos);
+  EXPECT_EQ(open_error(image.string(), 0), "");  // no start: any input
 }
 
 }  // namespace facecap

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -9,6 +11,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/input.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
@@ -26,6 +29,30 @@ std::vector<std::string> lines(const fs::path& p) {
 }
 
 int count_fields(const std::string& line) { return static_cast<int>(std::count(line.begin(), line.end(), ',')) + 1; }
+
+// `seconds` of a file's audio from `start`, mono at 8 kHz, through ffmpeg.
+std::vector<float> audio_samples(const fs::path& file, double start, double seconds) {
+  const std::string command = "ffmpeg -v error -ss " + std::to_string(start) + " -t " + std::to_string(seconds) +
+                              " -i '" + file.string() + "' -ac 1 -ar 8000 -f s16le -";
+  std::vector<float> out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  int16_t sample = 0;
+  while (pipe && std::fread(&sample, sizeof(sample), 1, pipe) == 1) out.push_back(sample);
+  if (pipe) ::pclose(pipe);
+  return out;
+}
+
+// Normalised correlation of two equally long signals.
+double correlation(const std::vector<float>& a, const std::vector<float>& b) {
+  const size_t n = std::min(a.size(), b.size());
+  double ab = 0, aa = 0, bb = 0;
+  for (size_t i = 0; i < n; ++i) {
+    ab += double(a[i]) * b[i];
+    aa += double(a[i]) * a[i];
+    bb += double(b[i]) * b[i];
+  }
+  return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
+}
 
 }  // namespace
 
@@ -67,6 +94,43 @@ TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
   const auto obj = lines(dir.path() / "meshes" / "frame_000000.obj");
   EXPECT_GT(std::count_if(obj.begin(), obj.end(), [](const std::string& l) { return l.rfind("vt ", 0) == 0; }), 1000);
   EXPECT_EQ(open_input((dir.path() / "overlay.mp4").string())->info().frames, 36);
+}
+
+// --start: the frames keep the video's numbers and times, and the overlay's
+// sound is the video's from that time on.
+TEST(TrackJob, StartingPartWayKeepsTheVideosTimelineAndItsSound) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.capture.start_seconds = 2.0;
+  o.capture.max_frames = 24;
+  o.overlay = true;
+  const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
+  EXPECT_EQ(s.capture.frames, 24);
+  const double fps = s.capture.input.fps;
+  const int first = int(std::ceil(2.0 * fps));  // 60 at 29.97 fps
+  const auto csv = lines(dir.path() / "frames.csv");
+  ASSERT_EQ(csv.size(), 25u);
+  EXPECT_EQ(csv[1].substr(0, csv[1].find(',')), std::to_string(first));
+  const auto row = nlohmann::json::parse(lines(dir.path() / "frames.jsonl").back());
+  EXPECT_EQ(row["frame"], first + 23);
+  EXPECT_NEAR(row["time"].get<double>(), (first + 23) / fps, 1e-3);
+
+  const fs::path overlay = dir.path() / "overlay.mp4";
+  const InputInfo info = probe_video_file(overlay);
+  EXPECT_EQ(info.frames, 24);
+  ASSERT_TRUE(info.audio);
+  EXPECT_NEAR(info.audio_duration, 24 / fps, 0.05);
+  // The overlay's sound (re-encoded) matches the input's from the first
+  // frame's time, not from its beginning nor a tenth of a second off.
+  const std::vector<float> out = audio_samples(overlay, 0.0, 0.7);
+  ASSERT_GT(out.size(), 5000u);
+  const double aligned = correlation(out, audio_samples(video, first / fps, 0.7));
+  EXPECT_GT(aligned, 0.9);
+  EXPECT_LT(correlation(out, audio_samples(video, 0.0, 0.7)), 0.5 * aligned);
+  EXPECT_LT(correlation(out, audio_samples(video, first / fps + 0.1, 0.7)), 0.5 * aligned);
 }
 
 TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {

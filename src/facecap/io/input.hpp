@@ -25,6 +25,7 @@ struct InputInfo {
   bool audio = false;         // has an audio stream
   double audio_duration = 0;  // seconds of the first audio stream, 0 when unknown or none
   double duration = 0;        // seconds, 0 when unknown
+  int first_frame = 0;        // the frame reading starts at (open_input's start_seconds)
 };
 
 // Whether the frames' times mean anything: a video's and a camera's do; a
@@ -32,6 +33,9 @@ struct InputInfo {
 inline bool has_timeline(const InputInfo& info) {
   return info.kind == InputKind::kVideo || info.kind == InputKind::kCamera;
 }
+
+// The time of the first frame reading starts at (InputInfo::first_frame).
+inline double start_time(const InputInfo& info) { return info.fps > 0 ? info.first_frame / info.fps : 0.0; }
 
 struct Frame {
   cv::Mat image;  // BGR, 8 bit; empty when this frame could not be decoded
@@ -46,9 +50,15 @@ class FrameSource {
   virtual const InputInfo& info() const = 0;
   // The next frame; false at the end of the input.
   virtual bool read(Frame& frame) = 0;
+  // Before the first read: start at the first frame at or after `seconds`;
+  // frames keep their index and time on the input's timeline. Only a video
+  // file has a timeline to start into: anything else throws facecap::Error,
+  // as does a time past the video's end.
+  virtual void seek(double seconds);
 };
 
-std::unique_ptr<FrameSource> open_input(const std::string& spec);
+// Opens an input, reading from `start_seconds` on (FrameSource::seek).
+std::unique_ptr<FrameSource> open_input(const std::string& spec, double start_seconds = 0);
 
 // Width, height, frame rate, frame count, audio and duration of a video file
 // (via libavformat); throws facecap::Error when the file is not a readable video.

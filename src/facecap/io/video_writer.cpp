@@ -47,6 +47,7 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
                                 "-"};
   const bool audio = options_.audio_source.has_value();
   if (audio) {
+    if (options_.audio_start > 0) args.insert(args.end(), {"-ss", std::to_string(options_.audio_start)});
     if (options_.audio_seconds > 0) args.insert(args.end(), {"-t", std::to_string(options_.audio_seconds)});
     args.insert(args.end(), {"-i", options_.audio_source->string(), "-map", "0:v:0", "-map", "1:a:0?", "-c:a", "aac",
                              "-b:a", "160k"});
@@ -170,6 +171,7 @@ VideoWriterOptions output_like(const InputInfo& input, int max_frames) {
   o.fps = input.fps > 0 ? input.fps : 25.0;
   if (input.audio) {
     o.audio_source = std::filesystem::path(input.spec);
+    o.audio_start = start_time(input);
     if (max_frames > 0) o.audio_seconds = max_frames / o.fps;
   }
   return o;

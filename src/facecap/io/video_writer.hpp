@@ -23,7 +23,9 @@ struct VideoWriterOptions {
   double fps = 30.0;
   // Take the audio track from this file (the input), if it has one.
   std::optional<std::filesystem::path> audio_source;
-  // Seconds of that audio to take from its start (0: all), for runs that stop early.
+  // Where in that audio to start (runs that start part-way), and how many
+  // seconds to take (0: all), for runs that stop early.
+  double audio_start = 0;
   double audio_seconds = 0;
   // Container metadata (mp4 tags), e.g. {"comment", "..."}.
   std::map<std::string, std::string> metadata;
@@ -60,8 +62,9 @@ class VideoWriter {
   bool finished_ = false;
 };
 
-// An output of the input's size and rate carrying its audio (if any), cut to
-// max_frames' length when a run stops early (0: all of it).
+// An output of the input's size and rate carrying its audio (if any) from
+// where the input starts (InputInfo::first_frame), cut to max_frames'
+// length when a run stops early (0: all of it).
 VideoWriterOptions output_like(const InputInfo& input, int max_frames = 0);
 
 }  // namespace facecap

@@ -51,9 +51,9 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     }
   };
 
-  const int total = options.max_frames > 0 && (summary.input.frames <= 0 || options.max_frames < summary.input.frames)
-                        ? options.max_frames
-                        : summary.input.frames;
+  const int remaining = summary.input.frames > 0 ? summary.input.frames - summary.input.first_frame : -1;
+  const int total =
+      options.max_frames > 0 && (remaining <= 0 || options.max_frames < remaining) ? options.max_frames : remaining;
   Progress progress("capture", total, options.quiet);
   StageTimings& t = summary.timings;
 

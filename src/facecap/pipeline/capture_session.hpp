@@ -15,7 +15,10 @@ namespace facecap {
 struct CaptureOptions {
   CoarseFitOptions fit;
   FaceTrackerOptions tracker;
-  int max_frames = 0;        // 0: the whole input
+  int max_frames = 0;  // 0: the whole input
+  // Where the jobs start reading their input, in seconds (open_input): a
+  // video's frames from there on, on the video's own timeline.
+  double start_seconds = 0;
   bool keep_images = false;  // hand each frame's image to the sink
   bool quiet = false;        // no progress bar
 };

@@ -99,11 +99,11 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   // Unwritable outputs fail before the work (the source's fit included).
   ensure_writable_file(fs::absolute(output));
   if (!options.gltf.empty()) ensure_writable_file(fs::absolute(options.gltf));
+  auto input = open_input(target, options.capture.start_seconds);  // a bad target fails before the source's fit
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();
   summary.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames);
   summary.timings.source_ms = ms_since(t0);
-  auto input = open_input(target);
   const InputInfo info = input->info();
 
   SyntheticMark mark;
@@ -119,7 +119,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      {"residual_shading_mm", std::to_string(options.swap.residual_shading_mm)},
                      {"expression_ratio", options.swap.expression_ratio ? "true" : "false"},
                      {"photo_detail_gain", std::to_string(options.swap.photo_detail_gain)},
-                     {"source_frames_used", std::to_string(summary.source.frames_used)}};
+                     {"source_frames_used", std::to_string(summary.source.frames_used)},
+                     {"target_start_seconds", std::to_string(start_time(info))}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(output, vo);

@@ -287,7 +287,7 @@ class FrameWriter {
 
 TrackSummary run_track(const FaceModel& model, const std::string& input, const fs::path& dir,
                        const TrackOptions& options) {
-  auto source = open_input(input);  // validates the input before anything is written
+  auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
   ensure_writable_dir(dir);
   const InputInfo info = source->info();
   TrackSummary summary;

@@ -35,7 +35,7 @@ struct Pending {
 
 TransformSummary run_transform(const FaceModel& model, const std::string& input, const fs::path& output,
                                const TransformJobOptions& options) {
-  auto source = open_input(input);
+  auto source = open_input(input, options.capture.start_seconds);
   const InputInfo info = source->info();
   const ExpressionMapper mapper(options.models_dir);
   for (const ScheduleKey& k : options.transform.schedule.keys()) {
@@ -52,7 +52,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
                      "); the lips follow the original speech.";
   mark.sources = {input};
   mark.parameters = {{"description", options.description},
-                     {"method", options.transform.method == MappingMethod::kLinear ? "linear" : "cyclegan"}};
+                     {"method", options.transform.method == MappingMethod::kLinear ? "linear" : "cyclegan"},
+                     {"start_seconds", std::to_string(start_time(info))}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(output, vo);
