@@ -142,8 +142,9 @@ class VideoSource final : public FrameSource {
     if (index_ != 0 || first_.empty()) throw Error("cannot seek " + info_.spec + " after reading from it");
     // The first frame whose time (index / fps) is at or after `seconds`.
     const int target = int(std::ceil(seconds * info_.fps - 1e-6));
-    const std::string past_end = "cannot start " + info_.spec + " at " + seconds_text(seconds) + ": it is " +
-                                 seconds_text(info_.duration) + " long";
+    const std::string past_end =
+        "cannot start " + info_.spec + " at " + seconds_text(seconds) + ": " +
+        (info_.duration > 0 ? "it is " + seconds_text(info_.duration) + " long" : std::string("it ends before then"));
     if (info_.frames > 0 && target >= info_.frames) throw Error(past_end);
     // OpenCV's FFmpeg backend seeks to the keyframe before and decodes on to
     // the frame: the same pixels as a read from the start, on every clip of
