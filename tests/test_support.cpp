@@ -1,7 +1,9 @@
 #include "test_support.hpp"
 
+#include <fstream>
 #include <memory>
 #include <mutex>
+#include <sstream>
 
 #include "facecap/model/model_cache.hpp"
 
@@ -19,5 +21,12 @@ const FaceModel* shared_model() {
 }
 
 std::optional<std::filesystem::path> data_path(const std::string& name) { return data_file(name); }
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
 
 }  // namespace facecap::test

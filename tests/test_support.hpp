@@ -20,6 +20,9 @@ const FaceModel* shared_model();
 // Path of a file in the data folder, or nullopt when absent.
 std::optional<std::filesystem::path> data_path(const std::string& name);
 
+// A file's whole content ("" when it cannot be read).
+std::string read_file(const std::filesystem::path& path);
+
 }  // namespace facecap::test
 
 // Skips the test (or fails it under CI=true) when the model is absent.

@@ -3,28 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <sstream>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "test_support.hpp"
 
 namespace facecap {
 
-namespace {
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-}  // namespace
+using test::read_file;
 
 TEST(AtomicFile, CommitReplacesTheFinalFile) {
   TempDir dir;
   const auto path = dir.path() / "out.txt";
   write_text_file(path, "old");
   write_text_file(path, "new");
-  EXPECT_EQ(slurp(path), "new");
+  EXPECT_EQ(read_file(path), "new");
 }
 
 TEST(AtomicFile, AbandonedWriteLeavesTheOldFileAndNoTemporary) {
@@ -36,7 +29,7 @@ TEST(AtomicFile, AbandonedWriteLeavesTheOldFileAndNoTemporary) {
     std::ofstream(f.temp_path()) << "half-written";
     EXPECT_EQ(f.temp_path().extension(), ".mp4");  // tools that pick formats by name still work
   }
-  EXPECT_EQ(slurp(path), "good");
+  EXPECT_EQ(read_file(path), "good");
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
@@ -72,7 +65,7 @@ TEST(AtomicFile, AFolderAsTheOutputIsAClearErrorUpFront) {
       EXPECT_NE(std::string(e.what()).find(folder.string()), std::string::npos) << e.what();
     }
   }
-  EXPECT_EQ(slurp(folder / "kept.txt"), "x");
+  EXPECT_EQ(read_file(folder / "kept.txt"), "x");
   EXPECT_NO_THROW(ensure_writable_file(dir.path() / "new" / "out.glb"));  // a missing folder is made
 }
 

@@ -2,26 +2,16 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/model/obj_reader.hpp"
+#include "test_support.hpp"
 
 namespace facecap {
 
-namespace {
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-}  // namespace
+using test::read_file;
 
 // The records, exactly: the comment, fixed-point coordinates (5 decimals,
 // 10 um in cm), UVs (6 decimals), 1-based v/vt corners, quads kept.
@@ -39,14 +29,14 @@ TEST(MeshWriter, WritesTheObjRecordsExactly) {
   const std::vector<Polygon> polygons = {quad, tri};
   TempDir dir;
   write_obj(dir.path() / "a.obj", {&p, &polygons, &uvs, "first line\nsecond"});
-  EXPECT_EQ(slurp(dir.path() / "a.obj"),
+  EXPECT_EQ(read_file(dir.path() / "a.obj"),
             "# first line\n# second\n"
             "v 0.00000 0.00000 10.12346\nv 1.00000 0.00000 -0.50000\nv 1.00000 1.00000 0.00000\n"
             "v 0.00000 1.00000 0.00000\nv -2.50000 0.00000 123.45678\n"
             "vt 0.000000 0.000000\nvt 1.000000 0.000000\nvt 1.000000 1.000000\nvt 0.250000 0.125000\n"
             "f 1/1 2/2 3/3 4/4\nf 3/3 5/1 4/4\n");
   write_obj(dir.path() / "b.obj", {&p, &polygons, nullptr, ""});
-  EXPECT_NE(slurp(dir.path() / "b.obj").find("\nf 1 2 3 4\nf 3 5 4\n"), std::string::npos);
+  EXPECT_NE(read_file(dir.path() / "b.obj").find("\nf 1 2 3 4\nf 3 5 4\n"), std::string::npos);
 }
 
 // A refined frame's size read back by the model's OBJ reader.
