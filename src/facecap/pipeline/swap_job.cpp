@@ -14,6 +14,7 @@
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/pipeline/refine_stage.hpp"
 
 namespace facecap {
 
@@ -141,30 +142,28 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     refine.displacements = true;
     refine.hierarchy.levels = 2;
   }
-  Refiner refiner = make_face_refiner(model, refine);
   std::vector<FaceAnimationKey> keys;
-  CaptureOptions capture = options.capture;
-  capture.keep_images = true;
-  summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
+  // The target's lighting, the swap and the output run on the refinement
+  // stage's thread, concurrently with the next frames' capture (§4.4.1's
+  // pipelining); frames reach it and leave it in order, so the results are
+  // those of one thread.
+  RefineStage stage(model, refine, [&](const RefinedFrame& r) {
+    const CapturedFrame& f = r.frame;
     SwappedFrame result;
-    if (f.status == TrackStatus::kLost) {
+    if (!r.refinement) {
       result.image = f.image;
     } else {
       TargetFrame t;
       t.identity = f.identity.identity.cast<float>();
       t.expression = f.fit.expression;
       t.pose = f.fit.pose;
-      t.camera = PinholeCamera::centered(f.fit.focal, info.width, info.height);
-      const auto l0 = std::chrono::steady_clock::now();
-      const Positions coarse = to_camera(model.evaluate(t.identity, t.expression, regions::kFace), t.pose);
-      Refinement refined = refiner.refine(f.image, coarse, t.camera);
-      t.lighting = refined.lighting;
-      t.lighting_final = refiner.albedo_fixed();
+      t.camera = r.camera;
+      t.lighting = r.refinement->lighting;
+      t.lighting_final = stage.refiner().albedo_fixed();
       if (options.swap.wrinkles) {
-        t.fine = std::move(refined.positions);
-        t.hierarchy = &refiner.hierarchy();
+        t.fine = r.refinement->positions;
+        t.hierarchy = &stage.refiner().hierarchy();
       }
-      summary.timings.lighting_ms += ms_since(l0);
       result = swapper.swap(f.image, t, &summary.timings.swap);
       ++summary.timings.swapped;
       if (!options.gltf.empty()) append_animation_key(keys, has_timeline(info), f.index, f.time, t.pose, t.expression);
@@ -172,6 +171,11 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     writer.write(result.image);
     if (options.on_frame) options.on_frame(f, result);
   });
+  CaptureOptions capture = options.capture;
+  capture.keep_images = true;
+  summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) { stage.push(f); });
+  stage.finish();
+  summary.timings.lighting_ms = stage.refine_ms();
   if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");

@@ -17,6 +17,7 @@
 #include "facecap/io/video_writer.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/pipeline/refine_stage.hpp"
 
 namespace facecap {
 
@@ -58,8 +59,6 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(output, vo);
 
-  // Lighting only: the source frame carries the fine detail.
-  Refiner refiner = make_face_refiner(model, lighting_only_refinement());
   ExpressionTransformer transformer(mapper, lip_basis(model), options.transform);
   const TriangleMesh face = model.region_mesh(regions::kFace);
   const std::vector<Triangle> skin = masked_triangles(face.triangles, face_skin_mask());
@@ -95,19 +94,18 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     }
   };
 
-  CaptureOptions capture = options.capture;
-  capture.keep_images = true;
-  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
+  // The lighting (only: the source frame carries the fine detail), the
+  // mapping and the re-render run on the refinement stage's thread,
+  // concurrently with the next frames' capture (§4.4.1's pipelining); frames
+  // reach it and leave it in order, so the results are those of one thread.
+  RefineStage stage(model, lighting_only_refinement(), [&](const RefinedFrame& r) {
+    const CapturedFrame& f = r.frame;
     Pending p;
     p.frame = f;
     std::optional<Eigen::VectorXf> weights;
-    if (f.status != TrackStatus::kLost) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const PinholeCamera cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
-      p.coarse =
-          to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
-      p.lighting = refiner.refine(f.image, p.coarse, cam).lighting;
-      summary.timings.lighting_ms += ms_since(t0);
+    if (r.refinement) {
+      p.coarse = r.coarse;
+      p.lighting = r.refinement->lighting;
       weights = f.fit.expression;
     }
     pending.emplace(f.index, std::move(p));
@@ -116,6 +114,11 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     summary.timings.mapping_ms += ms_since(t0);
     emit(done);
   });
+  CaptureOptions capture = options.capture;
+  capture.keep_images = true;
+  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stage.push(f); });
+  stage.finish();
+  summary.timings.lighting_ms = stage.refine_ms();
   emit(transformer.finish());
   summary.timings.frames = static_cast<int>(summary.frames.size());
   if (summary.frames.empty()) throw Error("no frames could be read from " + input);
@@ -127,7 +130,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (!options.gltf.empty()) {
     const IdentityEstimate& id = summary.capture.identity;
     GltfAnimatedMesh glb = face_animation(model, id.identity, keys, {id.focal, info.width, info.height});
-    glb.primitives.front().base_colour_png = face_albedo_png(model, refiner);  // the face part
+    glb.primitives.front().base_colour_png = face_albedo_png(model, stage.refiner());  // the face part
     glb.animation_name = fs::path(input).stem().string() + " (" + options.description + ")";
     glb.asset_extras.merge(synthetic_metadata(mark));
     write_glb(options.gltf, glb);
