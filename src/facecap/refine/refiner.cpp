@@ -1,6 +1,7 @@
 #include "facecap/refine/refiner.hpp"
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 #include "facecap/core/error.hpp"
@@ -78,6 +79,11 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   VertexSamples samples0 =
       sampler_->sample(image_for(0), md, md_normals, md, level_skin_[0], camera_for(0), raster_[0]);
   apply_mask(samples0, data_mask_);
+  // Without displacements the displacement pass below has this level, with
+  // d = 0, the same depth mesh and the same mask: its samples are these,
+  // before the lighting's erosion, and need not be drawn again.
+  std::optional<VertexSamples> undisplaced_samples;
+  if (!options_.displacements && levels == 1) undisplaced_samples = samples0;
   erode_observations(samples0, level0.rings, options_.shading_margin_rings, level0.boundary);
   if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
   const ShCoeffs lighting = estimate_lighting(samples0, md_normals, albedo_->albedo(), lighting_, options_.lighting);
@@ -135,8 +141,10 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     // (unless the smoothing mask moved the new vertices off it).
     const bool coarse_depth = !options_.hierarchy.smoothing_mask;
     VertexSamples samples =
-        sampler_->sample(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
-                         level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
+        undisplaced_samples
+            ? std::move(*undisplaced_samples)
+            : sampler_->sample(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
+                               level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
     apply_mask(samples, mask);
     drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
