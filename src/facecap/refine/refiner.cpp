@@ -133,7 +133,8 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     DisplacementProblem problem;
     problem.level = &level;
     problem.base = base;
-    problem.base_normals = level_normals(level, problem.base);
+    // Level 0's base is the coarse mesh, whose normals the lighting computed.
+    problem.base_normals = l == 0 ? normals0 : level_normals(level, problem.base);
     problem.albedo = albedo;
     problem.lighting = lighting_used;
     const std::vector<bool>& mask = level_masks_[l];
