@@ -29,9 +29,6 @@ namespace {
 // Where the file's primitives cover the image at `key`, seen through its
 // camera (looking down -z, y up; pixel centres at integers).
 cv::Mat expected_coverage(const test::Glb& g, int key, int width, int height) {
-  const auto& perspective = g.doc.at("cameras").at(0).at("perspective");
-  const double t = std::tan(0.5 * double(perspective.at("yfov")));
-  const double aspect = perspective.at("aspectRatio");
   constexpr int kShift = 4;  // sub-pixel bits for fillConvexPoly
   cv::Mat mask(height, width, CV_8U, cv::Scalar(0));
   const auto& prims = g.doc.at("meshes").at(0).at("primitives");
@@ -39,9 +36,8 @@ cv::Mat expected_coverage(const test::Glb& g, int key, int width, int height) {
     const Eigen::Matrix3Xf world = g.played_part(int(part), key);
     std::vector<cv::Point> px(size_t(world.cols()));
     for (Eigen::Index i = 0; i < world.cols(); ++i) {
-      const double xn = world(0, i) / -world(2, i) / (t * aspect), yn = world(1, i) / -world(2, i) / t;
-      const double x = (xn + 1) * 0.5 * width - 0.5, y = (1 - yn) * 0.5 * height - 0.5;
-      px[size_t(i)] = cv::Point(int(std::lround(x * (1 << kShift))), int(std::lround(y * (1 << kShift))));
+      const Eigen::Vector2d p = g.camera_pixel(world.col(i), width, height);
+      px[size_t(i)] = cv::Point(int(std::lround(p.x() * (1 << kShift))), int(std::lround(p.y() * (1 << kShift))));
     }
     const std::vector<uint32_t> tris = g.indices(prims.at(part).at("indices"));
     for (size_t k = 0; k + 2 < tris.size(); k += 3) {

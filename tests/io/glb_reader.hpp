@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -96,6 +97,17 @@ struct Glb {
     const std::vector<float> r = channel("rotation"), t = channel("translation");
     const Eigen::Quaternionf q(r.at(key * 4 + 3), r[key * 4], r[key * 4 + 1], r[key * 4 + 2]);
     return (q.toRotationMatrix() * p).colwise() + Eigen::Vector3f(t.at(key * 3), t[key * 3 + 1], t[key * 3 + 2]);
+  }
+
+  // Where the first camera (at the origin, looking down -z, y up) sees a
+  // point given in metres: pixel coordinates in a width x height image whose
+  // pixel centres lie at integers.
+  Eigen::Vector2d camera_pixel(const Eigen::Vector3f& world, int width, int height) const {
+    const auto& perspective = doc.at("cameras").at(0).at("perspective");
+    const double t = std::tan(0.5 * double(perspective.at("yfov")));
+    const double aspect = perspective.at("aspectRatio");
+    const double xn = world.x() / -world.z() / (t * aspect), yn = world.y() / -world.z() / t;
+    return {(xn + 1) * 0.5 * width - 0.5, (1 - yn) * 0.5 * height - 0.5};
   }
 
   // The encoded bytes of image `image` (stored in a buffer view).

@@ -50,7 +50,6 @@ TEST(FaceAnimation, PlayedBackItReproducesTheTrackedMeshAndTheCameraView) {
   EXPECT_GT(teeth, 1000);
   EXPECT_GT(eyeballs, 1000);
   EXPECT_EQ(g.doc["meshes"][0]["extras"]["targetNames"][0], model->expression_names[0]);
-  const double yfov = g.doc["cameras"][0]["perspective"]["yfov"];
   const double aspect = g.doc["cameras"][0]["perspective"]["aspectRatio"];
   EXPECT_NEAR(aspect, 1280.0 / 720.0, 1e-9);
 
@@ -66,11 +65,8 @@ TEST(FaceAnimation, PlayedBackItReproducesTheTrackedMeshAndTheCameraView) {
         const Eigen::Vector3f cam_cm = flip.cwiseProduct(world) * 100.0f;
         const Vec3f expected = truth.col(sources[part][i]);
         worst_cm = std::max(worst_cm, double((cam_cm - expected).norm()));
-        // Through the glTF camera (looking down -z, y up) to pixels whose
-        // centres are at integers, against the tracker's pinhole projection.
-        const double t = std::tan(0.5 * yfov);
-        const double xn = world.x() / -world.z() / (t * aspect), yn = world.y() / -world.z() / t;
-        const Vec2d glt((xn + 1) * 0.5 * camera.width - 0.5, (1 - yn) * 0.5 * camera.height - 0.5);
+        // Through the glTF camera, against the tracker's pinhole projection.
+        const Vec2d glt = g.camera_pixel(world, camera.width, camera.height);
         const Vec2d pin = cam.project(Vec3d(expected.cast<double>()));
         worst_px = std::max(worst_px, (glt - pin).cwiseAbs().maxCoeff());
       }
