@@ -22,6 +22,7 @@ nlohmann::json timings_json(const StageTimings& t) {
           {"decode_ms_per_frame", t.decode_ms / n},
           {"detect_ms_per_frame", t.detect_ms / n},
           {"landmarks_ms_per_frame", t.landmarks_ms / n},
+          {"gaze_ms_per_frame", t.iris_ms / n},
           {"fit_ms_per_frame", t.fit_ms / n},
           {"identity_solve_ms", t.identity_ms},
           {"total_s", t.total_s},

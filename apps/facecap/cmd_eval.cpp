@@ -83,6 +83,8 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--still-frames", a->options.still_frames, "Still-head frames for the jitter measurement")
       ->capture_default_str();
+  cmd->add_flag("!--no-gaze", a->options.gaze,
+                "Skip the iris and gaze measurement (with truth landmarks it renders every frame)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
@@ -142,7 +144,11 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"identity_shape_rms_fixed_size_mm", r.identity_shape_rms_fixed_size_mm},
                 {"shape_sd_mm", r.shape_sd_mm},
                 {"shape_sd_fixed_size_mm", r.shape_sd_fixed_size_mm},
-                {"fit_ms_per_frame", r.fit_ms_per_frame}});
+                {"fit_ms_per_frame", r.fit_ms_per_frame},
+                {"iris_error_px", r.iris_error_px},
+                {"iris_found", r.iris_found},
+                {"gaze_error_deg", r.gaze_error_deg},
+                {"gaze_frames", r.gaze_frames}});
   });
 }
 

@@ -53,11 +53,11 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     const double n = std::max(1, t.frames);
     std::fprintf(stderr,
                  "frames %d, lost %d, redetected %d | per frame: decode %.2f ms (own thread), detect %.2f ms, "
-                 "landmarks %.2f ms, fit %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
-                 "identity and focal (%.1f px) from %d frames\n",
+                 "landmarks %.2f ms, fit %.2f ms, gaze %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
+                 "identity and focal (%.1f px) from %d frames; gaze in %d frames\n",
                  s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
-                 t.landmarks_ms / n, t.fit_ms / n, t.identity_ms, t.setup_ms, t.fps(), s.capture.identity.focal,
-                 s.capture.identity.frames_used);
+                 t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
+                 s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
     if (a->options.refine) {
       std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
                    s.refine_ms / std::max(1, s.refined_frames));

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "facecap/core/error.hpp"
@@ -70,10 +71,11 @@ TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
 
   const auto csv = lines(dir.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
-  EXPECT_EQ(count_fields(csv[0]), 14 + 53);
+  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9);
   EXPECT_NE(csv[0].find(",jawOpen,"), std::string::npos);
+  EXPECT_NE(csv[0].find(",gaze_yaw_deg,gaze_pitch_deg,"), std::string::npos);
   for (size_t i = 1; i < csv.size(); ++i) {
-    EXPECT_EQ(count_fields(csv[i]), 14 + 53) << "row " << i;
+    EXPECT_EQ(count_fields(csv[i]), 14 + 53 + 9) << "row " << i;
     EXPECT_EQ(csv[i].find("nan"), std::string::npos) << "row " << i;
   }
   const auto jsonl = lines(dir.path() / "frames.jsonl");
@@ -133,6 +135,51 @@ TEST(TrackJob, StartingPartWayKeepsTheVideosTimelineAndItsSound) {
   EXPECT_LT(correlation(out, audio_samples(video, first / fps + 0.1, 0.7)), 0.5 * aligned);
 }
 
+// Gaze from the irises on real footage: no gaze truth exists for it, but an
+// iris must lie inside its own eye's landmarks, at a size an iris has, and
+// the speaker (reading a prompter beside the lens) looks about at the camera.
+TEST(TrackJob, GazeComesFromAnIrisInsideEachEye) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = 40;
+  const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
+  ASSERT_EQ(s.capture.lost, 0);
+  // 88 of the first 90 frames, 38 of these 40, have an iris (the others blink).
+  EXPECT_GE(s.gaze_frames, 36);
+  const auto jsonl = lines(dir.path() / "frames.jsonl");
+  ASSERT_EQ(jsonl.size(), 40u);
+  int both = 0;
+  for (const std::string& line : jsonl) {
+    const auto row = nlohmann::json::parse(line);
+    if (row["gaze"].is_null()) continue;
+    const auto& gaze = row["gaze"];
+    EXPECT_LT(std::abs(gaze["yaw_deg"].get<double>()), 25.0) << row["frame"];
+    EXPECT_LT(std::abs(gaze["pitch_deg"].get<double>()), 25.0) << row["frame"];
+    EXPECT_LT(gaze["direction_camera"][2].get<double>(), -0.8) << row["frame"];  // toward the camera
+    both += !gaze["right"].is_null() && !gaze["left"].is_null();
+    for (int eye = 0; eye < 2; ++eye) {
+      const auto& e = gaze[eye == 0 ? "right" : "left"];
+      if (e.is_null()) continue;
+      std::vector<cv::Point2f> outline;
+      for (int k = 0; k < 6; ++k) {
+        const auto& p = row["landmarks"][36 + 6 * eye + k];
+        outline.emplace_back(p[0].get<float>(), p[1].get<float>());
+      }
+      const cv::Point2f iris(e["iris_px"][0].get<float>(), e["iris_px"][1].get<float>());
+      // Inside, or on the outline within a pixel: this speaker's upper lids
+      // cover the iris's top, and its centre can sit at their edge.
+      EXPECT_GE(cv::pointPolygonTest(outline, iris, true), -1.0) << "frame " << row["frame"] << " eye " << eye;
+      const double width = cv::norm(outline[3] - outline[0]);
+      EXPECT_GT(e["iris_radius_px"].get<double>(), 0.15 * width);
+      EXPECT_LT(e["iris_radius_px"].get<double>(), 0.4 * width);
+    }
+  }
+  EXPECT_GE(both, 30);
+}
+
 TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
@@ -155,6 +202,8 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   const auto csv = lines(out.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
+  // Every field after the status is empty, gaze included.
+  EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9, ',')) << csv[32];
   EXPECT_EQ(csv[32].find("nan"), std::string::npos);
   EXPECT_EQ(csv[34].find("lost"), std::string::npos) << csv[34];  // back
 
@@ -186,8 +235,8 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   EXPECT_EQ(s.refined_frames, 32 - s.capture.lost);
   const auto csv = lines(dir.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 33u);
-  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9);
-  EXPECT_NE(csv[0].find(",l8"), std::string::npos);
+  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9 + 9);  // lighting, then gaze
+  EXPECT_NE(csv[0].find(",l8,gaze_yaw_deg,"), std::string::npos);
   for (size_t i = 1; i < csv.size(); ++i) EXPECT_EQ(csv[i].find("nan"), std::string::npos);
   const cv::Mat albedo = cv::imread((dir.path() / "albedo.png").string());
   ASSERT_FALSE(albedo.empty());

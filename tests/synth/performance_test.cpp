@@ -26,7 +26,7 @@ TEST(SynthPerformance, WeightsPoseAndLightingStayInRange) {
   const SynthPerformance p = make_performance(*model, o);
   EXPECT_EQ(p.identity.head(50).cwiseAbs().maxCoeff() > 0.3f, true);
   EXPECT_EQ(p.identity.tail(50).cwiseAbs().maxCoeff(), 0.0f);
-  double min_yaw = 1e9, max_yaw = -1e9, max_jaw = 0;
+  double min_yaw = 1e9, max_yaw = -1e9, max_jaw = 0, gaze_spread = 0;
   const int jaw = model->expression_index("jawOpen");
   for (const SynthFrame& f : p.frames) {
     EXPECT_GE(f.expression.minCoeff(), 0.0f);
@@ -36,7 +36,11 @@ TEST(SynthPerformance, WeightsPoseAndLightingStayInRange) {
     max_yaw = std::max(max_yaw, yaw);
     max_jaw = std::max(max_jaw, double(f.expression[jaw]));
     EXPECT_GT(sh_shade(f.lighting, 0.0, 0.0, 1.0), 0.3);
+    EXPECT_LE(std::abs(f.gaze_deg.x()), 30.0);
+    EXPECT_LE(std::abs(f.gaze_deg.y()), 20.0);
+    gaze_spread = std::max(gaze_spread, (f.gaze_deg - p.frames[0].gaze_deg).norm());
   }
+  EXPECT_GT(gaze_spread, 5.0);  // the eyes wander
   EXPECT_LT(min_yaw, -27.0);
   EXPECT_GT(max_yaw, 27.0);
   EXPECT_GT(max_jaw, 0.2);  // it talks
@@ -52,6 +56,7 @@ TEST(SynthPerformance, StillModeHoldsEverything) {
     EXPECT_TRUE(f.pose.rotation.isApprox(p.frames[0].pose.rotation));
     EXPECT_TRUE(f.pose.translation.isApprox(p.frames[0].pose.translation));
     EXPECT_EQ(f.expression.maxCoeff(), 0.0f);
+    EXPECT_EQ(f.gaze_deg, Vec2d::Zero());
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
@@ -52,6 +54,47 @@ TEST(SynthRenderer, DrawsTheFaceWhereTheLandmarksAre) {
   // Skin is redder than the blue-grey background.
   EXPECT_GT(int(nose[2]) - int(nose[0]), 10);
   EXPECT_LT(int(corner[2]) - int(corner[0]), 10);
+}
+
+// The eyeballs turn with the gaze: the pupil (the render's darkest pixels)
+// is where the turned eyeball's front projects, and iris_centre() (the iris
+// ring's centre, a little deeper) is beside it.
+TEST(SynthRenderer, TheIrisesTurnWithTheGaze) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o = small_options();
+  o.width = 960;
+  o.height = 540;
+  o.noise_sigma = 0;
+  SynthPerformance p = make_performance(*model, o);
+  SynthFrame f = p.frames[0];
+  f.expression.setZero();  // eyes open
+  const SynthRenderer r(*model, p);
+  std::mt19937_64 rng(1);
+  std::array<Vec2d, 2> left_gaze;
+  for (const double yaw : {-25.0, 25.0}) {
+    f.gaze_deg = Vec2d(yaw, 5.0);
+    cv::Mat grey;
+    cv::cvtColor(r.render(f, rng), grey, cv::COLOR_BGR2GRAY);
+    for (int eye = 0; eye < 2; ++eye) {
+      const Vec2d iris = r.iris_centre(f, eye);
+      const EyeballGeometry& eyes = r.eyeballs();
+      const Vec3d front = eyes.centre[eye] + eyes.radius[eye] * turned_axis(eyes, eye, f.gaze_deg.x(), f.gaze_deg.y());
+      const Vec2d pupil = p.camera.project(Vec3d(f.pose.model_to_camera_rotation() * front + f.pose.translation));
+      EXPECT_LT((pupil - iris).norm(), 3.0);
+      Vec2d sum = Vec2d::Zero();
+      int n = 0;
+      for (int y = int(iris.y()) - 15; y <= int(iris.y()) + 15; ++y)
+        for (int x = int(iris.x()) - 15; x <= int(iris.x()) + 15; ++x)
+          if (grey.at<uint8_t>(y, x) < 20) sum += Vec2d(x, y), ++n;
+      ASSERT_GT(n, 10) << "yaw " << yaw << " eye " << eye;
+      // The pupil is painted on the eyeball's vertices, about 1 mm (2 px here)
+      // apart, so its drawn outline is ragged by about that.
+      EXPECT_LT((sum / n - pupil).norm(), 2.0) << "yaw " << yaw << " eye " << eye;
+      if (eye == 1) left_gaze[yaw > 0] = iris;
+    }
+  }
+  // Looking toward the subject's left moves the irises to the image's right.
+  EXPECT_GT(left_gaze[1].x() - left_gaze[0].x(), 6.0);
 }
 
 // The 300-W annotation, which dlib learnt, puts the brow points on the

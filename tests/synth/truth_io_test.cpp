@@ -17,6 +17,7 @@ TEST(TruthIo, RoundTripsEveryFrameParameter) {
   o.detail = true;
   SynthTruth t;
   t.performance = make_performance(*model, o);
+  t.performance.frames[2].gaze_deg = Vec2d(12.5, -4.25);
   t.expression_names = model->expression_names;
   for (int f = 0; f < 4; ++f) {
     Landmarks lm = zero_landmarks();
@@ -34,6 +35,7 @@ TEST(TruthIo, RoundTripsEveryFrameParameter) {
   EXPECT_TRUE(r.performance.frames[3].expression.isApprox(t.performance.frames[3].expression));
   EXPECT_TRUE(r.performance.frames[2].pose.rotation.isApprox(t.performance.frames[2].pose.rotation));
   EXPECT_TRUE(r.performance.frames[1].lighting.isApprox(t.performance.frames[1].lighting));
+  EXPECT_EQ(r.performance.frames[2].gaze_deg, Vec2d(12.5, -4.25));
   EXPECT_EQ(r.landmarks[3][5], Vec2f(3.0f, 2.5f));
   EXPECT_EQ(r.expression_names, model->expression_names);
 }

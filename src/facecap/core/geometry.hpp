@@ -41,6 +41,12 @@ inline double rotation_angle_deg(const Mat3d& a, const Mat3d& b) {
   return std::acos(c) * 180.0 / 3.14159265358979323846;
 }
 
+// Angle in degrees between two directions (any lengths but zero).
+inline double angle_between_deg(const Vec3d& a, const Vec3d& b) {
+  const double c = std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0);
+  return std::acos(c) * 180.0 / 3.14159265358979323846;
+}
+
 // Yaw (about y), pitch (about x) and roll (about z) in degrees of a head
 // rotation, for reports; R = Ry(yaw) * Rx(pitch) * Rz(roll).
 Vec3d yaw_pitch_roll_deg(const Mat3d& r);

@@ -1,5 +1,6 @@
 #include "facecap/core/statistics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facecap {
@@ -15,6 +16,12 @@ double pearson_correlation(const std::vector<double>& a, const std::vector<doubl
     vb += (b[i] - mb) * (b[i] - mb);
   }
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
 }
 
 }  // namespace facecap

@@ -8,4 +8,7 @@ namespace facecap {
 // (or empty).
 double pearson_correlation(const std::vector<double>& a, const std::vector<double>& b);
 
+// The middle value (the upper one of an even count); 0 for an empty sample.
+double median(std::vector<double> values);
+
 }  // namespace facecap

@@ -30,8 +30,10 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     TrackStatus status;
     int faces_seen;
     cv::Mat image;
+    cv::Mat grey;  // for the irises, searched once the fit is known
   };
-  std::map<int, Waiting> waiting;  // frames whose fit is not final yet
+  std::optional<EyeballGeometry> eyeballs;  // once the identity is known
+  std::map<int, Waiting> waiting;           // frames whose fit is not final yet
   auto deliver = [&](const std::vector<CoarseFit>& fits) {
     for (const CoarseFit& fit : fits) {
       auto it = waiting.find(fit.index);
@@ -43,6 +45,15 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.faces_seen = it->second.faces_seen;
       out.image = it->second.image;
       out.identity = tracker.identity();
+      if (out.status != TrackStatus::kLost && options.gaze) {
+        const auto t0 = std::chrono::steady_clock::now();
+        if (!eyeballs) eyeballs = eyeball_geometry(model, out.identity.identity);
+        GazeMeasurement gaze =
+            measure_gaze(it->second.grey, fit.observed, *eyeballs, fit.pose, tracker.fitter().camera(fit.focal));
+        out.irises = gaze.irises;
+        out.gaze = gaze.gaze;
+        summary.timings.iris_ms += ms_since(t0);
+      }
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;
@@ -96,9 +107,10 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     t.detect_ms += face.detector_ms;
     t.landmarks_ms += face.landmarks_ms;
 
-    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat()};
     std::optional<Landmarks> landmarks;
     if (face.status != TrackStatus::kLost) landmarks = face.landmarks;
+    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat(),
+                            landmarks && options.gaze ? d->grey : cv::Mat()};
 
     const bool was_initialized = tracker.initialized();
     auto t0 = std::chrono::steady_clock::now();

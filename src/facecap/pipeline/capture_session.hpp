@@ -7,7 +7,9 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/detect/face_tracker.hpp"
+#include "facecap/detect/iris.hpp"
 #include "facecap/fit/coarse_tracker.hpp"
+#include "facecap/fit/gaze.hpp"
 #include "facecap/io/input.hpp"
 
 namespace facecap {
@@ -20,6 +22,7 @@ struct CaptureOptions {
   // video's frames from there on, on the video's own timeline.
   double start_seconds = 0;
   bool keep_images = false;  // hand each frame's image to the sink
+  bool gaze = true;          // find the irises and the gaze (gaze.hpp)
   bool quiet = false;        // no progress bar
 };
 
@@ -29,6 +32,8 @@ struct CapturedFrame {
   TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
   int faces_seen = 0;                       // faces the detector found in this frame (0 when it did not run)
   CoarseFit fit;
+  IrisPair irises;            // the iris centres found inside the eye landmarks (iris.hpp)
+  GazeEstimate gaze;          // from the irises on the fitted head (gaze.hpp); none on lost frames
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
   cv::Mat image;              // when CaptureOptions::keep_images
 };
@@ -39,6 +44,7 @@ struct StageTimings {
   double decode_ms = 0;     // on the decode thread, concurrent with the rest
   double detect_ms = 0;     // HOG face detector (start, losses, periodic checks)
   double landmarks_ms = 0;  // 68-point shape predictor
+  double iris_ms = 0;       // iris centres and gaze (gaze.hpp)
   double fit_ms = 0;        // per-frame coarse fit
   double identity_ms = 0;   // the one-off identity and focal solve
   double total_s = 0;       // wall time of the whole run

@@ -4,21 +4,12 @@
 #include <optional>
 
 #include "facecap/core/rigid_alignment.hpp"
+#include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/pipeline/track_job.hpp"
 #include "facecap/synth/synthesize.hpp"
 
 namespace facecap {
-
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 nlohmann::json run_demo(const FaceModel& model, const DemoOptions& options) {
   std::optional<TempDir> temp;

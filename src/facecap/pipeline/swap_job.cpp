@@ -39,6 +39,7 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   CaptureOptions capture;
   capture.quiet = true;
   capture.keep_images = true;
+  capture.gaze = false;  // the edits do not use it
   if (!still) capture.max_frames = source_frames;
   std::optional<CapturedFrame> fit;
   const CaptureSummary summary = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
@@ -173,6 +174,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   });
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
+  capture.gaze = false;  // the edits do not use it
   summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) { stage.push(f); });
   stage.finish();
   summary.timings.lighting_ms = stage.refine_ms();

@@ -3,22 +3,13 @@
 #include <algorithm>
 
 #include "facecap/core/progress.hpp"
+#include "facecap/core/statistics.hpp"
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/detect/landmark_detector.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 
 namespace facecap {
-
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 SynthLandmarkEval evaluate_synthetic_landmarks(const FaceModel& model, const SynthOptions& options, bool quiet) {
   const SynthPerformance perf = make_performance(model, options);

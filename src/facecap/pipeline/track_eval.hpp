@@ -22,6 +22,7 @@ struct TrackEvalOptions {
   LandmarkSource landmarks = LandmarkSource::kTruth;
   double landmark_noise_px = 1.0;  // Gaussian, per coordinate (truth landmarks only)
   int still_frames = 30;           // still-head sequence for the jitter measurement (0: skip)
+  bool gaze = true;                // measure the irises and gaze (truth landmarks: renders the frames too)
   SynthOptions synth;              // size, yaw range, ...; frames and seed are set from above
   CaptureOptions capture;
 };
@@ -63,6 +64,14 @@ struct TrackEvalResult {
   double shape_sd_mm = 0;
   double shape_sd_fixed_size_mm = 0;
   double fit_ms_per_frame = 0;
+  // Gaze: the iris centres against the projected true pupils (median, pixels),
+  // the share of open eyes (frames not mid-blink) where an iris was found,
+  // and the mean angle between the estimated and the true head-relative gaze
+  // over the frames that have one.
+  double iris_error_px = 0;
+  double iris_found = 0;
+  double gaze_error_deg = 0;
+  int gaze_frames = 0;
 };
 
 TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options);

@@ -80,6 +80,8 @@ class FrameWriter {
     for (const std::string& name : model.expression_names) o << ',' << name;
     if (options.refine)
       for (int k = 0; k < 9; ++k) o << ",l" << k;
+    o << ",gaze_yaw_deg,gaze_pitch_deg,gaze_camera_x,gaze_camera_y,gaze_camera_z,iris_right_x,iris_right_y,iris_left_x,"
+         "iris_left_y";
     o << '\n';
     if (options.meshes) fs::create_directories(dir / "meshes");
     if (options.overlay) {
@@ -129,6 +131,7 @@ class FrameWriter {
       // Lost frames: empty fields, never made-up numbers.
       for (int k = 0; k < 11 + model_.num_expressions() + (options_.refine ? 9 : 0); ++k) o << ',';
     }
+    write_gaze(f, o, row);
     o << '\n';
     jsonl_.stream() << row.dump() << '\n';
     if (ok) write_mesh(f, ref, coarse);
@@ -190,6 +193,7 @@ class FrameWriter {
   }
 
   int meshes_written() const { return meshes_; }
+  int gaze_frames() const { return gaze_frames_; }
   void set_refiner(const Refiner* r) { refiner_ = r; }
 
  private:
@@ -228,6 +232,45 @@ class FrameWriter {
     ++meshes_;
   }
 
+  // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
+  // the iris centres; empty fields and null where no iris was found.
+  void write_gaze(const CapturedFrame& f, std::ofstream& o, nlohmann::json& row) {
+    const GazeEstimate& g = f.gaze;
+    nlohmann::json gaze = nullptr;
+    if (g.valid()) {
+      ++gaze_frames_;
+      const Vec2d angles = g.angles_deg();
+      const Vec3d camera = f.fit.pose.model_to_camera_rotation() * g.direction();
+      o << ',' << number(angles.x()) << ',' << number(angles.y());
+      for (int k = 0; k < 3; ++k) o << ',' << number(camera[k]);
+      gaze = {{"yaw_deg", angles.x()},
+              {"pitch_deg", angles.y()},
+              {"direction_head", {g.direction().x(), g.direction().y(), g.direction().z()}},
+              {"direction_camera", {camera.x(), camera.y(), camera.z()}}};
+      for (int eye = 0; eye < 2; ++eye) {
+        const char* side = eye == 0 ? "right" : "left";
+        if (!g.eyes[eye]) {
+          gaze[side] = nullptr;
+          continue;
+        }
+        const Vec3d& d = g.eyes[eye]->direction;
+        gaze[side] = {{"iris_px", {g.eyes[eye]->iris_px.x(), g.eyes[eye]->iris_px.y()}},
+                      {"iris_radius_px", f.irises[eye] ? f.irises[eye]->radius : 0.0},
+                      {"direction_head", {d.x(), d.y(), d.z()}}};
+      }
+    } else {
+      o << std::string(5, ',');
+    }
+    for (int eye = 0; eye < 2; ++eye) {
+      if (g.eyes[eye]) {
+        o << ',' << number(g.eyes[eye]->iris_px.x()) << ',' << number(g.eyes[eye]->iris_px.y());
+      } else {
+        o << ",,";
+      }
+    }
+    row["gaze"] = gaze;
+  }
+
   void write_videos(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& cam) {
     if (!overlay_) return;
     const bool ok = f.status != TrackStatus::kLost;
@@ -236,6 +279,12 @@ class FrameWriter {
       draw_wireframe(canvas, coarse, face_polygons_, cam, cv::Scalar(255, 200, 80));
       draw_landmarks(canvas, f.fit.observed, cv::Scalar(0, 255, 0));
       draw_landmarks(canvas, f.fit.fitted, cv::Scalar(0, 0, 255), 1);
+      for (int eye = 0; eye < 2; ++eye) {
+        const std::optional<EyeGaze>& g = f.gaze.eyes[eye];
+        if (g && f.irises[eye])
+          draw_gaze(canvas, g->iris_px, f.irises[eye]->radius, g->camera_iris, g->camera_direction, 4.0, cam,
+                    cv::Scalar(0, 220, 255));
+      }
     }
     draw_caption(canvas, "frame " + std::to_string(f.index) + "  " + to_string(f.status));
     overlay_->write(canvas);
@@ -274,6 +323,7 @@ class FrameWriter {
   StagedText csv_;
   StagedText jsonl_;
   std::unique_ptr<VideoWriter> overlay_, shaded_, heatmap_;
+  int gaze_frames_ = 0;
   std::vector<Polygon> face_polygons_;
   TriangleMesh face_mesh_;
   const Refiner* refiner_ = nullptr;
@@ -327,6 +377,7 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
   if (summary.capture.frames == 0) throw Error("no frames could be read from " + input);
   writer.finish(summary.capture.identity, stage ? &stage->refiner() : nullptr);
   summary.meshes_written = writer.meshes_written();
+  summary.gaze_frames = writer.gaze_frames();
   return summary;
 }
 

@@ -42,6 +42,7 @@ struct TrackSummary {
   CaptureSummary capture;
   std::filesystem::path output_dir;
   int meshes_written = 0;
+  int gaze_frames = 0;  // frames with an iris found (gaze.hpp)
   int refined_frames = 0;
   double refine_ms = 0;  // total, on the refinement thread
 };

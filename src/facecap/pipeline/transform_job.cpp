@@ -116,6 +116,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   });
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
+  capture.gaze = false;  // the edits do not use it
   summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stage.push(f); });
   stage.finish();
   summary.timings.lighting_ms = stage.refine_ms();

@@ -1,5 +1,7 @@
 #include "facecap/render/overlay.hpp"
 
+#include <cmath>
+
 #include <opencv2/imgproc.hpp>
 
 namespace facecap {
@@ -24,6 +26,19 @@ void draw_wireframe(cv::Mat& image, const Positions& camera_points, const std::v
       cv::line(layer, projected[poly.v[k]], projected[poly.v[(k + 1) % n]], colour, 1, cv::LINE_AA);
   }
   cv::addWeighted(layer, 0.45, image, 0.55, 0.0, image);
+}
+
+void draw_gaze(cv::Mat& image, const Vec2d& iris_px, double iris_radius_px, const Vec3d& iris_camera,
+               const Vec3d& direction, double length_cm, const PinholeCamera& camera, const cv::Scalar& colour) {
+  constexpr int kShift = 4;  // sub-pixel drawing
+  auto fixed = [](const Vec2d& p) {
+    return cv::Point(int(std::lround(p.x() * (1 << kShift))), int(std::lround(p.y() * (1 << kShift))));
+  };
+  cv::circle(image, fixed(iris_px), int(std::lround(iris_radius_px * (1 << kShift))), colour, 1, cv::LINE_AA, kShift);
+  const Vec3d tip = iris_camera + length_cm * direction.normalized();
+  if (!(tip.z() > 0.1)) return;
+  cv::arrowedLine(image, fixed(camera.project(iris_camera)), fixed(camera.project(tip)), colour, 2, cv::LINE_AA, kShift,
+                  0.2);
 }
 
 void draw_caption(cv::Mat& image, const std::string& text) {

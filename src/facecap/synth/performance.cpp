@@ -187,6 +187,8 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
       set(w, "eyeLookOut_R", std::max(0.0, -0.3 * gaze_x(t)));
       set(w, "eyeLookUp_L", std::max(0.0, 0.3 * gaze_y(t)));
       set(w, "eyeLookUp_R", std::max(0.0, 0.3 * gaze_y(t)));
+      // The eyeballs turn with the lids' gaze shapes (ICT's shapes move only the lids).
+      frame.gaze_deg = Vec2d(std::clamp(25.0 * gaze_x(t), -30.0, 30.0), std::clamp(15.0 * gaze_y(t), -20.0, 20.0));
       for (const ExpressionEvent& ev : events) {
         const double b = ev.intensity * bump(t, ev.centre, ev.width);
         if (b <= 0) continue;

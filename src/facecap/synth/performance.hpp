@@ -36,8 +36,9 @@ struct SynthFrame {
   int index = 0;
   double time = 0.0;
   HeadPose pose;
-  Eigen::VectorXf expression;  // one weight per model expression, in [0, 1]
-  ShCoeffs lighting;           // viewer-frame SH, shared by the colour channels
+  Eigen::VectorXf expression;      // one weight per model expression, in [0, 1]
+  ShCoeffs lighting;               // viewer-frame SH, shared by the colour channels
+  Vec2d gaze_deg = Vec2d::Zero();  // both eyes' (yaw, pitch), head-relative (eyeballs.hpp)
 };
 
 struct SynthPerformance {
@@ -50,7 +51,8 @@ struct SynthPerformance {
 
 // Draws a performance: smooth talking-like jaw and lip motion, blinks and
 // occasional expressions (smile, brow raise, frown), head turns of up to
-// +-max_yaw_deg, and slowly varying lighting, all reproducible from the seed.
+// +-max_yaw_deg, gaze that wanders with the lids following it, and slowly
+// varying lighting, all reproducible from the seed.
 SynthPerformance make_performance(const FaceModel& model, const SynthOptions& options);
 
 }  // namespace facecap

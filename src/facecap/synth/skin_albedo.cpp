@@ -4,6 +4,7 @@
 #include <random>
 
 #include "facecap/core/image_sampling.hpp"
+#include "facecap/model/eyeballs.hpp"
 
 namespace facecap {
 
@@ -100,13 +101,20 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   paint_range(regions::kGumsAndTongue, Vec3f(0.55f, 0.2f, 0.2f));
   paint_range(regions::kTeeth, Vec3f(0.85f, 0.82f, 0.74f));
   const Vec3f iris = Vec3f(0.25f, 0.16f, 0.1f) * float(0.6 + 0.8 * std::uniform_real_distribution<double>()(rng));
-  for (const Region& eyeball : {regions::kEyeballLeft, regions::kEyeballRight}) {
-    int front = eyeball.first_vertex;
-    for (int v = eyeball.first_vertex; v <= eyeball.last_vertex; ++v)
-      if (neutral(2, v) > neutral(2, front)) front = v;
+  // Pupil and iris: discs about the eyeball's front-most vertex, as wide as
+  // eyeballs.hpp says an iris is.
+  const EyeballGeometry eyes = eyeball_geometry(model, Eigen::VectorXd());
+  for (int eye = 0; eye < 2; ++eye) {
+    const Region& eyeball = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+    const Vec3f centre = eyes.centre[eye].cast<float>();
+    const Vec3f axis = eyes.rest_axis[eye].cast<float>();
     for (int v = eyeball.first_vertex; v <= eyeball.last_vertex; ++v) {
-      const float r = (neutral.col(v) - neutral.col(front)).norm();
-      out.vertex_albedo.col(v) = r < 0.22f ? Vec3f(0.02f, 0.02f, 0.02f) : r < 0.55f ? iris : Vec3f(0.85f, 0.82f, 0.8f);
+      const Vec3f offset = neutral.col(v) - centre;
+      const float from_axis = (offset - offset.dot(axis) * axis).norm();
+      const bool front = offset.dot(axis) > 0.0f;
+      out.vertex_albedo.col(v) = front && from_axis < 0.22f                  ? Vec3f(0.02f, 0.02f, 0.02f)
+                                 : front && from_axis < float(kIrisRadiusCm) ? iris
+                                                                             : Vec3f(0.85f, 0.82f, 0.8f);
     }
   }
   for (int v = regions::kEyeExtras.first_vertex; v <= regions::kEyeExtras.last_vertex; ++v) {

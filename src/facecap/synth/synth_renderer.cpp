@@ -12,7 +12,8 @@ SynthRenderer::SynthRenderer(const FaceModel& model, const SynthPerformance& per
     : model_(model),
       performance_(performance),
       appearance_(paint_appearance(model, performance.skin_tone, performance.options.seed)),
-      contour_(build_jaw_contour(model)) {
+      contour_(build_jaw_contour(model)),
+      eyes_(eyeball_geometry(model, performance.identity.cast<double>())) {
   const TriangleMesh face = model.region_mesh(regions::kFace);
   face_triangles_ = face.triangles;
   // Everything but the face polygons (drawn from the face mesh) and the
@@ -52,7 +53,14 @@ SynthRenderer::SynthRenderer(const FaceModel& model, const SynthPerformance& per
 }
 
 Positions SynthRenderer::head_positions(const SynthFrame& frame) const {
-  return to_camera(model_.evaluate(performance_.identity, frame.expression), frame.pose);
+  Positions head = model_.evaluate(performance_.identity, frame.expression);
+  turn_eyeballs(eyes_, frame.gaze_deg.x(), frame.gaze_deg.y(), head);
+  return to_camera(head, frame.pose);
+}
+
+Vec2d SynthRenderer::iris_centre(const SynthFrame& frame, int eye) const {
+  return project_iris_centre(eyes_, eye, turned_axis(eyes_, eye, frame.gaze_deg.x(), frame.gaze_deg.y()), frame.pose,
+                             performance_.camera);
 }
 
 Positions SynthRenderer::detailed_face(const SynthFrame& frame) const {

@@ -8,6 +8,7 @@
 
 #include "facecap/core/midpoint_subdivision.hpp"
 #include "facecap/detect/landmarks.hpp"
+#include "facecap/model/eyeballs.hpp"
 #include "facecap/model/jaw_contour.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/synth/performance.hpp"
@@ -28,6 +29,11 @@ class SynthRenderer {
   // The 68 landmark-map vertices projected, with no silhouette correction.
   Landmarks landmark_vertex_projections(const SynthFrame& frame) const;
 
+  // Where the centre of the iris of eye 0 (the subject's right) or 1
+  // projects: what a perfect iris detector would find.
+  Vec2d iris_centre(const SynthFrame& frame, int eye) const;
+  const EyeballGeometry& eyeballs() const { return eyes_; }
+
   const SynthAppearance& appearance() const { return appearance_; }
   // Displacement (cm) of each fine face vertex; empty without detail.
   const MidpointSubdivision* detail_mesh() const { return detail_ ? &subdivision_ : nullptr; }
@@ -42,6 +48,7 @@ class SynthRenderer {
   const SynthPerformance& performance_;
   SynthAppearance appearance_;
   JawContour contour_;
+  EyeballGeometry eyes_;
   std::vector<Triangle> head_triangles_;  // non-face regions, global indices
   std::vector<Triangle> face_triangles_;  // face region, local = global indices
   bool detail_ = false;

@@ -60,7 +60,8 @@ void write_truth(const std::filesystem::path& path, const SynthTruth& truth) {
   j["expression_names"] = truth.expression_names;
   j["units"] = {{"translation", "cm"},
                 {"rotation", "axis-angle radians, camera frame x right y down z forward"},
-                {"landmarks", "pixels, 0-based, pixel centres at integers"}};
+                {"landmarks", "pixels, 0-based, pixel centres at integers"},
+                {"gaze", "degrees, head-relative: yaw toward the subject's left, pitch up; both eyes"}};
   json frames = json::array();
   for (size_t f = 0; f < p.frames.size(); ++f) {
     const SynthFrame& fr = p.frames[f];
@@ -72,6 +73,7 @@ void write_truth(const std::filesystem::path& path, const SynthTruth& truth) {
                       {"translation", vec(fr.pose.translation)},
                       {"expression", vec(fr.expression)},
                       {"lighting", vec(fr.lighting)},
+                      {"gaze_yaw_pitch_deg", vec(fr.gaze_deg)},
                       {"landmarks", landmarks_json(truth.landmarks[f])},
                       {"landmark_vertices", landmarks_json(truth.vertex_landmarks[f])}});
   }
@@ -122,6 +124,11 @@ SynthTruth read_truth(const std::filesystem::path& path) {
       const auto l = f.at("lighting").get<std::vector<double>>();
       if (l.size() != 9) throw Error("lighting must have 9 coefficients");
       for (int k = 0; k < 9; ++k) fr.lighting[k] = l[k];
+      if (f.contains("gaze_yaw_pitch_deg")) {  // absent from truth files before gaze
+        const auto g = f.at("gaze_yaw_pitch_deg").get<std::vector<double>>();
+        if (g.size() != 2) throw Error("gaze must have 2 angles");
+        fr.gaze_deg = Vec2d(g[0], g[1]);
+      }
       p.frames.push_back(fr);
       t.landmarks.push_back(landmarks_from(f.at("landmarks")));
       t.vertex_landmarks.push_back(landmarks_from(f.at("landmark_vertices")));

@@ -1,0 +1,186 @@
+#include "facecap/detect/iris.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace facecap {
+
+namespace {
+
+// Every eye is searched at this width (corner to corner), in pixels.
+constexpr double kEyeWidthPx = 48.0;
+
+// Vertex of the parabola through (-1, a), (0, b), (1, c): a sub-pixel offset in [-0.5, 0.5].
+double parabola_peak(double a, double b, double c) {
+  const double curvature = a - 2.0 * b + c;
+  if (!(curvature < 0.0)) return 0.0;
+  return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+}
+
+// One eye resampled to kEyeWidthPx: pixel (u, v) is image point
+// (x0 + u / scale, y0 + v / scale), pixel centres at integers on both sides.
+struct EyePatch {
+  cv::Mat image;    // CV_32F grey levels
+  cv::Mat outline;  // CV_8U, 255 inside the six landmarks
+  cv::Mat visible;  // CV_32F, 1 inside the outline shrunk off the lid line and lashes
+  double x0 = 0, y0 = 0, scale = 1;
+};
+
+std::optional<EyePatch> resample_eye(const cv::Mat& grey, const std::array<Vec2d, 6>& p) {
+  const double width = (p[3] - p[0]).norm();
+  Vec2d lo = p[0], hi = p[0];
+  for (const Vec2d& q : p) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  const double margin = 0.15 * width;
+  EyePatch e;
+  e.x0 = std::floor(lo.x() - margin);
+  e.y0 = std::floor(lo.y() - margin);
+  if (e.x0 < 0 || e.y0 < 0 || hi.x() + margin > grey.cols - 1 || hi.y() + margin > grey.rows - 1) return std::nullopt;
+  e.scale = kEyeWidthPx / width;
+  const cv::Size size(static_cast<int>(std::ceil((hi.x() + margin - e.x0) * e.scale)) + 1,
+                      static_cast<int>(std::ceil((hi.y() + margin - e.y0) * e.scale)) + 1);
+  const cv::Matx23d to_eye(e.scale, 0, -e.scale * e.x0, 0, e.scale, -e.scale * e.y0);
+  cv::warpAffine(grey, e.image, to_eye, size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  e.image.convertTo(e.image, CV_32F);
+
+  constexpr int kShift = 4;  // sub-pixel polygon vertices
+  std::vector<cv::Point> outline;
+  for (const Vec2d& q : p) {
+    outline.emplace_back(static_cast<int>(std::lround(e.scale * (q.x() - e.x0) * (1 << kShift))),
+                         static_cast<int>(std::lround(e.scale * (q.y() - e.y0) * (1 << kShift))));
+  }
+  e.outline = cv::Mat::zeros(size, CV_8U);
+  cv::fillPoly(e.outline, std::vector<std::vector<cv::Point>>{outline}, cv::Scalar(255), cv::LINE_8, kShift);
+  const int shrink = static_cast<int>(std::lround(0.05 * kEyeWidthPx));
+  cv::Mat shrunk;
+  cv::erode(e.outline, shrunk, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * shrink + 1, 2 * shrink + 1)));
+  shrunk.convertTo(e.visible, CV_32F, 1.0 / 255.0);
+  return e;
+}
+
+struct Disc {
+  Vec2d centre = Vec2d::Zero();  // patch pixels
+  double radius = 0;
+  double score = -1;
+};
+
+// Sums over discs by rows: with each row's running sums, a disc's sum is
+// one difference per row it spans.
+class DiscSums {
+ public:
+  explicit DiscSums(const cv::Mat& values) {
+    cv::integral(values, prefix_, CV_64F);  // (rows+1) x (cols+1); row r+1 holds the sums of rows 0..r
+  }
+  // Sum over the pixels of `rows` (row offset, half width) around (u, v);
+  // parts outside the patch count as zero.
+  double sum(int u, int v, const std::vector<std::pair<int, int>>& rows) const {
+    double total = 0.0;
+    const int width = prefix_.cols - 1, height = prefix_.rows - 1;
+    for (const auto& [dy, half] : rows) {
+      const int y = v + dy;
+      if (y < 0 || y >= height) continue;
+      const int x0 = std::max(0, u - half), x1 = std::min(width, u + half + 1);
+      if (x1 <= x0) continue;
+      // Row y alone: the integral's difference between rows y+1 and y.
+      total += (prefix_.at<double>(y + 1, x1) - prefix_.at<double>(y + 1, x0)) -
+               (prefix_.at<double>(y, x1) - prefix_.at<double>(y, x0));
+    }
+    return total;
+  }
+
+ private:
+  cv::Mat prefix_;
+};
+
+// The dark disc that explains most of the visible eye's grey-level variance
+// (Otsu's between-class variance: n_in n_out (m_out - m_in)^2 / (n^2 var)),
+// over candidate centres inside the outline and the given radii (patch pixels).
+Disc darkest_disc(const EyePatch& e, const std::vector<double>& radii) {
+  const double n = cv::sum(e.visible)[0];
+  Disc best;
+  if (n < 20.0) return best;
+  const cv::Mat masked = e.image.mul(e.visible);
+  const double total = cv::sum(masked)[0];
+  const double mean = total / n;
+  const double n2_variance = std::max(1e-6, n * (cv::sum(masked.mul(e.image))[0] - n * mean * mean));
+  const DiscSums counts(e.visible), sums(masked);
+  const cv::Size size = e.image.size();
+  cv::Mat best_scores;
+  cv::Point best_at(-1, -1);
+  for (const double radius : radii) {
+    std::vector<std::pair<int, int>> rows;
+    const int reach = static_cast<int>(std::floor(radius));
+    double disc_area = 0.0;
+    for (int dy = -reach; dy <= reach; ++dy) {
+      const int half = static_cast<int>(std::floor(std::sqrt(radius * radius - dy * dy)));
+      rows.emplace_back(dy, half);
+      disc_area += 2 * half + 1;
+    }
+    cv::Mat scores(size, CV_32F, cv::Scalar(-1.0f));
+    bool improved = false;
+    for (int v = 0; v < size.height; ++v) {
+      for (int u = 0; u < size.width; ++u) {
+        if (!e.outline.at<uint8_t>(v, u)) continue;
+        const double n_in = counts.sum(u, v, rows), n_out = n - n_in;
+        if (n_in < 0.2 * disc_area || n_out < 0.1 * n) continue;
+        const double sum_in = sums.sum(u, v, rows);
+        const double mean_in = sum_in / n_in, mean_out = (total - sum_in) / n_out;
+        if (mean_out <= mean_in) continue;
+        const double c = n_in * n_out * (mean_out - mean_in) * (mean_out - mean_in) / n2_variance;
+        scores.at<float>(v, u) = static_cast<float>(c);
+        if (c > best.score) {
+          best.score = c;
+          best.radius = radius;
+          best_at = {u, v};
+          improved = true;
+        }
+      }
+    }
+    if (improved) best_scores = scores;
+  }
+  if (best_at.x < 0) return best;
+  auto at = [&](int u, int v) {
+    if (u < 0 || v < 0 || u >= size.width || v >= size.height) return -1.0;
+    return static_cast<double>(best_scores.at<float>(v, u));
+  };
+  const int u = best_at.x, v = best_at.y;
+  best.centre = Vec2d(u, v);
+  if (at(u - 1, v) >= 0 && at(u + 1, v) >= 0) best.centre.x() += parabola_peak(at(u - 1, v), best.score, at(u + 1, v));
+  if (at(u, v - 1) >= 0 && at(u, v + 1) >= 0) best.centre.y() += parabola_peak(at(u, v - 1), best.score, at(u, v + 1));
+  return best;
+}
+
+}  // namespace
+
+std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks& landmarks, int eye,
+                                           double expected_radius_px, const IrisOptions& options) {
+  if (grey.empty() || grey.type() != CV_8UC1 || (eye != 0 && eye != 1)) return std::nullopt;
+  std::array<Vec2d, 6> p;
+  for (int k = 0; k < 6; ++k) p[k] = landmarks[36 + 6 * eye + k].cast<double>();
+  const double width = (p[3] - p[0]).norm();
+  if (!(width >= options.min_eye_width_px)) return std::nullopt;
+  const double opening = 0.5 * ((p[1] - p[5]).norm() + (p[2] - p[4]).norm());
+  if (opening < options.min_opening * width) return std::nullopt;
+
+  const std::optional<EyePatch> patch = resample_eye(grey, p);
+  if (!patch) return std::nullopt;
+  std::vector<double> radii;
+  if (expected_radius_px > 0.0) {
+    for (const double f : options.radius_factors) radii.push_back(f * expected_radius_px * patch->scale);
+  } else {
+    for (const double share : options.radius_shares) radii.push_back(share * kEyeWidthPx);
+  }
+  const Disc disc = darkest_disc(*patch, radii);
+  if (disc.score < options.min_score) return std::nullopt;
+
+  IrisObservation out;
+  out.centre = Vec2d(patch->x0, patch->y0) + disc.centre / patch->scale;
+  out.radius = disc.radius / patch->scale;
+  out.score = disc.score;
+  return out;
+}
+
+}  // namespace facecap

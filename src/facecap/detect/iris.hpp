@@ -1,0 +1,51 @@
+#pragma once
+// The iris centre of each eye, found inside the eye's six landmarks (iBUG
+// 36-41 and 42-47): the dark disc of the iris against the white of the eye.
+//
+// The eye is resampled so that it is kEyeWidthPx wide (the same work at any
+// resolution), its outline is shrunk away from the lid line and lashes, and
+// every candidate centre and radius is scored by how much of the visible
+// eye's grey-level variance a dark disc there on a brighter surround explains
+// (Otsu's between-class variance over the visible pixels only, so a lid that
+// covers part of the iris neither hides it nor lets a sliver of dark lid win). The best score is refined to sub-pixel
+// by a parabola. An eye that is closed, too small or shows no dark disc gives nothing.
+#include <array>
+#include <optional>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/detect/landmarks.hpp"
+
+namespace facecap {
+
+struct IrisObservation {
+  Vec2d centre = Vec2d::Zero();  // image pixels (pixel centres at integers)
+  double radius = 0.0;           // the disc searched for, pixels
+  double score = 0.0;            // share of the visible eye's grey-level variance the disc explains
+};
+
+struct IrisOptions {
+  // Iris radius / eye width (corner to corner), tried in turn: about 0.2 in
+  // an average eye (an 11.7 mm iris in a 29 mm eye), more in a narrow one or
+  // where the detector marks the corners inside the true ones.
+  std::vector<double> radius_shares{0.16, 0.18, 0.2, 0.22, 0.24, 0.26, 0.28, 0.3, 0.32, 0.34};
+  // With an expected radius (from a fitted head: the iris's size and its
+  // depth), the radii tried are these multiples of it (people's irises vary
+  // by about 5 per cent). Where the eye's width is the only guide, a dark eye
+  // corner beside an iris turned toward it passes for a larger iris.
+  std::vector<double> radius_factors{0.88, 0.94, 1.0, 1.06, 1.12};
+  double min_opening = 0.16;    // eyelid opening / eye width below which an eye is closed
+  double min_eye_width_px = 9;  // smaller eyes are not searched
+  double min_score = 0.4;       // discs that explain less are not an iris
+};
+
+// Eye 0: the subject's right eye (iBUG 36-41, on the image's left for a face
+// seen from the front); eye 1: the subject's left (42-47). `grey`: 8-bit.
+// `expected_radius_px` > 0: the iris's radius in the image is about this.
+std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks& landmarks, int eye,
+                                           double expected_radius_px = 0.0, const IrisOptions& options = {});
+
+using IrisPair = std::array<std::optional<IrisObservation>, 2>;
+
+}  // namespace facecap

@@ -1,0 +1,59 @@
+#include "facecap/fit/gaze.hpp"
+
+#include <cmath>
+
+namespace facecap {
+
+Vec3d GazeEstimate::direction() const {
+  Vec3d sum = Vec3d::Zero();
+  for (const auto& e : eyes)
+    if (e) sum += e->direction;
+  return sum.norm() > 0 ? Vec3d(sum.normalized()) : Vec3d::UnitZ();
+}
+
+GazeEstimate estimate_gaze(const EyeballGeometry& eyes, const HeadPose& pose, const PinholeCamera& camera,
+                           const IrisCentres& iris) {
+  GazeEstimate out;
+  const Mat3d rf = pose.model_to_camera_rotation();
+  for (int eye = 0; eye < 2; ++eye) {
+    if (!iris[eye]) continue;
+    const Vec2d& u = *iris[eye];
+    const Vec3d ray = Vec3d((u.x() - camera.cx) / camera.focal, (u.y() - camera.cy) / camera.focal, 1.0).normalized();
+    const Vec3d centre = rf * eyes.centre[eye] + pose.translation;
+    const double radius = eyes.iris_depth(eye);
+    // |t ray - centre|^2 = radius^2: the nearer root is the side facing the camera.
+    const double b = ray.dot(centre);
+    const double disc = b * b - (centre.squaredNorm() - radius * radius);
+    EyeGaze g;
+    g.iris_px = u;
+    Vec3d on_sphere;
+    if (disc >= 0.0) {
+      on_sphere = (b - std::sqrt(disc)) * ray;
+    } else {
+      g.ray_missed = true;
+      on_sphere = centre + radius * (b * ray - centre).normalized();
+    }
+    g.camera_direction = ((on_sphere - centre) / radius).normalized();
+    g.camera_iris = on_sphere;
+    g.direction = rf.transpose() * g.camera_direction;
+    if (g.direction.allFinite()) out.eyes[eye] = g;
+  }
+  return out;
+}
+
+GazeMeasurement measure_gaze(const cv::Mat& grey, const Landmarks& observed, const EyeballGeometry& eyes,
+                             const HeadPose& pose, const PinholeCamera& camera) {
+  GazeMeasurement out;
+  IrisCentres centres;
+  const Mat3d rf = pose.model_to_camera_rotation();
+  for (int eye = 0; eye < 2; ++eye) {
+    const double depth = (rf * eyes.centre[eye] + pose.translation).z();
+    if (!(depth > 0.0)) continue;
+    out.irises[eye] = locate_iris(grey, observed, eye, camera.focal * kIrisRadiusCm / depth);
+    if (out.irises[eye]) centres[eye] = out.irises[eye]->centre;
+  }
+  out.gaze = estimate_gaze(eyes, pose, camera, centres);
+  return out;
+}
+
+}  // namespace facecap

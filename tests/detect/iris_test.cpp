@@ -1,0 +1,86 @@
+#include "facecap/detect/iris.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+namespace facecap {
+namespace {
+
+// A drawn eye: skin, an almond-shaped opening of white sclera between the six
+// landmarks, and a dark iris disc at a known sub-pixel centre, partly under
+// the lids, drawn 8x supersampled so that its edge is anti-aliased.
+struct DrawnEye {
+  cv::Mat grey;
+  Landmarks landmarks = zero_landmarks();
+};
+
+DrawnEye draw_eye(const Vec2d& iris, double iris_radius, double width, double opening) {
+  constexpr int kSuper = 8;
+  const cv::Size size(320, 200);
+  cv::Mat big(size.height * kSuper, size.width * kSuper, CV_8U, cv::Scalar(150));
+  const Vec2d centre(160, 100);
+  const std::array<Vec2d, 6> outline = {
+      centre + Vec2d(-width / 2, 0), centre + Vec2d(-width / 6, -opening / 2), centre + Vec2d(width / 6, -opening / 2),
+      centre + Vec2d(width / 2, 0),  centre + Vec2d(width / 6, opening / 2),   centre + Vec2d(-width / 6, opening / 2)};
+  auto to_big = [&](const Vec2d& p) {
+    return cv::Point(int(std::lround((p.x() + 0.5) * kSuper - 0.5)), int(std::lround((p.y() + 0.5) * kSuper - 0.5)));
+  };
+  std::vector<cv::Point> poly;
+  for (const Vec2d& p : outline) poly.push_back(to_big(p));
+  cv::Mat opening_mask = cv::Mat::zeros(big.size(), CV_8U);
+  cv::fillPoly(opening_mask, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255));
+  cv::Mat eye(big.size(), CV_8U, cv::Scalar(215));
+  cv::circle(eye, to_big(iris), int(std::lround(iris_radius * kSuper)), cv::Scalar(70), -1);
+  eye.copyTo(big, opening_mask);
+  DrawnEye out;
+  cv::resize(big, out.grey, size, 0, 0, cv::INTER_AREA);
+  for (int k = 0; k < 6; ++k) {
+    out.landmarks[36 + k] = outline[k].cast<float>();
+    out.landmarks[42 + k] = outline[k].cast<float>();
+  }
+  return out;
+}
+
+TEST(Iris, FindsTheCentreOfAPartlyCoveredDiscToAQuarterPixel) {
+  for (const Vec2d& iris : {Vec2d(160.3, 100.6), Vec2d(148.8, 97.2), Vec2d(171.4, 103.5)}) {
+    const DrawnEye eye = draw_eye(iris, 11.0, 60.0, 22.0);
+    const std::optional<IrisObservation> found = locate_iris(eye.grey, eye.landmarks, 0);
+    ASSERT_TRUE(found.has_value());
+    EXPECT_LT((found->centre - iris).norm(), 0.25) << found->centre.transpose() << " vs " << iris.transpose();
+    EXPECT_NEAR(found->radius, 11.0, 1.0);  // radii are tried in steps of 0.02 eye widths (1.2 px here)
+    EXPECT_GT(found->score, 0.8);
+  }
+}
+
+TEST(Iris, TheSameEyeAtAnotherScaleGivesTheSameAnswer) {
+  // The eye is searched at a fixed width, so a small eye is found as well, in proportion.
+  const DrawnEye eye = draw_eye(Vec2d(163.2, 101.1), 5.5, 30.0, 11.0);
+  const std::optional<IrisObservation> found = locate_iris(eye.grey, eye.landmarks, 1, 5.5);
+  ASSERT_TRUE(found.has_value());
+  EXPECT_LT((found->centre - Vec2d(163.2, 101.1)).norm(), 0.25);
+}
+
+TEST(Iris, AClosedBlankTinyOrCutOffEyeGivesNothing) {
+  const DrawnEye closed = draw_eye(Vec2d(160, 100), 11.0, 60.0, 6.0);  // opening 0.1 of the width
+  EXPECT_FALSE(locate_iris(closed.grey, closed.landmarks, 0).has_value());
+
+  DrawnEye blank = draw_eye(Vec2d(160, 100), 11.0, 60.0, 22.0);
+  blank.grey.setTo(cv::Scalar(180));
+  EXPECT_FALSE(locate_iris(blank.grey, blank.landmarks, 0).has_value());
+
+  const DrawnEye tiny = draw_eye(Vec2d(160, 100), 1.5, 8.0, 3.0);
+  EXPECT_FALSE(locate_iris(tiny.grey, tiny.landmarks, 0).has_value());
+
+  DrawnEye cut_off = draw_eye(Vec2d(160, 100), 11.0, 60.0, 22.0);
+  for (int k = 36; k < 48; ++k) cut_off.landmarks[k].x() -= 128.0f;  // the eye's left corner at x = 2
+  EXPECT_FALSE(locate_iris(cut_off.grey, cut_off.landmarks, 0).has_value());
+
+  EXPECT_FALSE(locate_iris(cv::Mat(), closed.landmarks, 0).has_value());
+  cv::Mat colour;
+  cv::cvtColor(closed.grey, colour, cv::COLOR_GRAY2BGR);
+  EXPECT_FALSE(locate_iris(colour, closed.landmarks, 0).has_value());
+}
+
+}  // namespace
+}  // namespace facecap

@@ -1,0 +1,116 @@
+#include "facecap/fit/gaze.hpp"
+
+#include <gtest/gtest.h>
+
+#include "facecap/model/regions.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+namespace {
+
+HeadPose pose_of(double yaw, double pitch, double roll, const Vec3d& translation) {
+  HeadPose p;
+  p.rotation = axis_angle_from_rotation(rotation_from_yaw_pitch_roll_deg(yaw, pitch, roll));
+  p.translation = translation;
+  return p;
+}
+
+TEST(Eyeballs, AreTwoMirroredSpheresLookingAheadWithTheRightEyeOnTheImagesLeft) {
+  FACECAP_REQUIRE_MODEL(model);
+  const EyeballGeometry eyes = eyeball_geometry(*model, Eigen::VectorXd());
+  for (int eye = 0; eye < 2; ++eye) {
+    EXPECT_NEAR(eyes.radius[eye], 1.2, 0.1);  // a human eyeball is about 24 mm across
+    EXPECT_GT(eyes.rest_axis[eye].z(), 0.99);
+    EXPECT_GT(eyes.iris_depth(eye), 0.8 * eyes.radius[eye]);  // the iris ring lies 1-2 mm inside the sphere
+    EXPECT_LT(eyes.iris_depth(eye), eyes.radius[eye]);
+  }
+  EXPECT_LT(eyes.centre[0].x(), -2.5);  // model x points to the subject's left
+  EXPECT_NEAR(eyes.centre[0].x(), -eyes.centre[1].x(), 1e-4);
+  EXPECT_NEAR(eyes.centre[0].y(), eyes.centre[1].y(), 1e-4);
+  // Eye 0 is the one iBUG 36-41 mark, on the image's left for a frontal face.
+  const PinholeCamera camera{1000, 320, 240};
+  const HeadPose frontal = pose_of(0, 0, 0, Vec3d(0, 0, 60));
+  Vec3d corners = Vec3d::Zero();
+  for (int i = 36; i < 42; ++i)
+    corners += model->neutral.segment<3>(3 * model->landmarks.vertices[i]).cast<double>() / 6;
+  EXPECT_LT((corners - eyes.centre[0]).head<2>().norm(), 1.0);
+  EXPECT_LT(project_iris_centre(eyes, 0, eyes.rest_axis[0], frontal, camera).x(), 320.0);
+  EXPECT_GT(project_iris_centre(eyes, 1, eyes.rest_axis[1], frontal, camera).x(), 320.0);
+}
+
+TEST(Eyeballs, TurnToTheGazeTheAnglesName) {
+  FACECAP_REQUIRE_MODEL(model);
+  for (const auto& [yaw, pitch] : {std::pair{0.0, 0.0}, {20.0, -10.0}, {-35.0, 15.0}}) {
+    const Vec3d d = gaze_direction(yaw, pitch);
+    EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(gaze_angles_deg(d).x(), yaw, 1e-9);
+    EXPECT_NEAR(gaze_angles_deg(d).y(), pitch, 1e-9);
+    EXPECT_LT((gaze_rotation(yaw, pitch) * Vec3d::UnitZ() - d).norm(), 1e-12);
+  }
+  EXPECT_GT(gaze_direction(20, 0).x(), 0.3);  // toward the subject's left
+  EXPECT_GT(gaze_direction(0, 20).y(), 0.3);  // up
+
+  // The eyeballs turn about their centres; the pupils go where turned_axis says.
+  const Eigen::VectorXd identity = Eigen::VectorXd::Constant(10, 0.7);
+  const EyeballGeometry eyes = eyeball_geometry(*model, identity);
+  Positions head = model->evaluate(identity.cast<float>(), Eigen::VectorXf());
+  const Positions before = head;
+  turn_eyeballs(eyes, 25.0, -12.0, head);
+  for (int eye = 0; eye < 2; ++eye) {
+    const Vec3d pupil = head.col(eyes.pupil_vertex[eye]).cast<double>();
+    const Vec3d expected = eyes.centre[eye] + eyes.radius[eye] * turned_axis(eyes, eye, 25.0, -12.0);
+    EXPECT_LT((pupil - expected).norm(), 1e-4);
+  }
+  // Nothing but the eyeballs moves.
+  EXPECT_EQ(head.leftCols(regions::kEyeballLeft.first_vertex), before.leftCols(regions::kEyeballLeft.first_vertex));
+  EXPECT_EQ(head.rightCols(head.cols() - regions::kEyeballRight.last_vertex - 1),
+            before.rightCols(head.cols() - regions::kEyeballRight.last_vertex - 1));
+}
+
+TEST(Gaze, AnIrisWhereATurnedEyeShowsItGivesThatTurnBack) {
+  FACECAP_REQUIRE_MODEL(model);
+  const EyeballGeometry eyes = eyeball_geometry(*model, Eigen::VectorXd::Constant(20, -0.5));
+  const PinholeCamera camera{1400, 640, 360};
+  for (const HeadPose& pose : {pose_of(0, 0, 0, Vec3d(0, 0, 60)), pose_of(-25, 8, 4, Vec3d(5, -3, 80)),
+                               pose_of(30, -10, -5, Vec3d(-8, 2, 45))}) {
+    for (const auto& [yaw, pitch] : {std::pair{0.0, 0.0}, {18.0, 6.0}, {-22.0, -9.0}}) {
+      IrisCentres iris;
+      std::array<Vec3d, 2> truth;
+      for (int eye = 0; eye < 2; ++eye) {
+        truth[eye] = turned_axis(eyes, eye, yaw, pitch);
+        iris[eye] = project_iris_centre(eyes, eye, truth[eye], pose, camera);
+      }
+      const GazeEstimate g = estimate_gaze(eyes, pose, camera, iris);
+      ASSERT_TRUE(g.eyes[0] && g.eyes[1]);
+      for (int eye = 0; eye < 2; ++eye) {
+        EXPECT_FALSE(g.eyes[eye]->ray_missed);
+        EXPECT_LT(angle_between_deg(g.eyes[eye]->direction, truth[eye]), 1e-6);
+        EXPECT_LT((g.eyes[eye]->camera_direction - pose.model_to_camera_rotation() * truth[eye]).norm(), 1e-8);
+        EXPECT_LT((camera.project(g.eyes[eye]->camera_iris) - *iris[eye]).norm(), 1e-6);
+      }
+      EXPECT_LT(angle_between_deg(g.direction(), truth[0] + truth[1]), 1e-6);
+      // One eye alone gives its own direction.
+      const GazeEstimate one = estimate_gaze(eyes, pose, camera, {std::nullopt, iris[1]});
+      EXPECT_FALSE(one.eyes[0].has_value());
+      EXPECT_LT(angle_between_deg(one.direction(), truth[1]), 1e-6);
+    }
+  }
+}
+
+TEST(Gaze, AnIrisBesideTheEyeballGivesTheNearestDirectionAndNoIrisNone) {
+  FACECAP_REQUIRE_MODEL(model);
+  const EyeballGeometry eyes = eyeball_geometry(*model, Eigen::VectorXd());
+  const PinholeCamera camera{1000, 320, 240};
+  const HeadPose pose = pose_of(0, 0, 0, Vec3d(0, 0, 60));
+  const Vec2d centre = project_iris_centre(eyes, 0, eyes.rest_axis[0], pose, camera);
+  const GazeEstimate g = estimate_gaze(eyes, pose, camera, {Vec2d(centre + Vec2d(-200, 0)), std::nullopt});
+  ASSERT_TRUE(g.eyes[0].has_value());
+  EXPECT_TRUE(g.eyes[0]->ray_missed);
+  EXPECT_NEAR(g.eyes[0]->direction.norm(), 1.0, 1e-9);
+  // Far to the image's left of a frontal face is the subject's right: -x, and sideways.
+  EXPECT_LT(g.eyes[0]->direction.x(), -0.9);
+  EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {}).valid());
+}
+
+}  // namespace
+}  // namespace facecap
