@@ -17,6 +17,7 @@
 
 #include "app/command.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
@@ -93,7 +94,9 @@ TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView
   for (const auto& prim : g.doc["meshes"][0]["primitives"])
     vertices += size_t(g.doc["accessors"][int(prim["attributes"]["POSITION"])]["count"]);
   EXPECT_EQ(size_t(mesh["vertices"]), vertices);
-  EXPECT_EQ(mesh["shape_keys"].get<std::vector<std::string>>(), model->expression_names);
+  std::vector<std::string> names = model->expression_names;
+  names.insert(names.end(), kEyeTurnTargetNames.begin(), kEyeTurnTargetNames.end());
+  EXPECT_EQ(mesh["shape_keys"].get<std::vector<std::string>>(), names);
   EXPECT_EQ(mesh["materials"], 2);
   EXPECT_EQ(mesh["images"], nlohmann::json::parse("[[1024, 1024]]"));  // the albedo (--refine)
   EXPECT_EQ(size_t(mesh["node_keys"]), times.size());

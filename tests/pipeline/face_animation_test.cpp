@@ -6,6 +6,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/model/eyeballs.hpp"
 #include "facecap/model/regions.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
@@ -74,6 +75,61 @@ TEST(FaceAnimation, PlayedBackItReproducesTheTrackedMeshAndTheCameraView) {
       // glTF's camera has no principal point: ours sits at half the image
       // size, half a pixel from the centre of a grid with integer centres.
       EXPECT_LT(worst_px, 0.5 + 1e-3) << "key " << k << " part " << part;
+    }
+  }
+}
+
+// The gaze plays back as the four eye-turn targets: the pupils point where
+// the eyeballs turned by the key's angles point, and a key with no gaze (a
+// blink) holds the one before.
+TEST(FaceAnimation, TheEyeTurnTargetsPlayTheGaze) {
+  FACECAP_REQUIRE_MODEL(model);
+  const Eigen::VectorXd identity = Eigen::VectorXd::Constant(20, 0.5);
+  const std::array<std::optional<Vec2d>, 4> gazes = {Vec2d(20, -12), Vec2d(-28, 8), std::nullopt, Vec2d(0, 0)};
+  std::vector<FaceAnimationKey> keys;
+  for (size_t k = 0; k < gazes.size(); ++k) {
+    FaceAnimationKey key;
+    key.time = 0.04 * double(k);
+    key.pose.rotation = Vec3d(0.05, 0.3, -0.02);
+    key.expression = Eigen::VectorXf::Zero(model->num_expressions());
+    key.gaze_deg = gazes[k];
+    keys.push_back(key);
+  }
+  TempDir dir;
+  write_glb(dir.path() / "a.glb", face_animation(*model, identity, keys, {900.0, 1280, 720}));
+  const test::Glb g = test::Glb::read(dir.path() / "a.glb");
+  const auto& names = g.doc["meshes"][0]["extras"]["targetNames"];
+  ASSERT_EQ(names.size(), size_t(model->num_expressions()) + 4);
+  for (int t = 0; t < 4; ++t) EXPECT_EQ(names[model->num_expressions() + t], kEyeTurnTargetNames[t]);
+
+  const std::vector<int> source = face_animation_source_vertices(*model)[1];
+  const EyeballGeometry eyes = eyeball_geometry(*model, identity);
+  const Positions rest = model->evaluate(identity.cast<float>(), Eigen::VectorXf());
+  for (int k = 0; k < 4; ++k) {
+    const Vec2d gaze = gazes[k] ? *gazes[k] : *gazes[1];
+    Positions turned = rest;
+    turn_eyeballs(eyes, gaze.x(), gaze.y(), turned);
+    const Positions truth = to_camera(turned, keys[k].pose);
+    const Eigen::Matrix3Xf played = g.played_part(1, k);
+    for (int eye = 0; eye < 2; ++eye) {
+      const Region& r = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+      Eigen::Vector3f played_centre = Eigen::Vector3f::Zero(), played_pupil = Eigen::Vector3f::Zero();
+      Vec3f true_centre = Vec3f::Zero();
+      int n = 0;
+      for (size_t i = 0; i < source.size(); ++i) {
+        if (source[i] < r.first_vertex || source[i] > r.last_vertex) continue;
+        played_centre += played.col(Eigen::Index(i));
+        true_centre += truth.col(source[i]);
+        ++n;
+        if (source[i] == eyes.pupil_vertex[eye]) played_pupil = played.col(Eigen::Index(i));
+      }
+      ASSERT_EQ(n, r.num_vertices());
+      const Eigen::Vector3f flip(1, -1, -1);  // glTF's world to the camera frame (metres to cm below)
+      const Vec3d played_axis = (flip.cwiseProduct(played_pupil - played_centre / float(n))).cast<double>();
+      const Vec3d true_axis = (truth.col(eyes.pupil_vertex[eye]) - true_centre / float(n)).cast<double>();
+      // Offsets blend along chords, and the yaw and pitch targets' offsets add
+      // where the turns would compose: 1.1-1.2 degrees off here, 0 at rest.
+      EXPECT_LT(angle_between_deg(played_axis, true_axis), k == 3 ? 1e-3 : 1.5) << "key " << k << " eye " << eye;
     }
   }
 }

@@ -66,12 +66,20 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   EXPECT_EQ(g.doc["asset"]["extras"]["synthetic"], "true");
   EXPECT_TRUE(fs::exists(o.gltf.string() + ".json"));
   const std::vector<float> weights = g.channel("weights");
-  const int targets = model->num_expressions(), keys = int(weights.size()) / targets;
+  const int targets = model->num_expressions() + 4, keys = int(weights.size()) / targets;  // + the eye turns
   EXPECT_EQ(keys, r.valid_frames);
   const int smile = model->expression_index("mouthSmile_L");
   double mean_smile = 0;
   for (int k = 0; k < keys; ++k) mean_smile += weights[size_t(k) * targets + smile] / keys;
   EXPECT_GE(mean_smile, 0.3);
+  // The speaker's eyes keep their measured gaze (gaze.hpp): most keys turn them.
+  int turned = 0;
+  for (int k = 0; k < keys; ++k) {
+    float turn = 0;
+    for (int j = 0; j < 4; ++j) turn += weights[size_t(k) * targets + model->num_expressions() + j];
+    turned += turn > 0.01f;
+  }
+  EXPECT_GT(turned, keys / 2);
   // The face is textured with the albedo the lighting was estimated against.
   ASSERT_TRUE(g.doc.contains("images"));
   const std::string png = g.image_bytes(0);

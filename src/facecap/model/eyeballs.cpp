@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "facecap/core/error.hpp"
 #include "facecap/model/regions.hpp"
 
 namespace facecap {
@@ -12,6 +13,19 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 const Region& eyeball_region(int eye) { return eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft; }
 
+// One eye's sphere from its region's positions (3 x its vertices).
+void set_eyeball(const FaceModel& model, int eye, const Positions& shaped, EyeballGeometry& g) {
+  const Region& r = eyeball_region(eye);
+  const Eigen::Map<const Positions> neutral(model.neutral.data() + 3 * r.first_vertex, 3, r.num_vertices());
+  Eigen::Index front = 0;
+  neutral.row(2).maxCoeff(&front);  // the pupil: the front-most vertex at rest
+  g.centre[eye] = shaped.cast<double>().rowwise().mean();
+  g.pupil_vertex[eye] = r.first_vertex + static_cast<int>(front);
+  const Vec3d to_pupil = shaped.col(front).cast<double>() - g.centre[eye];
+  g.radius[eye] = to_pupil.norm();
+  g.rest_axis[eye] = to_pupil / g.radius[eye];
+}
+
 }  // namespace
 
 EyeballGeometry eyeball_geometry(const FaceModel& model, const Eigen::VectorXd& identity) {
@@ -19,15 +33,18 @@ EyeballGeometry eyeball_geometry(const FaceModel& model, const Eigen::VectorXd& 
   for (int eye = 0; eye < 2; ++eye) {
     const Region& r = eyeball_region(eye);
     const Eigen::VectorXf shape = model.identity_shape(identity.cast<float>(), r);
-    const Eigen::Map<const Positions> shaped(shape.data(), 3, r.num_vertices());
-    const Eigen::Map<const Positions> neutral(model.neutral.data() + 3 * r.first_vertex, 3, r.num_vertices());
-    Eigen::Index front = 0;
-    neutral.row(2).maxCoeff(&front);  // the pupil: the front-most vertex at rest
-    g.centre[eye] = shaped.cast<double>().rowwise().mean();
-    g.pupil_vertex[eye] = r.first_vertex + static_cast<int>(front);
-    const Vec3d to_pupil = shaped.col(front).cast<double>() - g.centre[eye];
-    g.radius[eye] = to_pupil.norm();
-    g.rest_axis[eye] = to_pupil / g.radius[eye];
+    set_eyeball(model, eye, Eigen::Map<const Positions>(shape.data(), 3, r.num_vertices()), g);
+  }
+  return g;
+}
+
+EyeballGeometry head_eyeball_geometry(const FaceModel& model, const Positions& head) {
+  if (head.cols() != model.num_vertices)
+    throw Error("head_eyeball_geometry: the head does not have the model's vertices");
+  EyeballGeometry g;
+  for (int eye = 0; eye < 2; ++eye) {
+    const Region& r = eyeball_region(eye);
+    set_eyeball(model, eye, head.middleCols(r.first_vertex, r.num_vertices()), g);
   }
   return g;
 }

@@ -39,6 +39,8 @@ struct EyeballGeometry {
 
 // For an identity (its leading modes; missing ones are zeros).
 EyeballGeometry eyeball_geometry(const FaceModel& model, const Eigen::VectorXd& identity);
+// For a whole head's positions (3 x all vertices, model frame).
+EyeballGeometry head_eyeball_geometry(const FaceModel& model, const Positions& head);
 
 Vec3d gaze_direction(double yaw_deg, double pitch_deg);
 // (yaw, pitch) in degrees of a direction in the model frame.

@@ -1,10 +1,12 @@
 #include "facecap/pipeline/face_animation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
 
 #include "facecap/core/error.hpp"
+#include "facecap/model/eyeballs.hpp"
 #include "facecap/model/regions.hpp"
 
 namespace facecap {
@@ -92,8 +94,32 @@ Positions gather_metres(const Eigen::VectorXf& head, const std::vector<int>& sou
   return out;
 }
 
+// Whole-head offsets (3N, cm) that turn both eyeballs of the rest shape by
+// kEyeTurnTargetDeg toward each of kEyeTurnTargetNames.
+std::vector<Eigen::VectorXf> eye_turn_targets(const FaceModel& model, const FaceAnimationRest& rest) {
+  const Eigen::Map<const Positions> head(rest.head.data(), 3, model.num_vertices);
+  const EyeballGeometry eyes = head_eyeball_geometry(model, Positions(head));
+  const double a = kEyeTurnTargetDeg;
+  std::vector<Eigen::VectorXf> out;
+  for (const auto& [yaw, pitch] : {std::pair{a, 0.0}, {-a, 0.0}, {0.0, a}, {0.0, -a}}) {
+    Positions turned = head;
+    turn_eyeballs(eyes, yaw, pitch, turned);
+    turned -= head;
+    out.emplace_back(Eigen::Map<const Eigen::VectorXf>(turned.data(), turned.size()));
+  }
+  return out;
+}
+
+// The eye-turn weights of a head-relative gaze.
+Eigen::Vector4f eye_turn_weights(const Vec2d& gaze_deg) {
+  const double yaw = gaze_deg.x() / kEyeTurnTargetDeg, pitch = gaze_deg.y() / kEyeTurnTargetDeg;
+  return Eigen::Vector4d(std::max(0.0, yaw), std::max(0.0, -yaw), std::max(0.0, pitch), std::max(0.0, -pitch))
+      .cast<float>();
+}
+
 // Normals from the unsplit triangles, so that both sides of a UV seam agree.
-GltfPrimitive make_primitive(const FaceModel& model, const FaceAnimationRest& rest, const Part& part) {
+GltfPrimitive make_primitive(const FaceModel& model, const FaceAnimationRest& rest, const Part& part,
+                             const std::vector<Eigen::VectorXf>& eye_turns) {
   GltfPrimitive p;
   p.positions = gather_metres(rest.head, part.source);
   const Positions normals =
@@ -103,16 +129,22 @@ GltfPrimitive make_primitive(const FaceModel& model, const FaceAnimationRest& re
   p.triangles = part.triangles;
   for (int j = 0; j < model.num_expressions(); ++j)
     p.morph_targets.push_back(gather_metres(model.expression_basis.col(j), part.source) * rest.blend_shape_scale);
+  for (const Eigen::VectorXf& turn : eye_turns) p.morph_targets.push_back(gather_metres(turn, part.source));
   return p;
 }
 
 }  // namespace
 
 void append_animation_key(std::vector<FaceAnimationKey>& keys, bool timeline, int index, double time,
-                          const HeadPose& pose, const Eigen::VectorXf& expression) {
+                          const HeadPose& pose, const Eigen::VectorXf& expression, std::optional<Vec2d> gaze_deg) {
   const double t = timeline ? time : index / 30.0;
   if (!keys.empty() && t <= keys.back().time) return;
-  keys.push_back({t, pose, expression});
+  keys.push_back({t, pose, expression, gaze_deg});
+}
+
+std::optional<Vec2d> key_gaze(const GazeEstimate& gaze) {
+  if (!gaze.valid()) return std::nullopt;
+  return gaze.angles_deg();
 }
 
 std::vector<std::vector<int>> face_animation_source_vertices(const FaceModel& model) {
@@ -138,8 +170,9 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
   GltfAnimatedMesh out;
   out.name = "face";
 
+  const std::vector<Eigen::VectorXf> eye_turns = eye_turn_targets(model, rest);
   const Part face = face_part(model);
-  GltfPrimitive skin = make_primitive(model, rest, face);
+  GltfPrimitive skin = make_primitive(model, rest, face, eye_turns);
   skin.name = "face";
   skin.uvs.resize(2, Eigen::Index(face.uv.size()));
   for (size_t i = 0; i < face.uv.size(); ++i) {
@@ -149,17 +182,20 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
   out.primitives.push_back(std::move(skin));
 
   const Part inner = interior_part(model);
-  GltfPrimitive mouth_and_eyes = make_primitive(model, rest, inner);
+  GltfPrimitive mouth_and_eyes = make_primitive(model, rest, inner, eye_turns);
   mouth_and_eyes.name = "mouth and eyes";
   mouth_and_eyes.base_colour = Eigen::Vector3f::Ones();
   mouth_and_eyes.colours.resize(3, Eigen::Index(inner.source.size()));
   for (size_t i = 0; i < inner.source.size(); ++i) mouth_and_eyes.colours.col(i) = interior_colour(inner.source[i]);
   out.primitives.push_back(std::move(mouth_and_eyes));
   out.morph_target_names = model.expression_names;
+  out.morph_target_names.insert(out.morph_target_names.end(), kEyeTurnTargetNames.begin(), kEyeTurnTargetNames.end());
 
   // Keys: the node's transform is F R F and F t (the header's axes).
   const Eigen::Matrix3d flip = Eigen::Vector3d(1, -1, -1).asDiagonal();
-  out.weights = Eigen::MatrixXf::Zero(model.num_expressions(), Eigen::Index(keys.size()));
+  const int ne = model.num_expressions();
+  out.weights = Eigen::MatrixXf::Zero(ne + 4, Eigen::Index(keys.size()));
+  Eigen::Vector4f eye_turn = Eigen::Vector4f::Zero();  // held through keys with no gaze (blinks)
   for (size_t k = 0; k < keys.size(); ++k) {
     const FaceAnimationKey& key = keys[k];
     if (key.expression.size() > model.num_expressions())
@@ -173,6 +209,8 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
     if (k > 0 && q.coeffs().dot(out.rotations.back().coeffs()) < 0) q.coeffs() *= -1.0f;
     out.rotations.push_back(q);
     out.weights.col(Eigen::Index(k)).head(key.expression.size()) = key.expression;
+    if (key.gaze_deg) eye_turn = eye_turn_weights(*key.gaze_deg);
+    out.weights.col(Eigen::Index(k)).tail<4>() = eye_turn;
   }
   if (camera.focal_px > 0 && camera.width > 0 && camera.height > 0) {
     GltfCamera c;
@@ -182,7 +220,9 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
   }
   out.asset_extras = {
       {"model", "ICT Face Model Light (ICT-FaceKit, MIT): face region, mouth and eyes, the video's identity"},
-      {"morph_targets", "the 53 ICT expression blend shapes under their ARKit names"},
+      {"morph_targets",
+       "the 53 ICT expression blend shapes under their ARKit names, then eyesTurnLeft/Right/Up/Down: both eyeballs "
+       "turned 30 degrees (the subject's left, right, up, down), weighted by the measured gaze angle / 30"},
       {"units", "metres"},
       {"camera", "the fitted pinhole camera at the origin, principal point at the image centre"}};
   return out;

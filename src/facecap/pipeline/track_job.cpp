@@ -136,7 +136,8 @@ class FrameWriter {
     jsonl_.stream() << row.dump() << '\n';
     if (ok) write_mesh(f, ref, coarse);
     if (ok && options_.gltf)
-      append_animation_key(animation_keys_, has_timeline(info_), f.index, f.time, f.fit.pose, f.fit.expression);
+      append_animation_key(animation_keys_, has_timeline(info_), f.index, f.time, f.fit.pose, f.fit.expression,
+                           key_gaze(f.gaze));
     write_videos(f, ref, coarse, camera);
   }
 
