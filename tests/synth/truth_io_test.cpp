@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
@@ -50,6 +51,35 @@ TEST(TruthIo, MalformedFilesAreNamed) {
     EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos);
   }
   EXPECT_THROW(read_truth(dir.path() / "none.json"), Error);
+}
+
+TEST(TruthIo, AGazeOfOtherThanTwoAnglesIsNamedAndAMissingOneIsStraightAhead) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o;
+  o.frames = 2;
+  SynthTruth t;
+  t.performance = make_performance(*model, o);
+  t.expression_names = model->expression_names;
+  t.landmarks.assign(2, zero_landmarks());
+  t.vertex_landmarks.assign(2, zero_landmarks());
+  TempDir dir;
+  write_truth(dir.path() / "truth.json", t);
+  std::ifstream in(dir.path() / "truth.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["frames"][0].erase("gaze_yaw_pitch_deg");  // a truth file from before gaze
+  j["frames"][1]["gaze_yaw_pitch_deg"] = {1.0};
+  std::ofstream(dir.path() / "edited.json") << j.dump();
+  try {
+    read_truth(dir.path() / "edited.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("edited.json"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("gaze"), std::string::npos);
+  }
+  j["frames"][1].erase("gaze_yaw_pitch_deg");
+  std::ofstream(dir.path() / "old.json") << j.dump();
+  const SynthTruth r = read_truth(dir.path() / "old.json");
+  EXPECT_EQ(r.performance.frames[0].gaze_deg, Vec2d::Zero());
 }
 
 }  // namespace facecap
