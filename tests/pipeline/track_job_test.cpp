@@ -147,7 +147,7 @@ TEST(TrackJob, GazeComesFromAnIrisInsideEachEye) {
   o.capture.max_frames = 40;
   const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
   ASSERT_EQ(s.capture.lost, 0);
-  // 88 of the first 90 frames, 38 of these 40, have an iris (the others blink).
+  // 88 of the first 90 frames, all 40 of these, have an iris (the other 2 blink).
   EXPECT_GE(s.gaze_frames, 36);
   const auto jsonl = lines(dir.path() / "frames.jsonl");
   ASSERT_EQ(jsonl.size(), 40u);

@@ -2,13 +2,14 @@
 // The iris centre of each eye, found inside the eye's six landmarks (iBUG
 // 36-41 and 42-47): the dark disc of the iris against the white of the eye.
 //
-// The eye is resampled so that it is kEyeWidthPx wide (the same work at any
-// resolution), its outline is shrunk away from the lid line and lashes, and
-// every candidate centre and radius is scored by how much of the visible
-// eye's grey-level variance a dark disc there on a brighter surround explains
-// (Otsu's between-class variance over the visible pixels only, so a lid that
-// covers part of the iris neither hides it nor lets a sliver of dark lid win). The best score is refined to sub-pixel
-// by a parabola. An eye that is closed, too small or shows no dark disc gives nothing.
+// The eye is resampled to 48 px wide (the same work at any resolution), its
+// outline is shrunk away from the lid line and lashes, and every candidate
+// centre and radius is scored by how much of the visible eye's grey-level
+// variance a dark disc there on a brighter surround explains (Otsu's
+// between-class variance over the visible pixels only, so a lid that covers
+// part of the iris neither hides it nor lets a sliver of dark lid win). The
+// best score is refined to sub-pixel by a parabola. An eye that is closed,
+// too small or shows no dark disc gives nothing.
 #include <array>
 #include <optional>
 #include <vector>
