@@ -106,6 +106,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                   {"landmark_nme_mean", r.landmark_nme_mean},
                   {"landmark_nme_p90", r.landmark_nme_p90},
                   {"focal", r.focal},
+                  {"gaze_frames", r.gaze_frames},
                   {"identity_frames", r.summary.identity.frames_used},
                   {"fps", t.fps()}});
       return;

@@ -67,10 +67,14 @@ TEST(TrackEval, RealFootageIsExplainedByTheModel) {
   struct Clip {
     const char* name;
     bool must_not_lose;
+    int min_gaze_frames;  // of 60: frames with an iris found
   };
-  for (const Clip& clip :
-       {Clip{"address_720p_a.mp4", true}, Clip{"address_720p_b.mp4", true}, Clip{"talking_webcam_400x300.mp4", true},
-        Clip{"talking_webcam2_400x300.mp4", true}, Clip{"emotions_pexels_640x360.mp4", false}}) {
+  // Gaze in the first 60 frames: 60, 57, 60, 60 on the first four; on the
+  // last the woman's eyes are nearly shut and look down (dlib marks their
+  // openings 0.11-0.17 of their width), where finding no iris is right.
+  for (const Clip& clip : {Clip{"address_720p_a.mp4", true, 54}, Clip{"address_720p_b.mp4", true, 51},
+                           Clip{"talking_webcam_400x300.mp4", true, 54}, Clip{"talking_webcam2_400x300.mp4", true, 54},
+                           Clip{"emotions_pexels_640x360.mp4", false, 0}}) {
     FACECAP_REQUIRE_DATA(video, clip.name);
     CaptureOptions o;
     o.quiet = true;
@@ -81,6 +85,7 @@ TEST(TrackEval, RealFootageIsExplainedByTheModel) {
     if (clip.must_not_lose) {
       EXPECT_EQ(r.lost_frames, 0) << clip.name;
     }
+    EXPECT_GE(r.gaze_frames, clip.min_gaze_frames) << clip.name;
     // A plausible face: the identity stays within the model's prior
     // (a 50-mode N(0, 1) vector has norm about 7).
     EXPECT_LT(r.summary.identity.identity.norm(), 12.0) << clip.name;

@@ -247,6 +247,7 @@ VideoEvalResult evaluate_track_video(const FaceModel& model, const std::string& 
   std::vector<double> nme;
   r.summary = run_capture(model, *source, options, [&](const CapturedFrame& f) {
     if (f.status != TrackStatus::kLost) nme.push_back(f.fit.landmark_error);
+    r.gaze_frames += f.gaze.valid();
   });
   r.frames = r.summary.frames;
   r.lost_frames = r.summary.lost;

@@ -83,6 +83,7 @@ struct VideoEvalResult {
   double landmark_nme_mean = 0;
   double landmark_nme_p90 = 0;
   double focal = 0;
+  int gaze_frames = 0;  // tracked frames with an iris found (gaze.hpp); no gaze truth exists for real footage
   CaptureSummary summary;
 };
 
