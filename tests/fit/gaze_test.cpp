@@ -41,14 +41,14 @@ TEST(Eyeballs, AreTwoMirroredSpheresLookingAheadWithTheRightEyeOnTheImagesLeft) 
 TEST(Eyeballs, TurnToTheGazeTheAnglesName) {
   FACECAP_REQUIRE_MODEL(model);
   for (const auto& [yaw, pitch] : {std::pair{0.0, 0.0}, {20.0, -10.0}, {-35.0, 15.0}}) {
-    const Vec3d d = gaze_direction(yaw, pitch);
-    EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+    const Mat3d r = gaze_rotation(yaw, pitch);
+    EXPECT_LT((r.transpose() * r - Mat3d::Identity()).norm(), 1e-12);
+    const Vec3d d = r * Vec3d::UnitZ();
     EXPECT_NEAR(gaze_angles_deg(d).x(), yaw, 1e-9);
     EXPECT_NEAR(gaze_angles_deg(d).y(), pitch, 1e-9);
-    EXPECT_LT((gaze_rotation(yaw, pitch) * Vec3d::UnitZ() - d).norm(), 1e-12);
   }
-  EXPECT_GT(gaze_direction(20, 0).x(), 0.3);  // toward the subject's left
-  EXPECT_GT(gaze_direction(0, 20).y(), 0.3);  // up
+  EXPECT_GT((gaze_rotation(20, 0) * Vec3d::UnitZ()).x(), 0.3);  // toward the subject's left
+  EXPECT_GT((gaze_rotation(0, 20) * Vec3d::UnitZ()).y(), 0.3);  // up
 
   // The eyeballs turn about their centres; the pupils go where turned_axis says.
   const Eigen::VectorXd identity = Eigen::VectorXd::Constant(10, 0.7);

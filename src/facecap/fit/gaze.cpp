@@ -25,7 +25,6 @@ GazeEstimate estimate_gaze(const EyeballGeometry& eyes, const HeadPose& pose, co
     const double b = ray.dot(centre);
     const double disc = b * b - (centre.squaredNorm() - radius * radius);
     EyeGaze g;
-    g.iris_px = u;
     Vec3d on_sphere;
     if (disc >= 0.0) {
       on_sphere = (b - std::sqrt(disc)) * ray;

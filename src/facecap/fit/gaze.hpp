@@ -20,7 +20,6 @@ struct EyeGaze {
   Vec3d direction = Vec3d::UnitZ();         // model frame, unit
   Vec3d camera_direction = Vec3d::UnitZ();  // the same in the camera frame
   Vec3d camera_iris = Vec3d::Zero();        // the iris's centre in the camera frame, cm
-  Vec2d iris_px = Vec2d::Zero();            // the observation it came from
   bool ray_missed = false;                  // the iris ray passed beside the eyeball
 };
 

@@ -49,11 +49,6 @@ EyeballGeometry head_eyeball_geometry(const FaceModel& model, const Positions& h
   return g;
 }
 
-Vec3d gaze_direction(double yaw_deg, double pitch_deg) {
-  const double yaw = yaw_deg * kDegToRad, pitch = pitch_deg * kDegToRad;
-  return {std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch)};
-}
-
 Vec2d gaze_angles_deg(const Vec3d& d) {
   return {std::atan2(d.x(), d.z()) / kDegToRad, std::atan2(d.y(), std::hypot(d.x(), d.z())) / kDegToRad};
 }

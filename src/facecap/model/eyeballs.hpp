@@ -42,7 +42,6 @@ EyeballGeometry eyeball_geometry(const FaceModel& model, const Eigen::VectorXd& 
 // For a whole head's positions (3 x all vertices, model frame).
 EyeballGeometry head_eyeball_geometry(const FaceModel& model, const Positions& head);
 
-Vec3d gaze_direction(double yaw_deg, double pitch_deg);
 // (yaw, pitch) in degrees of a direction in the model frame.
 Vec2d gaze_angles_deg(const Vec3d& direction);
 // The rotation that turns a straight-ahead eye (+z) to gaze (yaw, pitch).

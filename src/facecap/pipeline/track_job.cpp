@@ -234,7 +234,8 @@ class FrameWriter {
   }
 
   // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
-  // the iris centres; empty fields and null where no iris was found.
+  // the iris centres; empty fields and null where no iris was found. An eye
+  // has a direction only where it has an iris.
   void write_gaze(const CapturedFrame& f, std::ofstream& o, nlohmann::json& row) {
     const GazeEstimate& g = f.gaze;
     nlohmann::json gaze = nullptr;
@@ -255,8 +256,9 @@ class FrameWriter {
           continue;
         }
         const Vec3d& d = g.eyes[eye]->direction;
-        gaze[side] = {{"iris_px", {g.eyes[eye]->iris_px.x(), g.eyes[eye]->iris_px.y()}},
-                      {"iris_radius_px", f.irises[eye] ? f.irises[eye]->radius : 0.0},
+        const IrisObservation& iris = *f.irises[eye];
+        gaze[side] = {{"iris_px", {iris.centre.x(), iris.centre.y()}},
+                      {"iris_radius_px", iris.radius},
                       {"direction_head", {d.x(), d.y(), d.z()}}};
       }
     } else {
@@ -264,7 +266,7 @@ class FrameWriter {
     }
     for (int eye = 0; eye < 2; ++eye) {
       if (g.eyes[eye]) {
-        o << ',' << number(g.eyes[eye]->iris_px.x()) << ',' << number(g.eyes[eye]->iris_px.y());
+        o << ',' << number(f.irises[eye]->centre.x()) << ',' << number(f.irises[eye]->centre.y());
       } else {
         o << ",,";
       }
@@ -282,8 +284,8 @@ class FrameWriter {
       draw_landmarks(canvas, f.fit.fitted, cv::Scalar(0, 0, 255), 1);
       for (int eye = 0; eye < 2; ++eye) {
         const std::optional<EyeGaze>& g = f.gaze.eyes[eye];
-        if (g && f.irises[eye])
-          draw_gaze(canvas, g->iris_px, f.irises[eye]->radius, g->camera_iris, g->camera_direction, 4.0, cam,
+        if (g)
+          draw_gaze(canvas, f.irises[eye]->centre, f.irises[eye]->radius, g->camera_iris, g->camera_direction, 4.0, cam,
                     cv::Scalar(0, 220, 255));
       }
     }
