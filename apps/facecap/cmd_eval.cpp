@@ -83,8 +83,9 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--still-frames", a->options.still_frames, "Still-head frames for the jitter measurement")
       ->capture_default_str();
-  cmd->add_flag("!--no-gaze", a->options.gaze,
-                "Skip the iris and gaze measurement (with truth landmarks it renders every frame)");
+  cmd->add_flag("!--no-gaze", a->options.capture.gaze,
+                "Skip the irises, the gaze and its pull on the eyeLook weights (with truth landmarks it renders "
+                "every frame)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
@@ -135,6 +136,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"focal_true", r.focal_true},
                 {"focal_error_rel", r.focal_error_rel},
                 {"weights_mae", r.weights_mae},
+                {"eye_look_mae", r.eye_look_mae},
                 {"jitter_mm", r.jitter_mm},
                 {"jitter_camera_mm", r.jitter_camera_mm},
                 {"identity_error", r.identity_error},

@@ -15,7 +15,10 @@ struct DrawnEye {
   Landmarks landmarks = zero_landmarks();
 };
 
-DrawnEye draw_eye(const Vec2d& iris, double iris_radius, double width, double opening) {
+// `aspect` < 1: the iris seen from the side, an ellipse that narrow; `dark_corner`:
+// the opening's inner corner (on the right) shadowed as dark as the iris.
+DrawnEye draw_eye(const Vec2d& iris, double iris_radius, double width, double opening, double aspect = 1.0,
+                  bool dark_corner = false) {
   constexpr int kSuper = 8;
   const cv::Size size(320, 200);
   cv::Mat big(size.height * kSuper, size.width * kSuper, CV_8U, cv::Scalar(150));
@@ -31,7 +34,13 @@ DrawnEye draw_eye(const Vec2d& iris, double iris_radius, double width, double op
   cv::Mat opening_mask = cv::Mat::zeros(big.size(), CV_8U);
   cv::fillPoly(opening_mask, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255));
   cv::Mat eye(big.size(), CV_8U, cv::Scalar(215));
-  cv::circle(eye, to_big(iris), int(std::lround(iris_radius * kSuper)), cv::Scalar(70), -1);
+  if (dark_corner) {
+    const std::vector<cv::Point> corner = {to_big(outline[3]), to_big(outline[2] + Vec2d(width / 4, 0)),
+                                           to_big(outline[4] + Vec2d(width / 4, 0))};
+    cv::fillPoly(eye, std::vector<std::vector<cv::Point>>{corner}, cv::Scalar(70));
+  }
+  const int r = int(std::lround(iris_radius * kSuper));
+  cv::ellipse(eye, to_big(iris), cv::Size(int(std::lround(aspect * r)), r), 0, 0, 360, cv::Scalar(70), -1);
   eye.copyTo(big, opening_mask);
   DrawnEye out;
   cv::resize(big, out.grey, size, 0, 0, cv::INTER_AREA);
@@ -40,6 +49,19 @@ DrawnEye draw_eye(const Vec2d& iris, double iris_radius, double width, double op
     out.landmarks[42 + k] = outline[k].cast<float>();
   }
   return out;
+}
+
+// An iris turned toward a shadowed eye corner: a circle's search spills
+// into the shadow, the ellipse the head's turn predicts does not.
+TEST(Iris, SearchesForTheEllipseOfAnIrisSeenFromTheSide) {
+  const Vec2d iris(176.0, 100.4);
+  const DrawnEye eye = draw_eye(iris, 11.0, 60.0, 22.0, 0.6, true);
+  const std::optional<IrisObservation> ellipse = locate_iris(eye.grey, eye.landmarks, 0, {11.0, 0.6});
+  const std::optional<IrisObservation> circle = locate_iris(eye.grey, eye.landmarks, 0, {11.0, 1.0});
+  ASSERT_TRUE(ellipse.has_value());
+  ASSERT_TRUE(circle.has_value());
+  EXPECT_LT((ellipse->centre - iris).norm(), 0.25) << ellipse->centre.transpose();
+  EXPECT_GT((circle->centre - iris).norm(), 1.0) << circle->centre.transpose();
 }
 
 TEST(Iris, FindsTheCentreOfAPartlyCoveredDiscToAQuarterPixel) {
@@ -56,7 +78,7 @@ TEST(Iris, FindsTheCentreOfAPartlyCoveredDiscToAQuarterPixel) {
 TEST(Iris, TheSameEyeAtAnotherScaleGivesTheSameAnswer) {
   // The eye is searched at a fixed width, so a small eye is found as well, in proportion.
   const DrawnEye eye = draw_eye(Vec2d(163.2, 101.1), 5.5, 30.0, 11.0);
-  const std::optional<IrisObservation> found = locate_iris(eye.grey, eye.landmarks, 1, 5.5);
+  const std::optional<IrisObservation> found = locate_iris(eye.grey, eye.landmarks, 1, {5.5});
   ASSERT_TRUE(found.has_value());
   EXPECT_LT((found->centre - Vec2d(163.2, 101.1)).norm(), 0.25);
 }

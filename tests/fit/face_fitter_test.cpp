@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "facecap/model/eye_look.hpp"
+
 #include "facecap/synth/synth_renderer.hpp"
 #include "test_support.hpp"
 
@@ -58,6 +62,49 @@ TEST(FaceFitter, JawSlidesAlongTheOutlineOnlyAcrossIt) {
   lm[3] += 0.4f * (lm[4] - lm[3]);
   const Landmarks fitted = fitter.project(truth, identity, perf.camera.focal, lm);
   EXPECT_LT((fitted[3] - lm[3]).norm(), 1.5f);
+}
+
+// The synthetic lids follow the gaze by eye_look.hpp's convention. With
+// noisy landmarks the lids alone say little of where the eyes look; the
+// irises at their true places pull the eight eyeLook weights toward the truth.
+// A cue that swapped left and right, or up and down, would push them away.
+TEST(FaceFitter, TheIrisesGazePullsTheEyeLookWeightsTowardIt) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 24;
+  so.seed = 3;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  CoarseFitOptions o;
+  o.jaw = JawCorrespondence::kMarch;
+  o.focal_known = true;
+  o.focal_guess = perf.camera.focal;
+  const FaceFitter fitter(*model, o, so.width, so.height);
+  const Eigen::VectorXd identity = perf.identity.head(fitter.identity_modes()).cast<double>();
+  const EyeballGeometry eyes = eyeball_geometry(*model, identity);
+  const std::vector<int> eye_look = EyeLookShapes(*model).indices();
+  ASSERT_EQ(eye_look.size(), 8u);
+  std::mt19937 rng(5);
+  std::normal_distribution<float> noise(0.0f, 3.0f);
+  double error_without = 0, error_with = 0, gaze_seen = 0;
+  for (const SynthFrame& f : perf.frames) {
+    Landmarks lm = renderer.landmarks(f);
+    for (Vec2f& p : lm) p += Vec2f(noise(rng), noise(rng));
+    const GazeCue cue{&eyes, {renderer.iris_centre(f, 0), renderer.iris_centre(f, 1)}};
+    auto eye_look_error = [&](const GazeCue* gaze) {
+      FrameParameters params(fitter.num_expressions());
+      fitter.initialize_frame(lm, identity, perf.camera.focal, params);
+      fitter.fit_frame(lm, identity, perf.camera.focal, nullptr, params, gaze);
+      double e = 0;
+      for (int k : eye_look) e += std::abs(params.expression()[k] - f.expression[k]) / eye_look.size();
+      return e;
+    };
+    error_without += eye_look_error(nullptr) / so.frames;
+    error_with += eye_look_error(&cue) / so.frames;
+    gaze_seen += f.gaze_deg.norm() / so.frames;
+  }
+  EXPECT_GT(gaze_seen, 5.0);  // the eyes do look around
+  EXPECT_LT(error_with, 0.6 * error_without) << error_with << " " << error_without;
 }
 
 }  // namespace facecap

@@ -112,5 +112,30 @@ TEST(Gaze, AnIrisBesideTheEyeballGivesTheNearestDirectionAndNoIrisNone) {
   EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {}).valid());
 }
 
+// The iris's expected size is its 11.7 mm at the eye's depth, and a head
+// turned from the camera narrows it: by the cosine of the angle between each
+// eye's axis and its line of sight.
+TEST(Gaze, ExpectedIrisesNarrowAsTheHeadTurns) {
+  FACECAP_REQUIRE_MODEL(model);
+  const EyeballGeometry eyes = eyeball_geometry(*model, Eigen::VectorXd());
+  const PinholeCamera camera{1000, 320, 240};
+  const HeadPose frontal = pose_of(0, 0, 0, Vec3d(0, 0, 60));
+  const std::array<IrisExpectation, 2> ahead = expected_irises(eyes, frontal, camera);
+  for (int eye = 0; eye < 2; ++eye) {
+    EXPECT_GT(ahead[eye].aspect, 0.99);
+    // The camera looks along the model's -z: the eyes sit 8-9 cm ahead of the origin.
+    EXPECT_NEAR(ahead[eye].radius_px, 1000 * kIrisRadiusCm / (60 - eyes.centre[eye].z()), 1e-9);
+  }
+  // Far away, where the eyes' lines of sight are nearly parallel, a 40
+  // degree turn narrows the iris by the cosine of 40 degrees, give or take
+  // the eyes' 2 degrees outward and a degree of parallax.
+  const HeadPose turned = pose_of(40, 0, 0, Vec3d(0, 0, 600));
+  for (const IrisExpectation& e : expected_irises(eyes, turned, camera)) {
+    EXPECT_NEAR(std::acos(e.aspect) * 180 / 3.14159265358979, 40.0, 3.0);
+  }
+  const HeadPose behind = pose_of(0, 0, 0, Vec3d(0, 0, -60));
+  for (const IrisExpectation& e : expected_irises(eyes, behind, camera)) EXPECT_EQ(e.radius_px, 0.0);
+}
+
 }  // namespace
 }  // namespace facecap

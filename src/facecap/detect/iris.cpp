@@ -97,8 +97,10 @@ class DiscSums {
 
 // The dark disc that explains most of the visible eye's grey-level variance
 // (Otsu's between-class variance: n_in n_out (m_out - m_in)^2 / (n^2 var)),
-// over candidate centres inside the outline and the given radii (patch pixels).
-Disc darkest_disc(const EyePatch& e, const std::vector<double>& radii) {
+// over candidate centres inside the outline and the given radii (patch
+// pixels), each disc narrowed to `aspect` of its height (an iris seen from
+// the side).
+Disc darkest_disc(const EyePatch& e, const std::vector<double>& radii, double aspect) {
   const double n = cv::sum(e.visible)[0];
   Disc best;
   if (n < 20.0) return best;
@@ -115,7 +117,7 @@ Disc darkest_disc(const EyePatch& e, const std::vector<double>& radii) {
     const int reach = static_cast<int>(std::floor(radius));
     double disc_area = 0.0;
     for (int dy = -reach; dy <= reach; ++dy) {
-      const int half = static_cast<int>(std::floor(std::sqrt(radius * radius - dy * dy)));
+      const int half = static_cast<int>(std::floor(aspect * std::sqrt(radius * radius - dy * dy)));
       rows.emplace_back(dy, half);
       disc_area += 2 * half + 1;
     }
@@ -156,7 +158,7 @@ Disc darkest_disc(const EyePatch& e, const std::vector<double>& radii) {
 }  // namespace
 
 std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks& landmarks, int eye,
-                                           double expected_radius_px, const IrisOptions& options) {
+                                           const IrisExpectation& expected, const IrisOptions& options) {
   if (grey.empty() || grey.type() != CV_8UC1 || (eye != 0 && eye != 1)) return std::nullopt;
   std::array<Vec2d, 6> p;
   for (int k = 0; k < 6; ++k) p[k] = landmarks[36 + 6 * eye + k].cast<double>();
@@ -168,12 +170,12 @@ std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks&
   const std::optional<EyePatch> patch = resample_eye(grey, p);
   if (!patch) return std::nullopt;
   std::vector<double> radii;
-  if (expected_radius_px > 0.0) {
-    for (const double f : options.radius_factors) radii.push_back(f * expected_radius_px * patch->scale);
+  if (expected.radius_px > 0.0) {
+    for (const double f : options.radius_factors) radii.push_back(f * expected.radius_px * patch->scale);
   } else {
     for (const double share : options.radius_shares) radii.push_back(share * kEyeWidthPx);
   }
-  const Disc disc = darkest_disc(*patch, radii);
+  const Disc disc = darkest_disc(*patch, radii, std::clamp(expected.aspect, 0.3, 1.0));
   if (disc.score < options.min_score) return std::nullopt;
 
   IrisObservation out;

@@ -14,9 +14,10 @@ CoarseTracker::CoarseTracker(const FaceModel& model, const CoarseFitOptions& opt
   identity_.focal = identity_.focal_guess;
 }
 
-std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::optional<Landmarks>& landmarks) {
-  if (initialized_) return {track({index, time, landmarks})};
-  pending_.push_back({index, time, landmarks});
+std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::optional<Landmarks>& landmarks,
+                                           IrisSearch iris_search) {
+  if (initialized_) return {track({index, time, landmarks, std::move(iris_search)})};
+  pending_.push_back({index, time, landmarks, std::move(iris_search)});
   if (landmarks) ++pending_faces_;
   if (pending_faces_ < fitter_.options().init_frames) return {};
   return finish();
@@ -79,6 +80,7 @@ void CoarseTracker::initialize() {
   identity_.covariance = identity_.size_factor * identity_.size_factor * solve.identity_covariance;
   identity_.identity = identity;
   identity_.focal = focal;
+  eyeballs_ = eyeball_geometry(model_, identity);
   identity_.effective_modes = solve.effective_modes;
   identity_.frames_used = static_cast<int>(kept.empty() ? observed.size() : kept.size());
   initialized_ = true;
@@ -101,13 +103,22 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
     fitter_.initialize_frame(*frame.landmarks, identity_.identity, identity_.focal, params);
   }
   const FrameParameters* previous = previous_ ? &*previous_ : nullptr;
-  FrameFitReport report = fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, previous, params);
+  const PinholeCamera camera = fitter_.camera(identity_.focal);
+  std::optional<GazeCue> gaze;
+  if (frame.iris_search) {
+    // The starting pose's depth (the previous frame's) sizes the irises well enough.
+    fit.irises = frame.iris_search(expected_irises(eyeballs_, params.pose(), camera));
+    gaze = GazeCue{&eyeballs_, iris_centres(fit.irises)};
+  }
+  const GazeCue* cue = gaze ? &*gaze : nullptr;
+  FrameFitReport report =
+      fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, previous, params, cue);
   if (report.landmark_error > fitter_.options().lost_landmark_error && previous != nullptr) {
     // Maybe the warm start was the problem (a fast turn): start afresh once.
     FrameParameters fresh(fitter_.num_expressions());
     fitter_.initialize_frame(*frame.landmarks, identity_.identity, identity_.focal, fresh);
     const FrameFitReport second =
-        fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, nullptr, fresh);
+        fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, nullptr, fresh, cue);
     if (second.landmark_error < report.landmark_error) {
       report = second;
       params = fresh;
@@ -120,6 +131,8 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
   fit.expression = params.expression().cast<float>();
   fit.fitted = fitter_.project(params, identity_.identity, identity_.focal, *frame.landmarks);
   fit.valid = report.landmark_error <= fitter_.options().lost_landmark_error;
+  if (!fit.valid) fit.irises = {};
+  if (gaze && fit.valid) fit.gaze = estimate_gaze(eyeballs_, fit.pose, camera, gaze->irises);
   if (fit.valid) {
     previous_ = params;
   } else {

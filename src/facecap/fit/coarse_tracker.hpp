@@ -28,6 +28,8 @@ struct CoarseFit {
   Landmarks observed = zero_landmarks();  // the detector's landmarks
   Landmarks fitted = zero_landmarks();    // the model's landmarks projected
   Correspondences correspondences{};
+  IrisPair irises;    // the iris centres found inside the eye landmarks (iris.hpp), with an IrisSearch
+  GazeEstimate gaze;  // from the irises on the fitted head (gaze.hpp)
 };
 
 struct IdentityEstimate {
@@ -50,8 +52,12 @@ class CoarseTracker {
  public:
   CoarseTracker(const FaceModel& model, const CoarseFitOptions& options, int width, int height);
 
-  // Next frame (landmarks, or nullopt when no face was found).
-  std::vector<CoarseFit> push(int index, double time, const std::optional<Landmarks>& landmarks);
+  // Next frame (landmarks, or nullopt when no face was found). With an iris
+  // search, the frame's irises are found at its starting pose's depth, their
+  // gaze guides the eyeLook weights (face_fitter.hpp: GazeCue), and the fit
+  // reports both.
+  std::vector<CoarseFit> push(int index, double time, const std::optional<Landmarks>& landmarks,
+                              IrisSearch iris_search = {});
   // End of input: fits still waiting for the identity solve.
   std::vector<CoarseFit> finish();
 
@@ -64,6 +70,7 @@ class CoarseTracker {
     int index;
     double time;
     std::optional<Landmarks> landmarks;
+    IrisSearch iris_search;
   };
   void initialize();
   CoarseFit track(const Pending& frame);
@@ -71,6 +78,7 @@ class CoarseTracker {
   const FaceModel& model_;
   FaceFitter fitter_;
   IdentityEstimate identity_;
+  EyeballGeometry eyeballs_;  // of the identity, once solved
   bool initialized_ = false;
   std::vector<Pending> pending_;
   int pending_faces_ = 0;

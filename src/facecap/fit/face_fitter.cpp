@@ -14,7 +14,8 @@ FaceFitter::FaceFitter(const FaceModel& model, const CoarseFitOptions& options, 
       width_(width),
       height_(height),
       num_expressions_(model.num_expressions()),
-      basis_(gather_landmark_basis(model, options.identity_modes)) {
+      basis_(gather_landmark_basis(model, options.identity_modes)),
+      eye_look_(model) {
   options_.check();
 }
 
@@ -80,7 +81,8 @@ void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::Vector
 }
 
 FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
-                                     const FrameParameters* previous, FrameParameters& params) const {
+                                     const FrameParameters* previous, FrameParameters& params,
+                                     const GazeCue* gaze) const {
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
   FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous);
   FrameFitReport report;
@@ -90,6 +92,11 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
                                                   camera(focal), observed, slide_jaw());
     energy.set_correspondences(report.correspondences);
     solve_pose(energy, params, options_.max_solver_iterations);
+    if (gaze != nullptr) {
+      // The gaze depends on the pose (where the eyeballs sit under the irises), not on the weights.
+      const GazeEstimate g = estimate_gaze(*gaze->eyes, params.pose(), camera(focal), gaze->irises);
+      if (g.valid()) energy.set_expression_targets(eye_look_.weights(g.angles_deg()), options_.weights.sigma_eye_look);
+    }
     solve_expression(energy, params, 5);
     solve_joint(energy, params, options_.max_solver_iterations);
   }

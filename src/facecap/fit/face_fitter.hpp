@@ -4,7 +4,8 @@
 //  - fit_frame: one frame's pose and expression with identity and focal
 //    fixed: block coordinate descent (pose, then expression, frame_solver.hpp)
 //    followed by a joint step, jaw correspondences re-chosen from the current
-//    pose between rounds; temporal terms to the previous frame.
+//    pose between rounds; temporal terms to the previous frame; with the
+//    frame's irises, a pull of the eyeLook weights toward their gaze.
 //  - fit_identity: identity and focal jointly over several frames, each
 //    frame's pose and expression free (identity_solver.hpp).
 #include <array>
@@ -15,10 +16,20 @@
 #include "facecap/detect/landmarks.hpp"
 #include "facecap/fit/fit_options.hpp"
 #include "facecap/fit/frame_block.hpp"
+#include "facecap/fit/gaze.hpp"
 #include "facecap/fit/identity_solver.hpp"
 #include "facecap/fit/landmark_basis.hpp"
+#include "facecap/model/eye_look.hpp"
 
 namespace facecap {
+
+// A frame's iris centres and the eyeballs they lie on: with them, fit_frame
+// pulls the eyeLook weights toward the gaze they show at the current pose
+// (eye_look.hpp), by FitWeights::sigma_eye_look.
+struct GazeCue {
+  const EyeballGeometry* eyes = nullptr;
+  IrisCentres irises;
+};
 
 struct FrameFitReport {
   double landmark_error = 0;  // NME of the fitted landmarks against the observed ones
@@ -46,7 +57,8 @@ class FaceFitter {
 
   // Fits pose and expression of one frame (params: in = start, out = fit).
   FrameFitReport fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
-                           const FrameParameters* previous, FrameParameters& params) const;
+                           const FrameParameters* previous, FrameParameters& params,
+                           const GazeCue* gaze = nullptr) const;
 
   // Fits identity and focal jointly with every frame's pose and expression.
   IdentitySolveReport fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
@@ -66,6 +78,7 @@ class FaceFitter {
   int width_, height_;
   int num_expressions_;
   LandmarkBasis basis_;
+  EyeLookShapes eye_look_;
 };
 
 }  // namespace facecap

@@ -52,7 +52,16 @@ struct FitWeights {
   //    3.35 from 90 weighed in full).
   double identity_evidence_frames = 30.0;
   double sigma_expression = 0.6;  // prior on each weight (mean 0)
-  double expression_l1 = 0.0;     // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
+  // Where the irises show a gaze, the eight eyeLook weights are pulled toward
+  // its weights (eye_look.hpp) with this sigma (0.35: 10.5 degrees, about
+  // the gaze's error with dlib's landmarks). `eval track --synthetic 90`,
+  // mean eyeLook weight error on seeds 1-3 without the pull / with sigma
+  // 0.1, 0.2, 0.35: true landmarks 0.065 / 0.083 / 0.072 / 0.060, 0.045 /
+  // 0.039 / 0.037 / 0.038, 0.049 / 0.068 / 0.056 / 0.046; dlib 0.100 /
+  // 0.082 / 0.077 / 0.073, 0.100 / 0.068 / 0.070 / 0.079, 0.126 / 0.113 /
+  // 0.106 / 0.105. Tighter, the gaze's own error outweighs true lids.
+  double sigma_eye_look = 0.35;
+  double expression_l1 = 0.0;  // optional sparsity prior: lambda * sum(w) (w >= 0), in cost units
   double sigma_temporal_expression = 0.1;
   double sigma_temporal_rotation_deg = 3.0;
   double sigma_temporal_translation_cm = 1.5;

@@ -63,6 +63,19 @@ FrameEnergy::FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, 
                 weights.sigma_temporal_expression);
     }
   }
+  fixed_priors_ = prior_index_.size();
+  rows_ = 2 * 68 + static_cast<int>(prior_index_.size());
+}
+
+void FrameEnergy::set_expression_targets(const std::vector<std::pair<int, double>>& targets, double sigma) {
+  prior_index_.resize(fixed_priors_);
+  prior_mean_.resize(fixed_priors_);
+  prior_inv_sigma_.resize(fixed_priors_);
+  for (const auto& [k, target] : targets) {
+    prior_index_.push_back(frame_block::kExpression + k);
+    prior_mean_.push_back(target);
+    prior_inv_sigma_.push_back(1.0 / sigma);
+  }
   rows_ = 2 * 68 + static_cast<int>(prior_index_.size());
 }
 

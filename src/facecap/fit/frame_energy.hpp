@@ -8,6 +8,7 @@
 // frame_solver.hpp.
 #include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "facecap/detect/landmarks.hpp"
@@ -25,6 +26,9 @@ class FrameEnergy {
               const FrameParameters* previous);
 
   void set_correspondences(const Correspondences& correspondences);
+  // Gaussian pulls of expression weights (index, target) with one sigma,
+  // replacing those set before: the gaze's eyeLook weights (face_fitter.hpp: GazeCue).
+  void set_expression_targets(const std::vector<std::pair<int, double>>& targets, double sigma);
   int num_residuals() const { return rows_; }
   int block_size() const { return frame_block::size(num_expressions_); }
   double expression_l1() const { return weights_.expression_l1; }
@@ -58,6 +62,7 @@ class FrameEnergy {
   std::array<LandmarkTerm, 68> terms_;
   std::vector<std::unique_ptr<LandmarkCost>> costs_;
   std::vector<double> prior_index_, prior_mean_, prior_inv_sigma_;  // diagonal Gaussian rows
+  size_t fixed_priors_ = 0;                                         // the rows before those of set_expression_targets
   int rows_ = 0;
 };
 

@@ -40,19 +40,34 @@ GazeEstimate estimate_gaze(const EyeballGeometry& eyes, const HeadPose& pose, co
   return out;
 }
 
-GazeMeasurement measure_gaze(const cv::Mat& grey, const Landmarks& observed, const EyeballGeometry& eyes,
-                             const HeadPose& pose, const PinholeCamera& camera) {
-  GazeMeasurement out;
-  IrisCentres centres;
+IrisCentres iris_centres(const IrisPair& irises) {
+  IrisCentres out;
+  for (int eye = 0; eye < 2; ++eye)
+    if (irises[eye]) out[eye] = irises[eye]->centre;
+  return out;
+}
+
+std::array<IrisExpectation, 2> expected_irises(const EyeballGeometry& eyes, const HeadPose& pose,
+                                               const PinholeCamera& camera) {
+  std::array<IrisExpectation, 2> out;
   const Mat3d rf = pose.model_to_camera_rotation();
   for (int eye = 0; eye < 2; ++eye) {
-    const double depth = (rf * eyes.centre[eye] + pose.translation).z();
-    if (!(depth > 0.0)) continue;
-    out.irises[eye] = locate_iris(grey, observed, eye, camera.focal * kIrisRadiusCm / depth);
-    if (out.irises[eye]) centres[eye] = out.irises[eye]->centre;
+    const Vec3d centre = rf * eyes.centre[eye] + pose.translation;
+    if (!(centre.z() > 0.0)) continue;
+    out[eye].radius_px = camera.focal * kIrisRadiusCm / centre.z();
+    const Vec3d axis = rf * eyes.rest_axis[eye], to_camera = -centre;
+    out[eye].aspect = std::abs(std::cos(std::atan2(axis.x(), axis.z()) - std::atan2(to_camera.x(), to_camera.z())));
   }
-  out.gaze = estimate_gaze(eyes, pose, camera, centres);
   return out;
+}
+
+IrisSearch iris_search(cv::Mat grey, const Landmarks& observed) {
+  return [grey = std::move(grey), observed](const std::array<IrisExpectation, 2>& expected) {
+    IrisPair out;
+    for (int eye = 0; eye < 2; ++eye)
+      if (expected[eye].radius_px > 0.0) out[eye] = locate_iris(grey, observed, eye, expected[eye]);
+    return out;
+  };
 }
 
 }  // namespace facecap

@@ -8,6 +8,7 @@
 // head-relative, in the model frame (eyeballs.hpp).
 
 #include <array>
+#include <functional>
 #include <optional>
 
 #include "facecap/core/camera.hpp"
@@ -36,13 +37,20 @@ using IrisCentres = std::array<std::optional<Vec2d>, 2>;
 GazeEstimate estimate_gaze(const EyeballGeometry& eyes, const HeadPose& pose, const PinholeCamera& camera,
                            const IrisCentres& iris);
 
-// The irises of a fitted frame, searched at the size the head's depth gives
-// them (iris.hpp), and the gaze they show.
-struct GazeMeasurement {
-  IrisPair irises;
-  GazeEstimate gaze;
-};
-GazeMeasurement measure_gaze(const cv::Mat& grey, const Landmarks& observed, const EyeballGeometry& eyes,
-                             const HeadPose& pose, const PinholeCamera& camera);
+IrisCentres iris_centres(const IrisPair& irises);
+
+// How an 11.7 mm iris looks in each eye of a head at `pose` looking ahead:
+// its radius in pixels (0 for an eye behind the camera), and how much
+// narrower than tall it is: the cosine of the horizontal angle between the
+// eye's axis and its line of sight to the camera.
+std::array<IrisExpectation, 2> expected_irises(const EyeballGeometry& eyes, const HeadPose& pose,
+                                               const PinholeCamera& camera);
+
+// One frame's iris search, given each eye's expectation (expected_irises;
+// an eye of radius 0 is not searched): the tracker calls it once it has a
+// starting pose for the frame.
+using IrisSearch = std::function<IrisPair(const std::array<IrisExpectation, 2>& expected)>;
+// locate_iris in each eye of `grey` (8-bit) inside the detector's landmarks.
+IrisSearch iris_search(cv::Mat grey, const Landmarks& observed);
 
 }  // namespace facecap

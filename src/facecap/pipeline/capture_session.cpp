@@ -30,10 +30,8 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     TrackStatus status;
     int faces_seen;
     cv::Mat image;
-    cv::Mat grey;  // for the irises, searched once the fit is known
   };
-  std::optional<EyeballGeometry> eyeballs;  // once the identity is known
-  std::map<int, Waiting> waiting;           // frames whose fit is not final yet
+  std::map<int, Waiting> waiting;  // frames whose fit is not final yet
   auto deliver = [&](const std::vector<CoarseFit>& fits) {
     for (const CoarseFit& fit : fits) {
       auto it = waiting.find(fit.index);
@@ -45,15 +43,6 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.faces_seen = it->second.faces_seen;
       out.image = it->second.image;
       out.identity = tracker.identity();
-      if (out.status != TrackStatus::kLost && options.gaze) {
-        const auto t0 = std::chrono::steady_clock::now();
-        if (!eyeballs) eyeballs = eyeball_geometry(model, out.identity.identity);
-        GazeMeasurement gaze =
-            measure_gaze(it->second.grey, fit.observed, *eyeballs, fit.pose, tracker.fitter().camera(fit.focal));
-        out.irises = gaze.irises;
-        out.gaze = gaze.gaze;
-        summary.timings.iris_ms += ms_since(t0);
-      }
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;
@@ -109,12 +98,22 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
 
     std::optional<Landmarks> landmarks;
     if (face.status != TrackStatus::kLost) landmarks = face.landmarks;
-    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat(),
-                            landmarks && options.gaze ? d->grey : cv::Mat()};
+    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat()};
+    IrisSearch iris_search;
+    if (landmarks && options.gaze) {
+      // Timed where the tracker calls it (maybe later, after the identity solve).
+      iris_search = [search = facecap::iris_search(d->grey, *landmarks),
+                     &t](const std::array<IrisExpectation, 2>& expected) {
+        const auto t0 = std::chrono::steady_clock::now();
+        IrisPair irises = search(expected);
+        t.iris_ms += ms_since(t0);
+        return irises;
+      };
+    }
 
     const bool was_initialized = tracker.initialized();
     auto t0 = std::chrono::steady_clock::now();
-    const std::vector<CoarseFit> fits = tracker.push(frame.index, frame.time, landmarks);
+    const std::vector<CoarseFit> fits = tracker.push(frame.index, frame.time, landmarks, std::move(iris_search));
     t.fit_ms += ms_since(t0);
     if (!was_initialized && tracker.initialized()) {
       t.identity_ms = tracker.identity().solve_ms;
@@ -139,6 +138,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     t.identity_ms = tracker.identity().solve_ms;
     t.fit_ms -= t.identity_ms;
   }
+  t.fit_ms -= t.iris_ms;  // the tracker runs the iris searches
   progress.finish();
   summary.identity = tracker.identity();
   t.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

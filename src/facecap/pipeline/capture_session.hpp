@@ -22,7 +22,7 @@ struct CaptureOptions {
   // video's frames from there on, on the video's own timeline.
   double start_seconds = 0;
   bool keep_images = false;  // hand each frame's image to the sink
-  bool gaze = true;          // find the irises and the gaze (gaze.hpp)
+  bool gaze = true;          // find the irises and the gaze, which guides the eyeLook weights (gaze.hpp)
   bool quiet = false;        // no progress bar
 };
 
@@ -31,9 +31,7 @@ struct CapturedFrame {
   double time = 0.0;
   TrackStatus status = TrackStatus::kLost;  // lost also when the fit rejected the landmarks
   int faces_seen = 0;                       // faces the detector found in this frame (0 when it did not run)
-  CoarseFit fit;
-  IrisPair irises;            // the iris centres found inside the eye landmarks (iris.hpp)
-  GazeEstimate gaze;          // from the irises on the fitted head (gaze.hpp); none on lost frames
+  CoarseFit fit;                            // with the irises and gaze when CaptureOptions::gaze
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
   cv::Mat image;              // when CaptureOptions::keep_images
 };
@@ -44,7 +42,7 @@ struct StageTimings {
   double decode_ms = 0;     // on the decode thread, concurrent with the rest
   double detect_ms = 0;     // HOG face detector (start, losses, periodic checks)
   double landmarks_ms = 0;  // 68-point shape predictor
-  double iris_ms = 0;       // iris centres and gaze (gaze.hpp)
+  double iris_ms = 0;       // the iris search (iris.hpp), run by the fit but not counted in fit_ms
   double fit_ms = 0;        // per-frame coarse fit
   double identity_ms = 0;   // the one-off identity and focal solve
   double total_s = 0;       // wall time of the whole run

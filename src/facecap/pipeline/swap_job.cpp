@@ -39,7 +39,6 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   CaptureOptions capture;
   capture.quiet = true;
   capture.keep_images = true;
-  capture.gaze = false;  // the photo's gaze is not used
   if (!still) capture.max_frames = source_frames;
   std::optional<CapturedFrame> fit;
   const CaptureSummary summary = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
@@ -168,14 +167,13 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
       result = swapper.swap(f.image, t, &summary.timings.swap);
       ++summary.timings.swapped;
       if (!options.gltf.empty())
-        append_animation_key(keys, has_timeline(info), f.index, f.time, t.pose, t.expression, key_gaze(f.gaze));
+        append_animation_key(keys, has_timeline(info), f.index, f.time, t.pose, t.expression, key_gaze(f.fit.gaze));
     }
     writer.write(result.image);
     if (options.on_frame) options.on_frame(f, result);
   });
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
-  capture.gaze = !options.gltf.empty();  // only the glTF's eyes use it: the video keeps the target's
   summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) { stage.push(f); });
   stage.finish();
   summary.timings.lighting_ms = stage.refine_ms();

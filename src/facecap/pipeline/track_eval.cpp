@@ -15,6 +15,7 @@
 #include "facecap/fit/gaze.hpp"
 #include "facecap/fit/identity_size.hpp"
 #include "facecap/fit/shape_uncertainty.hpp"
+#include "facecap/model/eye_look.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 #include "facecap/synth/synthesize.hpp"
 
@@ -22,17 +23,10 @@ namespace facecap {
 
 namespace {
 
-// A fitted frame with the iris centres found on it and the gaze they gave.
-struct EvalFrame {
-  CoarseFit fit;
-  IrisPair irises;
-  GazeEstimate gaze;
-};
-
 // Fits a synthetic performance; returns fits in frame order.
-std::vector<EvalFrame> fit_performance(const FaceModel& model, const SynthPerformance& perf, const TrackEvalOptions& o,
+std::vector<CoarseFit> fit_performance(const FaceModel& model, const SynthPerformance& perf, const TrackEvalOptions& o,
                                        IdentityEstimate& identity, double& fit_ms) {
-  std::vector<EvalFrame> fits;
+  std::vector<CoarseFit> fits;
   if (o.landmarks == LandmarkSource::kTruth) {
     const SynthRenderer renderer(model, perf);
     // The truth follows the model's own landmark definition: the jaw
@@ -47,29 +41,24 @@ std::vector<EvalFrame> fit_performance(const FaceModel& model, const SynthPerfor
     std::normal_distribution<float> noise(0.0f, float(o.landmark_noise_px));
     // The irises are found on the rendered frames inside the same noisy landmarks.
     std::mt19937_64 image_noise(perf.options.seed * 131 + 3);
-    std::vector<cv::Mat> greys;
     double ms = 0;
     for (const SynthFrame& f : perf.frames) {
       Landmarks lm = renderer.landmarks(f);
       for (Vec2f& p : lm) p += Vec2f(noise(rng), noise(rng));
-      greys.emplace_back();
-      if (o.gaze) cv::cvtColor(renderer.render(f, image_noise), greys.back(), cv::COLOR_BGR2GRAY);
+      IrisSearch search;
+      if (o.capture.gaze) {
+        cv::Mat grey;
+        cv::cvtColor(renderer.render(f, image_noise), grey, cv::COLOR_BGR2GRAY);
+        search = iris_search(grey, lm);
+      }
       const auto start = std::chrono::steady_clock::now();
-      for (CoarseFit& fit : tracker.push(f.index, f.time, lm)) fits.push_back({std::move(fit), {}, {}});
+      for (CoarseFit& fit : tracker.push(f.index, f.time, lm, std::move(search))) fits.push_back(std::move(fit));
       ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     const auto start = std::chrono::steady_clock::now();
-    for (CoarseFit& fit : tracker.finish()) fits.push_back({std::move(fit), {}, {}});
+    for (CoarseFit& fit : tracker.finish()) fits.push_back(std::move(fit));
     fit_ms = ms + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     identity = tracker.identity();
-    const EyeballGeometry eyeballs = eyeball_geometry(model, identity.identity);
-    for (EvalFrame& f : fits) {
-      if (!f.fit.valid || greys[f.fit.index].empty()) continue;
-      GazeMeasurement gaze =
-          measure_gaze(greys[f.fit.index], f.fit.observed, eyeballs, f.fit.pose, tracker.fitter().camera(f.fit.focal));
-      f.irises = gaze.irises;
-      f.gaze = gaze.gaze;
-    }
     return fits;
   }
   // dlib: render the video and run the whole capture pipeline on it.
@@ -79,8 +68,8 @@ std::vector<EvalFrame> fit_performance(const FaceModel& model, const SynthPerfor
   CaptureOptions capture = o.capture;
   capture.quiet = true;
   const CaptureSummary summary = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
-    fits.push_back({f.fit, f.irises, f.gaze});
-    fits.back().fit.valid = f.status != TrackStatus::kLost;
+    fits.push_back(f.fit);
+    fits.back().valid = f.status != TrackStatus::kLost;
   });
   identity = summary.identity;
   fit_ms = summary.timings.fit_ms;
@@ -135,7 +124,7 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   const SynthPerformance perf = make_performance(model, so);
   IdentityEstimate id;
   double fit_ms = 0;
-  const std::vector<EvalFrame> frames = fit_performance(model, perf, options, id, fit_ms);
+  const std::vector<CoarseFit> frames = fit_performance(model, perf, options, id, fit_ms);
 
   r.focal = id.focal;
   r.focal_true = perf.camera.focal;
@@ -157,8 +146,8 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   const SynthRenderer renderer(model, perf);
   std::vector<double> iris_errors;
   int open_eyes = 0, found_open = 0, gaze_frames = 0;
-  for (const EvalFrame& frame : frames) {
-    const CoarseFit& fit = frame.fit;
+  const std::vector<int> eye_look = EyeLookShapes(model).indices();
+  for (const CoarseFit& fit : frames) {
     ++r.frames;
     if (!fit.valid) {
       ++r.lost_frames;
@@ -175,20 +164,21 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     fitted_yaw.push_back(yaw_pitch_roll_deg(fit.pose.rotation_matrix()).x());
     r.translation_error_cm += (fit.pose.translation - truth.pose.translation).norm();
     r.weights_mae += (fit.expression - truth.expression).cwiseAbs().mean();
-    if (!options.gaze) continue;
+    for (int k : eye_look) r.eye_look_mae += std::abs(fit.expression[k] - truth.expression[k]) / eye_look.size();
+    if (!options.capture.gaze) continue;
     const float blink = std::max(truth.expression[model.expression_index("eyeBlink_L")],
                                  truth.expression[model.expression_index("eyeBlink_R")]);
     for (int eye = 0; eye < 2; ++eye) {
       if (blink < 0.5f) ++open_eyes;
-      if (!frame.irises[eye]) continue;
-      iris_errors.push_back((frame.irises[eye]->centre - renderer.iris_centre(truth, eye)).norm());
+      if (!fit.irises[eye]) continue;
+      iris_errors.push_back((fit.irises[eye]->centre - renderer.iris_centre(truth, eye)).norm());
       if (blink < 0.5f) ++found_open;
     }
-    if (frame.gaze.valid()) {
+    if (fit.gaze.valid()) {
       ++gaze_frames;
       const Vec3d true_gaze = turned_axis(renderer.eyeballs(), 0, truth.gaze_deg.x(), truth.gaze_deg.y()) +
                               turned_axis(renderer.eyeballs(), 1, truth.gaze_deg.x(), truth.gaze_deg.y());
-      r.gaze_error_deg += angle_between_deg(true_gaze, frame.gaze.direction());
+      r.gaze_error_deg += angle_between_deg(true_gaze, fit.gaze.direction());
     }
   }
   if (gaze_frames > 0) r.gaze_error_deg /= gaze_frames;
@@ -201,6 +191,7 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     r.rotation_error_deg /= valid;
     r.translation_error_cm /= valid;
     r.weights_mae /= valid;
+    r.eye_look_mae /= valid;
   }
   r.yaw_gain = regression_slope(true_yaw, fitted_yaw);
   r.fit_ms_per_frame = r.frames > 0 ? fit_ms / r.frames : 0.0;
@@ -214,13 +205,12 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     so2.still_frames = 0;
     IdentityEstimate still_id;
     double ms = 0;
-    so2.gaze = false;
-    const std::vector<EvalFrame> still_fits = fit_performance(model, still_perf, so2, still_id, ms);
+    so2.capture.gaze = false;
+    const std::vector<CoarseFit> still_fits = fit_performance(model, still_perf, so2, still_id, ms);
     double shape_sq = 0, camera_sq = 0;
     long count = 0;
     std::optional<Positions> previous_shape, previous_camera;
-    for (const EvalFrame& still_frame : still_fits) {
-      const CoarseFit& fit = still_frame.fit;
+    for (const CoarseFit& fit : still_fits) {
       if (!fit.valid) {
         previous_shape.reset();
         continue;
@@ -247,7 +237,7 @@ VideoEvalResult evaluate_track_video(const FaceModel& model, const std::string& 
   std::vector<double> nme;
   r.summary = run_capture(model, *source, options, [&](const CapturedFrame& f) {
     if (f.status != TrackStatus::kLost) nme.push_back(f.fit.landmark_error);
-    r.gaze_frames += f.gaze.valid();
+    r.gaze_frames += f.fit.gaze.valid();
   });
   r.frames = r.summary.frames;
   r.lost_frames = r.summary.lost;

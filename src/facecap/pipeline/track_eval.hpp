@@ -22,9 +22,8 @@ struct TrackEvalOptions {
   LandmarkSource landmarks = LandmarkSource::kTruth;
   double landmark_noise_px = 1.0;  // Gaussian, per coordinate (truth landmarks only)
   int still_frames = 30;           // still-head sequence for the jitter measurement (0: skip)
-  bool gaze = true;                // measure the irises and gaze (truth landmarks: renders the frames too)
   SynthOptions synth;              // size, yaw range, ...; frames and seed are set from above
-  CaptureOptions capture;
+  CaptureOptions capture;          // capture.gaze: also the irises and gaze (truth landmarks: renders the frames)
 };
 
 // The least spread of true yaw over which TrackEvalResult::yaw_gain is measured.
@@ -45,6 +44,7 @@ struct TrackEvalResult {
   double focal = 0, focal_true = 0;
   double focal_error_rel = 0;
   double weights_mae = 0;       // mean |w - w_true| over frames and the 53 weights
+  double eye_look_mae = 0;      // the same over the eight eyeLook weights (eye_look.hpp)
   double jitter_mm = 0;         // RMS frame-to-frame motion of the face shape (model space), still head
   double jitter_camera_mm = 0;  // the same in camera space (adds pose jitter, mostly depth)
   double identity_error = 0;    // ||a - a_true|| over the fitted modes

@@ -137,7 +137,7 @@ class FrameWriter {
     if (ok) write_mesh(f, ref, coarse);
     if (ok && options_.gltf)
       append_animation_key(animation_keys_, has_timeline(info_), f.index, f.time, f.fit.pose, f.fit.expression,
-                           key_gaze(f.gaze));
+                           key_gaze(f.fit.gaze));
     write_videos(f, ref, coarse, camera);
   }
 
@@ -237,7 +237,7 @@ class FrameWriter {
   // the iris centres; empty fields and null where no iris was found. An eye
   // has a direction only where it has an iris.
   void write_gaze(const CapturedFrame& f, std::ofstream& o, nlohmann::json& row) {
-    const GazeEstimate& g = f.gaze;
+    const GazeEstimate& g = f.fit.gaze;
     nlohmann::json gaze = nullptr;
     if (g.valid()) {
       ++gaze_frames_;
@@ -256,7 +256,7 @@ class FrameWriter {
           continue;
         }
         const Vec3d& d = g.eyes[eye]->direction;
-        const IrisObservation& iris = *f.irises[eye];
+        const IrisObservation& iris = *f.fit.irises[eye];
         gaze[side] = {{"iris_px", {iris.centre.x(), iris.centre.y()}},
                       {"iris_radius_px", iris.radius},
                       {"direction_head", {d.x(), d.y(), d.z()}}};
@@ -266,7 +266,7 @@ class FrameWriter {
     }
     for (int eye = 0; eye < 2; ++eye) {
       if (g.eyes[eye]) {
-        o << ',' << number(f.irises[eye]->centre.x()) << ',' << number(f.irises[eye]->centre.y());
+        o << ',' << number(f.fit.irises[eye]->centre.x()) << ',' << number(f.fit.irises[eye]->centre.y());
       } else {
         o << ",,";
       }
@@ -283,10 +283,10 @@ class FrameWriter {
       draw_landmarks(canvas, f.fit.observed, cv::Scalar(0, 255, 0));
       draw_landmarks(canvas, f.fit.fitted, cv::Scalar(0, 0, 255), 1);
       for (int eye = 0; eye < 2; ++eye) {
-        const std::optional<EyeGaze>& g = f.gaze.eyes[eye];
+        const std::optional<EyeGaze>& g = f.fit.gaze.eyes[eye];
         if (g)
-          draw_gaze(canvas, f.irises[eye]->centre, f.irises[eye]->radius, g->camera_iris, g->camera_direction, 4.0, cam,
-                    cv::Scalar(0, 220, 255));
+          draw_gaze(canvas, f.fit.irises[eye]->centre, f.fit.irises[eye]->radius, g->camera_iris, g->camera_direction,
+                    4.0, cam, cv::Scalar(0, 220, 255));
       }
     }
     draw_caption(canvas, "frame " + std::to_string(f.index) + "  " + to_string(f.status));

@@ -89,7 +89,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
       writer.write(out);
       if (t.valid && !options.gltf.empty())
         append_animation_key(keys, has_timeline(info), t.index, t.time, p.frame.fit.pose, t.weights,
-                             key_gaze(p.frame.gaze));
+                             key_gaze(p.frame.fit.gaze));
       summary.frames.push_back(t);
       pending.erase(it);
     }
@@ -117,7 +117,6 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   });
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
-  capture.gaze = !options.gltf.empty();  // only the glTF's eyes use it: the video keeps the speaker's
   summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stage.push(f); });
   stage.finish();
   summary.timings.lighting_ms = stage.refine_ms();

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "facecap/core/error.hpp"
+#include "facecap/model/eye_look.hpp"
 
 namespace facecap {
 
@@ -132,6 +133,7 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
   std::vector<double> blinks;
   for (double t = 0.4 + 1.5 * uniform(rng); t < duration; t += 2.0 + 2.0 * uniform(rng)) blinks.push_back(t);
 
+  const EyeLookShapes eye_look(model);
   auto set = [&](Eigen::VectorXf& w, const std::string& name, double value) {
     const int i = model.expression_index(name);
     if (i >= 0) w[i] = static_cast<float>(std::clamp(double(w[i]) + value, 0.0, 1.0));
@@ -181,14 +183,9 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
       set(w, "mouthFunnel", std::max(0.0, 0.3 * lips_c(t)));
       set(w, "mouthClose", std::max(0.0, -0.15 * jaw(t)));
       set(w, "mouthRollLower", std::max(0.0, -0.2 * lips_b(t)));
-      set(w, "eyeLookOut_L", std::max(0.0, 0.3 * gaze_x(t)));
-      set(w, "eyeLookIn_R", std::max(0.0, 0.3 * gaze_x(t)));
-      set(w, "eyeLookIn_L", std::max(0.0, -0.3 * gaze_x(t)));
-      set(w, "eyeLookOut_R", std::max(0.0, -0.3 * gaze_x(t)));
-      set(w, "eyeLookUp_L", std::max(0.0, 0.3 * gaze_y(t)));
-      set(w, "eyeLookUp_R", std::max(0.0, 0.3 * gaze_y(t)));
-      // The eyeballs turn with the lids' gaze shapes (ICT's shapes move only the lids).
+      // The eyeballs turn (ICT's shapes move only the lids) and the lids follow by facecap's convention.
       frame.gaze_deg = Vec2d(std::clamp(25.0 * gaze_x(t), -30.0, 30.0), std::clamp(15.0 * gaze_y(t), -20.0, 20.0));
+      for (const auto& [k, weight] : eye_look.weights(frame.gaze_deg)) w[k] = static_cast<float>(weight);
       for (const ExpressionEvent& ev : events) {
         const double b = ev.intensity * bump(t, ev.centre, ev.width);
         if (b <= 0) continue;
