@@ -11,6 +11,18 @@
 
 namespace facecap {
 
+namespace {
+// Fit options for a synthetic performance seen through its true camera, with
+// the truth's own jaw definition.
+CoarseFitOptions known_camera(const SynthPerformance& perf) {
+  CoarseFitOptions o;
+  o.jaw = JawCorrespondence::kMarch;
+  o.focal_known = true;
+  o.focal_guess = perf.camera.focal;
+  return o;
+}
+}  // namespace
+
 // With the true identity and focal, noise-free landmarks and a weak
 // expression prior (so that the optimum is the truth), one frame's pose and
 // expression come back from a cold start (initialize_frame + fit_frame).
@@ -21,10 +33,7 @@ TEST(FaceFitter, RecoversPoseAndExpressionFromPerfectLandmarks) {
   so.seed = 4;
   const SynthPerformance perf = make_performance(*model, so);
   const SynthRenderer renderer(*model, perf);
-  CoarseFitOptions o;
-  o.jaw = JawCorrespondence::kMarch;  // the truth's own jaw definition
-  o.focal_known = true;
-  o.focal_guess = perf.camera.focal;
+  CoarseFitOptions o = known_camera(perf);
   o.weights.sigma_expression = 5.0;
   const FaceFitter fitter(*model, o, so.width, so.height);
   const Eigen::VectorXd identity = perf.identity.head(fitter.identity_modes()).cast<double>();
@@ -75,11 +84,7 @@ TEST(FaceFitter, TheIrisesGazePullsTheEyeLookWeightsTowardIt) {
   so.seed = 3;
   const SynthPerformance perf = make_performance(*model, so);
   const SynthRenderer renderer(*model, perf);
-  CoarseFitOptions o;
-  o.jaw = JawCorrespondence::kMarch;
-  o.focal_known = true;
-  o.focal_guess = perf.camera.focal;
-  const FaceFitter fitter(*model, o, so.width, so.height);
+  const FaceFitter fitter(*model, known_camera(perf), so.width, so.height);
   const Eigen::VectorXd identity = perf.identity.head(fitter.identity_modes()).cast<double>();
   const EyeballGeometry eyes = eyeball_geometry(*model, identity);
   const std::vector<int> eye_look = EyeLookShapes(*model).indices();
