@@ -44,32 +44,49 @@ std::vector<CoarseFit> CoarseTracker::finish() {
 void CoarseTracker::initialize() {
   const auto start = std::chrono::steady_clock::now();
   std::vector<Landmarks> observed;
-  for (const Pending& p : pending_)
-    if (p.landmarks) observed.push_back(*p.landmarks);
+  std::vector<Pending*> faces;
+  for (Pending& p : pending_) {
+    if (!p.landmarks) continue;
+    observed.push_back(*p.landmarks);
+    faces.push_back(&p);
+  }
 
   const int nf = fitter_.num_expressions();
   Eigen::VectorXd identity = Eigen::VectorXd::Zero(fitter_.identity_modes());
   double focal = fitter_.focal_guess();
   std::vector<FrameParameters> frames(observed.size(), FrameParameters(nf));
   // Each frame on its own with the mean face first, then everything jointly.
+  // The irises are found once each frame has a pose, and their gaze guides
+  // the eyeLook weights in the joint solve too.
+  const EyeballGeometry mean_eyes = eyeball_geometry(model_, identity);
+  std::vector<IrisCentres> irises(observed.size());
+  bool any_iris = false;
   for (size_t i = 0; i < observed.size(); ++i) {
     fitter_.initialize_frame(observed[i], identity, focal, frames[i]);
     fitter_.fit_frame(observed[i], identity, focal, nullptr, frames[i]);
+    if (faces[i]->iris_search) {
+      faces[i]->irises = faces[i]->iris_search(expected_irises(mean_eyes, frames[i].pose(), fitter_.camera(focal)));
+      irises[i] = iris_centres(*faces[i]->irises);
+      any_iris = true;
+    }
   }
-  IdentitySolveReport solve = fitter_.fit_identity(observed, frames, identity, focal);
+  const std::vector<IrisCentres>* cues = any_iris ? &irises : nullptr;
+  IdentitySolveReport solve = fitter_.fit_identity(observed, frames, identity, focal, cues);
 
   // Frames whose landmarks the joint model cannot explain (a detector
   // failure) must not shape the identity: drop them and solve again.
   std::vector<Landmarks> kept;
   std::vector<FrameParameters> kept_frames;
+  std::vector<IrisCentres> kept_irises;
   for (size_t i = 0; i < observed.size(); ++i) {
     if (fitter_.landmark_error(observed[i], frames[i], identity, focal) <= fitter_.options().lost_landmark_error) {
       kept.push_back(observed[i]);
       kept_frames.push_back(frames[i]);
+      kept_irises.push_back(irises[i]);
     }
   }
   if (!kept.empty() && kept.size() < observed.size()) {
-    solve = fitter_.fit_identity(kept, kept_frames, identity, focal);
+    solve = fitter_.fit_identity(kept, kept_frames, identity, focal, any_iris ? &kept_irises : nullptr);
   }
   if (fitter_.options().unbiased_size) {
     const IdentitySizeCorrection size(model_, fitter_.identity_modes(), fitter_.landmark_vertices());
@@ -105,11 +122,13 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
   const FrameParameters* previous = previous_ ? &*previous_ : nullptr;
   const PinholeCamera camera = fitter_.camera(identity_.focal);
   std::optional<GazeCue> gaze;
-  if (frame.iris_search) {
+  if (frame.irises) {
+    fit.irises = *frame.irises;  // found during the identity solve
+  } else if (frame.iris_search) {
     // The starting pose's depth (the previous frame's) sizes the irises well enough.
     fit.irises = frame.iris_search(expected_irises(eyeballs_, params.pose(), camera));
-    gaze = GazeCue{&eyeballs_, iris_centres(fit.irises)};
   }
+  if (frame.iris_search) gaze = GazeCue{&eyeballs_, iris_centres(fit.irises)};
   const GazeCue* cue = gaze ? &*gaze : nullptr;
   FrameFitReport report =
       fitter_.fit_frame(*frame.landmarks, identity_.identity, identity_.focal, previous, params, cue);

@@ -71,6 +71,7 @@ class CoarseTracker {
     double time;
     std::optional<Landmarks> landmarks;
     IrisSearch iris_search;
+    std::optional<IrisPair> irises;  // once searched (for the identity solve)
   };
   void initialize();
   CoarseFit track(const Pending& frame);

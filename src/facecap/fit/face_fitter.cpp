@@ -106,7 +106,7 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
 
 IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& observed,
                                              std::vector<FrameParameters>& frames, Eigen::VectorXd& identity,
-                                             double& focal) const {
+                                             double& focal, const std::vector<IrisCentres>* irises) const {
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
   FitWeights weights = options_.weights;
   weights.sigma_landmark *= weights.identity_sigma_factor;
@@ -135,6 +135,15 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
     for (size_t i = 0; i < f.size(); ++i) {
       energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(), f[i].pose(),
                                                             camera(current_focal), observed[i], slide_jaw()));
+    }
+    if (irises == nullptr) return;
+    // The gaze's pull, weighed like the frame's other terms.
+    const EyeballGeometry eyes = eyeball_geometry(model_, id);
+    for (size_t i = 0; i < f.size(); ++i) {
+      const GazeEstimate g = estimate_gaze(eyes, f[i].pose(), camera(current_focal), (*irises)[i]);
+      if (g.valid())
+        energies[i]->set_expression_targets(eye_look_.weights(g.angles_deg()),
+                                            options_.weights.sigma_eye_look / std::sqrt(frame_weight));
     }
   };
   return solve_identity_joint(energies, frames, identity, focal, o);

@@ -61,8 +61,11 @@ class FaceFitter {
                            const GazeCue* gaze = nullptr) const;
 
   // Fits identity and focal jointly with every frame's pose and expression.
+  // With `irises` (one per frame), the gaze they show pulls each frame's
+  // eyeLook weights as in fit_frame.
   IdentitySolveReport fit_identity(const std::vector<Landmarks>& observed, std::vector<FrameParameters>& frames,
-                                   Eigen::VectorXd& identity, double& focal) const;
+                                   Eigen::VectorXd& identity, double& focal,
+                                   const std::vector<IrisCentres>* irises = nullptr) const;
 
   // The model's 68 landmarks for a fit, projected; the jaw landmarks are the
   // outline points nearest to the observed ones (jaw_contour.hpp).
