@@ -16,8 +16,8 @@ CoarseTracker::CoarseTracker(const FaceModel& model, const CoarseFitOptions& opt
 
 std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::optional<Landmarks>& landmarks,
                                            IrisSearch iris_search) {
-  if (initialized_) return {track({index, time, landmarks, std::move(iris_search)})};
-  pending_.push_back({index, time, landmarks, std::move(iris_search)});
+  if (initialized_) return {track({index, time, landmarks, std::move(iris_search), std::nullopt})};
+  pending_.push_back({index, time, landmarks, std::move(iris_search), std::nullopt});
   if (landmarks) ++pending_faces_;
   if (pending_faces_ < fitter_.options().init_frames) return {};
   return finish();

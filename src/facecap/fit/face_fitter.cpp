@@ -92,16 +92,19 @@ FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::Vec
                                                   camera(focal), observed, slide_jaw());
     energy.set_correspondences(report.correspondences);
     solve_pose(energy, params, options_.max_solver_iterations);
-    if (gaze != nullptr) {
-      // The gaze depends on the pose (where the eyeballs sit under the irises), not on the weights.
-      const GazeEstimate g = estimate_gaze(*gaze->eyes, params.pose(), camera(focal), gaze->irises);
-      if (g.valid()) energy.set_expression_targets(eye_look_.weights(g.angles_deg()), options_.weights.sigma_eye_look);
-    }
+    // The gaze depends on the pose (where the eyeballs sit under the irises), not on the weights.
+    if (gaze != nullptr) pull_eye_look(energy, *gaze, params.pose(), focal, options_.weights.sigma_eye_look);
     solve_expression(energy, params, 5);
     solve_joint(energy, params, options_.max_solver_iterations);
   }
   report.landmark_error = landmark_error(observed, params, identity, focal);
   return report;
+}
+
+void FaceFitter::pull_eye_look(FrameEnergy& energy, const GazeCue& gaze, const HeadPose& pose, double focal,
+                               double sigma) const {
+  const GazeEstimate g = estimate_gaze(*gaze.eyes, pose, camera(focal), gaze.irises);
+  if (g.valid()) energy.set_expression_targets(eye_look_.weights(g.angles_deg()), sigma);
 }
 
 IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& observed,
@@ -137,13 +140,11 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
                                                             camera(current_focal), observed[i], slide_jaw()));
     }
     if (irises == nullptr) return;
-    // The gaze's pull, weighed like the frame's other terms.
+    // The gaze's pull, weighed like the frame's other terms, on the current identity's eyeballs.
     const EyeballGeometry eyes = eyeball_geometry(model_, id);
     for (size_t i = 0; i < f.size(); ++i) {
-      const GazeEstimate g = estimate_gaze(eyes, f[i].pose(), camera(current_focal), (*irises)[i]);
-      if (g.valid())
-        energies[i]->set_expression_targets(eye_look_.weights(g.angles_deg()),
-                                            options_.weights.sigma_eye_look / std::sqrt(frame_weight));
+      pull_eye_look(*energies[i], {&eyes, (*irises)[i]}, f[i].pose(), current_focal,
+                    options_.weights.sigma_eye_look / std::sqrt(frame_weight));
     }
   };
   return solve_identity_joint(energies, frames, identity, focal, o);

@@ -23,6 +23,8 @@
 
 namespace facecap {
 
+class FrameEnergy;
+
 // A frame's iris centres and the eyeballs they lie on: with them, fit_frame
 // pulls the eyeLook weights toward the gaze they show at the current pose
 // (eye_look.hpp), by FitWeights::sigma_eye_look.
@@ -76,6 +78,9 @@ class FaceFitter {
                         double focal) const;
 
  private:
+  // Pulls the eyeLook weights of `energy` toward the gaze the cue's irises show at `pose`.
+  void pull_eye_look(FrameEnergy& energy, const GazeCue& gaze, const HeadPose& pose, double focal, double sigma) const;
+
   const FaceModel& model_;
   CoarseFitOptions options_;
   int width_, height_;
