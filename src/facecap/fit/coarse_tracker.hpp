@@ -37,7 +37,7 @@ struct IdentityEstimate {
   double focal = 0.0;
   int frames_used = 0;
   double focal_guess = 0.0;
-  double solve_ms = 0.0;         // time of the joint identity and focal solve
+  double solve_ms = 0.0;         // time of the joint identity and focal solve (its iris searches not counted)
   double effective_modes = 0.0;  // identity directions the landmarks determined (identity_solver.hpp)
   double size_factor = 1.0;      // how much larger the size correction made the face (identity_size.hpp)
   // Posterior covariance of `identity` (identity_solver.hpp), for
