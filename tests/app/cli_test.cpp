@@ -10,6 +10,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/command.hpp"
 #include "facecap/core/temp_dir.hpp"
@@ -270,6 +272,33 @@ TEST(Cli, ProbeDescribesAVideoAsJson) {
   EXPECT_NE(r.out.find("\"width\": 1280"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"audio\": true"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
+}
+
+// A wide shot: Obama's portrait at a quarter of its size on a grey 1280x720
+// frame, his face about 90 px wide (36 px between the outer eye corners),
+// half what the detector finds in a frame downscaled to 640 px. Both probe
+// and track find it by searching again at twice the size.
+TEST(Cli, ProbeAndTrackFindAFaceInAWideShot) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(portrait, "portrait_obama.jpg");
+  const cv::Mat photo = cv::imread(portrait.string());
+  ASSERT_FALSE(photo.empty());
+  cv::Mat small;
+  cv::resize(photo, small, cv::Size(), 0.25, 0.25, cv::INTER_AREA);
+  cv::Mat wide(720, 1280, CV_8UC3, cv::Scalar(120, 120, 120));
+  small.copyTo(wide(cv::Rect(700, 300, small.cols, small.rows)));
+  TempDir dir;
+  const auto image = dir.path() / "wide.png";
+  ASSERT_TRUE(cv::imwrite(image.string(), wide));
+  RunResult r = run("probe " + image.string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
+  r = run("track " + image.string() + " -o " + (dir.path() / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream csv(dir.path() / "out" / "frames.csv");
+  std::string header, row;
+  ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
+  EXPECT_EQ(row.find(",lost,"), std::string::npos) << row;
 }
 
 // --device names what it takes, and asking for CUDA where there is none is a

@@ -4,6 +4,7 @@
 #include <dlib/opencv/cv_image.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
@@ -56,16 +57,17 @@ std::vector<FaceDetection> FaceDetector::detect_in(const cv::Mat& image, const B
   const int y1 = std::clamp(int(region.y + region.height), 0, image.rows);
   if (x1 - x0 < 20 || y1 - y0 < 20) return {};
   cv::Mat grey = to_grey(image(cv::Rect(x0, y0, x1 - x0, y1 - y0)));
+  // One resize to the searched size, so that an upsampled search of a large
+  // frame sees its full resolution rather than a blown-up downscale.
   double scale = 1.0;
   const int side = std::max(grey.cols, grey.rows);
   if (options_.max_side > 0 && side > options_.max_side) {
     scale = double(options_.max_side) / side;
-    cv::resize(grey, grey, cv::Size(), scale, scale, cv::INTER_AREA);
+  } else if (options_.min_side > 0 && side < options_.min_side) {
+    scale = double(options_.min_side) / side;
   }
-  for (int i = 0; i < options_.upsample; ++i) {
-    cv::pyrUp(grey, grey);
-    scale *= 2.0;
-  }
+  scale = std::ldexp(scale, options_.upsample);
+  if (scale != 1.0) cv::resize(grey, grey, cv::Size(), scale, scale, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
   if (!grey.isContinuous()) grey = grey.clone();
   dlib::cv_image<unsigned char> img(grey);
   std::vector<dlib::rect_detection> dets;

@@ -32,18 +32,20 @@ FaceTracker::FaceTracker(const LandmarkDetector& landmarks, FaceTrackerOptions o
     : landmarks_(landmarks),
       options_(options),
       detector_(options.detector),
-      // The check runs on a crop 1.6 times the face, scaled so that the face is
-      // about 80-90 px, just above the detector's window: a pyramid of two or
-      // three levels. A slightly lowered threshold keeps turned heads.
-      verifier_(FaceDetectorOptions{.max_side = 130, .upsample = 0, .adjust_threshold = -0.4}) {}
+      fine_detector_(twice_the_size(options.detector)),
+      // The check runs on a crop 1.6 times the face, scaled (down or up) so
+      // that the face is about 80-90 px, just above the detector's window: a
+      // pyramid of two or three levels. A slightly lowered threshold keeps
+      // turned heads.
+      verifier_(FaceDetectorOptions{.max_side = 130, .min_side = 130, .upsample = 0, .adjust_threshold = -0.4}) {}
 
 void FaceTracker::reset() {
   previous_.reset();
   frames_since_check_ = 0;
 }
 
-std::optional<Box> FaceTracker::detect_largest(const cv::Mat& grey, int* faces_seen) const {
-  const auto faces = detector_.detect(grey);
+std::optional<Box> FaceTracker::detect_largest(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) {
+  const auto faces = detector.detect(grey);
   *faces_seen = static_cast<int>(faces.size());
   if (faces.empty()) return std::nullopt;
   return faces.front().box;
@@ -131,15 +133,21 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
 
   int faces_seen = 0;
   auto t0 = std::chrono::steady_clock::now();
-  const auto box = detect_largest(grey, &faces_seen);
+  auto box = detect_largest(detector_, grey, &faces_seen);
+  if (!box && options_.fine_search_every > 0 && failed_searches_ % options_.fine_search_every == 0) {
+    box = detect_largest(fine_detector_, grey, &faces_seen);
+    out.fine_search = true;
+  }
   out.detector_ms += ms_since(t0);
   out.detector_ran = true;
   out.full_detection = true;
   out.faces_seen = faces_seen;
   if (!box) {
+    ++failed_searches_;
     out.status = TrackStatus::kLost;
     return out;
   }
+  failed_searches_ = 0;
   t0 = std::chrono::steady_clock::now();
   const Landmarks lm = landmarks_.detect(grey, *box);
   out.landmarks_ms += ms_since(t0);

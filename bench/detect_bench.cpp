@@ -1,0 +1,46 @@
+// Face detection benchmarks: dlib's HOG detector over a whole 1280x720 frame
+// of address_720p_a, searched at several sizes (the longer side after the
+// detector's resize). The smallest face it finds is about 80 px at the
+// searched size, so the cost of finding smaller faces grows with the square
+// of the size. Skips where the footage is absent.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/paths.hpp"
+#include "facecap/detect/face_detector.hpp"
+#include "facecap/io/input.hpp"
+
+namespace facecap {
+
+namespace {
+
+cv::Mat first_frame_grey() {
+  const std::filesystem::path video = default_data_dir() / "address_720p_a.mp4";
+  if (!std::filesystem::exists(video)) return {};
+  Frame frame;
+  if (!open_input(video.string())->read(frame)) return {};
+  cv::Mat grey;
+  cv::cvtColor(frame.image, grey, cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
+void BM_DetectWholeFrame(benchmark::State& state) {
+  static const cv::Mat grey = first_frame_grey();
+  if (grey.empty()) {
+    state.SkipWithError("address_720p_a.mp4 not found in the data folder");
+    return;
+  }
+  const int side = static_cast<int>(state.range(0));
+  const FaceDetector detector(FaceDetectorOptions{.max_side = side, .min_side = side});
+  size_t faces = 0;
+  for (auto _ : state) faces = detector.detect(grey).size();
+  state.counters["faces"] = double(faces);
+}
+BENCHMARK(BM_DetectWholeFrame)->Arg(640)->Arg(960)->Arg(1280)->Arg(1920)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+}  // namespace facecap
