@@ -46,8 +46,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     const TrackSummary s = run_track(model, a->input, a->out, a->options);
     if (s.capture.identity.frames_used == 0) {
       // frames.csv is still written (every frame "lost"), but there is nothing else to give.
+      const std::string note = unreadable_frames_note(s.capture, a->input);
       throw Error("no face found in " + a->input + ": all " + std::to_string(s.capture.frames) +
-                  " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string());
+                  " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string() +
+                  (note.empty() ? "" : "; " + note));
     }
     const StageTimings& t = s.capture.timings;
     const double n = std::max(1, t.frames);
@@ -58,6 +60,9 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                  s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
                  t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
                  s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
+    if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty()) {
+      std::fprintf(stderr, "facecap: %s\n", note.c_str());
+    }
     if (a->options.refine) {
       std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
                    s.refine_ms / std::max(1, s.refined_frames));

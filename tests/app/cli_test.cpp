@@ -301,6 +301,35 @@ TEST(Cli, ProbeAndTrackFindAFaceInAWideShot) {
   EXPECT_EQ(row.find(",lost,"), std::string::npos) << row;
 }
 
+// A folder of photos of different sizes is not one camera's frames: the
+// photos unlike the first are lost, each with its reason in frames.jsonl,
+// and the closing summary says so in one line.
+TEST(Cli, TrackSaysWhichFramesOfAFolderCouldNotBeRead) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "photos");
+  std::filesystem::copy_file(obama, dir.path() / "photos" / "1.jpg");
+  std::filesystem::copy_file(biden, dir.path() / "photos" / "2.jpg");
+  const RunResult r = test::run_command(std::string(FACECAP_BINARY) + " track " + (dir.path() / "photos").string() +
+                                        " -o " + (dir.path() / "out").string() + " 2>&1 >/dev/null");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("facecap: 1 frame(s) of " + (dir.path() / "photos").string() + " could not be read"),
+            std::string::npos)
+      << r.out;
+  std::ifstream jsonl(dir.path() / "out" / "frames.jsonl");
+  std::string line;
+  std::vector<nlohmann::json> rows;
+  while (std::getline(jsonl, line)) rows.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_NE(rows[0]["status"], "lost");
+  EXPECT_FALSE(rows[0].contains("error"));
+  EXPECT_EQ(rows[1]["status"], "lost");
+  EXPECT_NE(rows[1].value("error", "").find("2.jpg is 970x2204, the folder's first is 910x1137"), std::string::npos)
+      << rows[1].dump();
+}
+
 // --device names what it takes, and asking for CUDA where there is none is a
 // one-line error, not a crash or a silent fall back to the CPU.
 TEST(Cli, DeviceOptionNamesWhatItNeeds) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <vector>
 #include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
@@ -74,6 +75,27 @@ TEST(Input, StillImageAndImageFolder) {
   int n = 0;
   while (folder->read(f)) ++n;
   EXPECT_EQ(n, 3);
+}
+
+// A folder is one camera's frames: an image of another size, like one that
+// does not decode, is a frame without an image and a reason.
+TEST(Input, AFoldersImagesOfAnotherSizeOrCorruptAreFramesWithAReason) {
+  TempDir dir;
+  cv::imwrite((dir.path() / "a.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(10, 20, 30)));
+  cv::imwrite((dir.path() / "b.png").string(), cv::Mat(80, 60, CV_8UC3, cv::Scalar(10, 20, 30)));
+  std::ofstream(dir.path() / "c.png") << "this is not an image\n";
+  cv::imwrite((dir.path() / "d.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(10, 20, 30)));
+  auto folder = open_input(dir.path().string());
+  std::vector<Frame> frames;
+  for (Frame f; folder->read(f);) frames.push_back(f);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_FALSE(frames[0].image.empty());
+  EXPECT_TRUE(frames[1].image.empty());
+  EXPECT_NE(frames[1].error.find("b.png is 60x80, the folder's first is 80x60"), std::string::npos) << frames[1].error;
+  EXPECT_TRUE(frames[2].image.empty());
+  EXPECT_NE(frames[2].error.find("cannot decode image"), std::string::npos) << frames[2].error;
+  EXPECT_FALSE(frames[3].image.empty());
+  EXPECT_TRUE(frames[3].error.empty());
 }
 
 TEST(Input, BadInputsGetOneClearMessage) {

@@ -109,7 +109,16 @@ class FolderSource final : public FrameSource {
     if (next_ >= files_.size()) return false;
     const fs::path& f = files_[next_];
     frame = Frame{read_image(f), static_cast<int>(next_), 0.0, {}};
-    if (frame.image.empty()) frame.error = "cannot decode image " + f.string();
+    if (frame.image.empty()) {
+      frame.error = "cannot decode image " + f.string();
+    } else if (frame.image.cols != info_.width || frame.image.rows != info_.height) {
+      // The camera model (principal point at the image centre, one focal
+      // length) is the folder's: an image of another size is another camera.
+      frame.error = "image " + f.string() + " is " + std::to_string(frame.image.cols) + "x" +
+                    std::to_string(frame.image.rows) + ", the folder's first is " + std::to_string(info_.width) + "x" +
+                    std::to_string(info_.height) + ": a folder is read as one camera's frames";
+      frame.image.release();
+    }
     ++next_;
     return true;
   }

@@ -13,6 +13,12 @@
 
 namespace facecap {
 
+std::string unreadable_frames_note(const CaptureSummary& summary, const std::string& what) {
+  if (summary.unreadable == 0) return "";
+  return std::to_string(summary.unreadable) + " frame(s) of " + what +
+         " could not be read and are lost (the first: " + summary.first_error + ")";
+}
+
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink) {
   const auto start = std::chrono::steady_clock::now();
   CaptureSummary summary;
@@ -30,6 +36,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     TrackStatus status;
     int faces_seen;
     cv::Mat image;
+    std::string error;
   };
   std::map<int, Waiting> waiting;  // frames whose fit is not final yet
   auto deliver = [&](const std::vector<CoarseFit>& fits) {
@@ -42,10 +49,12 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.status = fit.valid ? it->second.status : TrackStatus::kLost;
       out.faces_seen = it->second.faces_seen;
       out.image = it->second.image;
+      out.error = it->second.error;
       out.identity = tracker.identity();
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;
+      if (!out.error.empty() && summary.unreadable++ == 0) summary.first_error = out.error;
       ++summary.frames;
       sink(out);
     }
@@ -98,7 +107,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
 
     std::optional<Landmarks> landmarks;
     if (face.status != TrackStatus::kLost) landmarks = face.landmarks;
-    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat()};
+    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat(), frame.error};
     IrisSearch iris_search;
     if (landmarks && options.gaze) {
       // Timed where the tracker calls it (maybe later, after the identity solve).

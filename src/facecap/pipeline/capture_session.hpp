@@ -3,6 +3,7 @@
 // tracking), coarse fit. Frames reach the sink in order, each with its status;
 // the first ones arrive together once the identity and focal length are solved.
 #include <functional>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -34,6 +35,7 @@ struct CapturedFrame {
   CoarseFit fit;                            // with the irises and gaze when CaptureOptions::gaze
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
   cv::Mat image;              // when CaptureOptions::keep_images
+  std::string error;          // why the frame could not be read (it is then lost); "" otherwise
 };
 
 // Milliseconds spent per stage, summed over frames.
@@ -55,12 +57,18 @@ struct CaptureSummary {
   int frames = 0;
   int lost = 0;
   int redetected = 0;
+  int unreadable = 0;       // frames the input could not give (each also lost)
+  std::string first_error;  // the first of those frames' reasons
   IdentityEstimate identity;
   StageTimings timings;
   InputInfo input;
 };
 
 using FrameSink = std::function<void(const CapturedFrame&)>;
+
+// One line for the user where some frames could not be read ("N frame(s) of
+// WHAT could not be read, ..."), "" where every frame could.
+std::string unreadable_frames_note(const CaptureSummary& summary, const std::string& what);
 
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink);
 

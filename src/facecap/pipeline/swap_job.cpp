@@ -47,6 +47,9 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   });
   const std::string what = still ? "the source photo " : "the source ";
   if (r.faces_found == 0) throw Error("no face found in " + what + source);
+  if (const std::string note = unreadable_frames_note(summary, "the source " + source); !note.empty() && !quiet) {
+    std::fprintf(stderr, "facecap: %s\n", note.c_str());
+  }
   if (r.faces_found > 1 && !quiet) {
     std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, source.c_str());
   }

@@ -102,6 +102,7 @@ class FrameWriter {
     std::ofstream& o = csv_.stream();
     o << f.index << ',' << number(f.time) << ',' << to_string(f.status);
     nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}};
+    if (!f.error.empty()) row["error"] = f.error;
     if (ok) {
       const Vec3d ypr = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
       for (int k = 0; k < 3; ++k) o << ',' << number(f.fit.pose.rotation[k]);
