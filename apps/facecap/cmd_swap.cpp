@@ -62,6 +62,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                  s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
                  t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n, t.ratio_ms / n, t.warp_ms / n, t.blend_ms / n,
                  a->output.c_str(), a->output.c_str());
+    if (const std::string note = unreadable_frames_note(s.target, a->target); !note.empty())
+      std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
     if (!a->options.gltf.empty())
       std::fprintf(stderr, "wrote %s and %s.json\n", a->options.gltf.c_str(), a->options.gltf.c_str());
   });

@@ -60,6 +60,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                  "%.2f ms\nwrote %s and %s.json (synthetic-media marks)\n",
                  s.capture.frames, s.capture.lost, s.timings.mapping_ms / n, s.timings.lighting_ms / n,
                  s.timings.render_ms / n, a->output.c_str(), a->output.c_str());
+    if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty())
+      std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
     if (!a->gltf.empty()) std::fprintf(stderr, "wrote %s and %s.json\n", a->gltf.c_str(), a->gltf.c_str());
   });
 }

@@ -107,7 +107,14 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
 
     std::optional<Landmarks> landmarks;
     if (face.status != TrackStatus::kLost) landmarks = face.landmarks;
-    waiting[frame.index] = {face.status, face.faces_seen, options.keep_images ? frame.image : cv::Mat(), frame.error};
+    // A frame the input could not give is kept as a black one of the input's
+    // size, so that output videos keep every frame in its place.
+    cv::Mat kept;
+    if (options.keep_images) {
+      kept = frame.image.empty() ? cv::Mat(summary.input.height, summary.input.width, CV_8UC3, cv::Scalar::all(0))
+                                 : frame.image;
+    }
+    waiting[frame.index] = {face.status, face.faces_seen, kept, frame.error};
     IrisSearch iris_search;
     if (landmarks && options.gaze) {
       // Timed where the tracker calls it (maybe later, after the identity solve).

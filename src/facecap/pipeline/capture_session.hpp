@@ -34,7 +34,7 @@ struct CapturedFrame {
   int faces_seen = 0;                       // faces the detector found in this frame (0 when it did not run)
   CoarseFit fit;                            // with the irises and gaze when CaptureOptions::gaze
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
-  cv::Mat image;              // when CaptureOptions::keep_images
+  cv::Mat image;              // when CaptureOptions::keep_images (black where the input could not give the frame)
   std::string error;          // why the frame could not be read (it is then lost); "" otherwise
 };
 
