@@ -52,6 +52,38 @@ TEST(VideoWriter, WritesH264WithTheInputsAudioAndMetadata) {
   EXPECT_NE(bytes.find("facecap_edit"), std::string::npos);
 }
 
+// The extension picks the container; each carries the marks. Other names
+// are refused before anything is written, naming the choices.
+TEST(VideoWriter, WritesTheContainerItsNameAsksForWithTheMarks) {
+  TempDir dir;
+  SyntheticMark mark{"face-swap", "test", {"a.jpg"}, {}};
+  VideoWriterOptions o;
+  o.width = 64;
+  o.height = 48;
+  o.metadata = synthetic_metadata(mark);
+  for (const char* name : {"out.mp4", "out.M4V", "out.mov", "out.mkv"}) {
+    const fs::path out = dir.path() / name;
+    {
+      VideoWriter w(out, o);
+      for (int i = 0; i < 3; ++i) w.write(gradient_frame(i, 64, 48));
+      w.finish();
+    }
+    write_synthetic_sidecar(out, mark);
+    EXPECT_EQ(probe_video_file(out).frames, 3) << name;
+    EXPECT_TRUE(carries_synthetic_marks(out)) << name;
+  }
+  EXPECT_EQ(video_container(dir.path() / "out.mkv"), "matroska");
+  for (const char* name : {"out.avi", "out.webm", "out"}) {
+    try {
+      VideoWriter w(dir.path() / name, o);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(".mp4, .m4v, .mov or .mkv"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir.path() / name)) << name;
+  }
+}
+
 TEST(VideoWriter, OddSizesArePaddedForYuv420) {
   TempDir dir;
   VideoWriterOptions o;

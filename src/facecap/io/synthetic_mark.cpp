@@ -1,5 +1,7 @@
 #include "facecap/io/synthetic_mark.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <ctime>
 #include <nlohmann/json.hpp>
@@ -38,9 +40,14 @@ void write_synthetic_sidecar(const std::filesystem::path& media_path, const Synt
 }
 
 bool carries_synthetic_marks(const std::filesystem::path& media_path) {
+  // Matroska's tag names are upper case (SYNTHETIC), mp4's as written.
   const auto tags = read_container_tags(media_path);
-  const auto it = tags.find("synthetic");
-  return it != tags.end() && it->second == "true" && std::filesystem::exists(sidecar_path(media_path));
+  const bool tagged = std::any_of(tags.begin(), tags.end(), [](const auto& tag) {
+    std::string key = tag.first;
+    std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return key == "synthetic" && tag.second == "true";
+  });
+  return tagged && std::filesystem::exists(sidecar_path(media_path));
 }
 
 }  // namespace facecap

@@ -6,6 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
@@ -20,8 +22,18 @@ namespace facecap {
 
 namespace fs = std::filesystem;
 
+std::string video_container(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".mp4" || ext == ".m4v") return "mp4";
+  if (ext == ".mov") return "mov";
+  if (ext == ".mkv") return "matroska";
+  throw Error("cannot write a video to " + path.string() + ": its name must end in .mp4, .m4v, .mov or .mkv");
+}
+
 VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
     : path_(path), options_(std::move(options)), file_(path) {
+  const std::string container = video_container(path);
   if (options_.width <= 0 || options_.height <= 0) throw Error("video writer: frame size not set");
   // yuv420p needs even sizes; odd inputs are padded by one pixel.
   options_.width += options_.width % 2;
@@ -53,9 +65,10 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
                              "-b:a", "160k"});
   }
   args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.preset, "-crf", std::to_string(options_.crf),
-                           "-pix_fmt", "yuv420p", "-movflags", "+faststart+use_metadata_tags"});
+                           "-pix_fmt", "yuv420p"});
+  if (container != "matroska") args.insert(args.end(), {"-movflags", "+faststart+use_metadata_tags"});
   for (const auto& [key, value] : options_.metadata) args.insert(args.end(), {"-metadata", key + "=" + value});
-  args.insert(args.end(), {"-f", "mp4", file_.temp_path().string()});
+  args.insert(args.end(), {"-f", container, file_.temp_path().string()});
 
   int fds[2];
   if (::pipe(fds) != 0) throw Error("cannot start ffmpeg: pipe failed");

@@ -1,5 +1,5 @@
 #pragma once
-// H.264 mp4 output through the ffmpeg program: raw BGR frames go down a pipe,
+// H.264 output (mp4, mov or mkv, by the path's extension) through the ffmpeg program: raw BGR frames go down a pipe,
 // the input's audio track (when it has one) is muxed in, and the file is
 // written under a temporary name that finish() renames to the final one. A
 // writer destroyed without finish() (an error, an interruption) removes its
@@ -17,6 +17,13 @@
 
 namespace facecap {
 
+// The container a video path asks for, as ffmpeg names it: .mp4 and .m4v
+// "mp4", .mov "mov", .mkv "matroska" (case-insensitive); all hold H.264, AAC
+// and the tags of VideoWriterOptions::metadata. Throws facecap::Error naming
+// the choices for any other name (.avi, .webm, none), rather than writing an
+// mp4 under a name that says otherwise.
+std::string video_container(const std::filesystem::path& path);
+
 struct VideoWriterOptions {
   int width = 0;
   int height = 0;
@@ -27,7 +34,7 @@ struct VideoWriterOptions {
   // seconds to take (0: all), for runs that stop early.
   double audio_start = 0;
   double audio_seconds = 0;
-  // Container metadata (mp4 tags), e.g. {"comment", "..."}.
+  // Container metadata (mp4/mov/Matroska tags), e.g. {"comment", "..."}.
   std::map<std::string, std::string> metadata;
   int crf = 18;                     // x264 quality: lower is better, 18 is visually lossless
   std::string preset = "veryfast";  // x264 speed/size trade-off

@@ -102,6 +102,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      const fs::path& output, const SwapJobOptions& options) {
   // Unwritable outputs fail before the work (the source's fit included).
   ensure_writable_file(fs::absolute(output));
+  video_container(output);
   if (!options.gltf.empty()) ensure_writable_file(fs::absolute(options.gltf));
   auto input = open_input(target, options.capture.start_seconds);  // a bad target fails before the source's fit
   SwapSummary summary;
