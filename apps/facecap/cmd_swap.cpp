@@ -25,7 +25,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                   "Frames of a source video or folder the identity is solved from (the appearance is its first)")
       ->capture_default_str();
   cmd->add_option("--target", a->target, "Video (or image folder, or cam:N) whose face is replaced")->required();
-  cmd->add_option("-o,--output", a->output, "Output video (.mp4); OUT.mp4.json is its synthetic-media sidecar")
+  cmd->add_option("-o,--output", a->output,
+                  "Output video (.mp4, .m4v, .mov or .mkv); OUT.mp4.json is its synthetic-media sidecar")
       ->required();
   cmd->add_option("--gltf", a->options.gltf,
                   "Also write the swapped performance as an animated glTF (.glb, as track --gltf): the source's face "

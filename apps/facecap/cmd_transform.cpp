@@ -18,7 +18,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
-  cmd->add_option("-o,--output", a->output, "Output video (.mp4)")->required();
+  cmd->add_option("-o,--output", a->output,
+                  "Output video (.mp4, .m4v, .mov or .mkv; OUT.mp4.json is its synthetic-media sidecar)")
+      ->required();
   cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
   cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();
   cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")->capture_default_str();
