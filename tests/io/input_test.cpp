@@ -3,9 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <vector>
 #include <opencv2/imgcodecs.hpp>
+#include <vector>
 
+#include "app/command.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "test_support.hpp"
@@ -96,6 +97,30 @@ TEST(Input, AFoldersImagesOfAnotherSizeOrCorruptAreFramesWithAReason) {
   EXPECT_NE(frames[2].error.find("cannot decode image"), std::string::npos) << frames[2].error;
   EXPECT_FALSE(frames[3].image.empty());
   EXPECT_TRUE(frames[3].error.empty());
+}
+
+// A variable-rate video (frames 10-29 of the webcam clip cut out, the rest
+// keeping their timestamps, as a phone's recording keeps its own): each
+// frame's time is its timestamp, not its index over the mean rate (frame 10
+// would read 0.55 s, 0.65 s before it is shown).
+TEST(Input, AVariableRateVideosFramesKeepTheirTimestamps) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const fs::path vfr = dir.path() / "vfr.mp4";
+  const test::CommandResult made = test::run_command(
+      "ffmpeg -hide_banner -loglevel error -y -i " + webcam.string() +
+      " -t 3 -an -vf \"select='not(between(n,10,29))'\" -fps_mode vfr -c:v libx264 -preset ultrafast " + vfr.string() +
+      " 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  auto source = open_input(vfr.string());
+  EXPECT_NEAR(source->info().fps, 55.0 / 3.0, 0.01);  // the mean rate: 55 frames in 3 s
+  std::vector<Frame> frames;
+  for (Frame f; source->read(f);) frames.push_back(f);
+  ASSERT_EQ(frames.size(), 55u);
+  for (const auto& [index, seconds] : std::vector<std::pair<int, double>>{{0, 0.0}, {9, 0.36}, {10, 1.2}, {54, 2.96}}) {
+    EXPECT_EQ(frames[size_t(index)].index, index);
+    EXPECT_NEAR(frames[size_t(index)].time, seconds, 1e-3) << "frame " << index;
+  }
 }
 
 TEST(Input, BadInputsGetOneClearMessage) {

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <vector>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
@@ -82,6 +84,32 @@ TEST(VideoWriter, WritesTheContainerItsNameAsksForWithTheMarks) {
     }
     EXPECT_FALSE(fs::exists(dir.path() / name)) << name;
   }
+}
+
+// Frames written at their times on a constant-rate output (25 fps): five in
+// their slots, a gap (the fifth frame holds slots 5-9), a frame whose slot
+// is taken (dropped), and one more.
+TEST(VideoWriter, TimedFramesTakeTheSlotsOfTheirTimes) {
+  TempDir dir;
+  VideoWriterOptions o;
+  o.width = 64;
+  o.height = 48;
+  o.fps = 25;
+  o.crf = 0;
+  const fs::path out = dir.path() / "timed.mp4";
+  const std::vector<std::pair<double, int>> written{{10.00, 0},  {10.04, 20},  {10.08, 40},  {10.12, 60},
+                                                    {10.16, 80}, {10.40, 100}, {10.41, 120}, {10.44, 140}};
+  {
+    VideoWriter w(out, o);
+    for (const auto& [time, grey] : written) w.write(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(grey)), time);
+    w.finish();
+  }
+  // Which written frame each output frame shows (the greys are 20 apart; the
+  // encoder's colour conversion moves them by a few levels).
+  auto video = open_input(out.string());
+  std::vector<int> shown;
+  for (Frame f; video->read(f);) shown.push_back(int(std::lround(cv::mean(f.image)[0] / 20.0)));
+  EXPECT_EQ(shown, (std::vector<int>{0, 1, 2, 3, 4, 4, 4, 4, 4, 4, 5, 7}));
 }
 
 TEST(VideoWriter, OddSizesArePaddedForYuv420) {

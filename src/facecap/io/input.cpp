@@ -137,6 +137,7 @@ class VideoSource final : public FrameSource {
     if (!capture_.read(first_) || first_.empty()) {
       throw Error("cannot decode " + info_.spec + ": no frame could be decoded (corrupt or unsupported video)");
     }
+    first_time_ = frame_time(0);
     info_.width = first_.cols;
     info_.height = first_.rows;
     if (info_.fps <= 0) info_.fps = capture_.get(cv::CAP_PROP_FPS);
@@ -163,25 +164,46 @@ class VideoSource final : public FrameSource {
     if (target > 0 && (!capture_.read(first_) || first_.empty())) throw Error(past_end);
     index_ = target;
     info_.first_frame = target;
+    first_time_ = info_.first_time = frame_time(target);
   }
 
   bool read(Frame& frame) override {
     cv::Mat image;
+    double time = 0;
     if (!first_.empty()) {
       image = first_;
       first_.release();
+      time = first_time_;
     } else if (!capture_.read(image) || image.empty()) {
       return false;
+    } else {
+      time = frame_time(index_);
     }
-    frame = Frame{image, index_, index_ / info_.fps, {}};
+    frame = Frame{image, index_, time, {}};
+    previous_time_ = time;
     ++index_;
     return true;
   }
 
  private:
+  // The time of the frame just decoded, index `index`: a file's timestamp
+  // (OpenCV's FFmpeg backend gives the frame's pts from the stream's start),
+  // unless it is missing or does not move forward (broken timestamps), where
+  // the frame is taken to follow the last by 1 / fps; a camera's index / fps.
+  double frame_time(int index) const {
+    const double nominal = index / info_.fps;
+    if (info_.kind != InputKind::kVideo) return nominal;
+    const double pts = capture_.get(cv::CAP_PROP_POS_MSEC) / 1000.0;
+    const bool first = index == info_.first_frame && previous_time_ < 0;
+    if (std::isfinite(pts) && pts >= 0 && (first || pts > previous_time_)) return pts;
+    return first ? nominal : previous_time_ + 1.0 / info_.fps;
+  }
+
   cv::VideoCapture capture_;
   InputInfo info_;
   cv::Mat first_;
+  double first_time_ = 0;
+  double previous_time_ = -1;  // the last frame read's time (-1: none yet)
   int index_ = 0;
 };
 

@@ -26,6 +26,7 @@ struct InputInfo {
   double audio_duration = 0;  // seconds of the first audio stream, 0 when unknown or none
   double duration = 0;        // seconds, 0 when unknown
   int first_frame = 0;        // the frame reading starts at (open_input's start_seconds)
+  double first_time = 0;      // ...and its time, seconds (a video's timestamp: see Frame::time)
 };
 
 // Whether the frames' times mean anything: a video's and a camera's do; a
@@ -35,12 +36,16 @@ inline bool has_timeline(const InputInfo& info) {
 }
 
 // The time of the first frame reading starts at (InputInfo::first_frame).
-inline double start_time(const InputInfo& info) { return info.fps > 0 ? info.first_frame / info.fps : 0.0; }
+inline double start_time(const InputInfo& info) { return info.first_time; }
 
 struct Frame {
   cv::Mat image;  // BGR, 8 bit; empty when this frame could not be decoded
   int index = 0;
-  double time = 0.0;  // seconds from the start
+  // Seconds from the start: a video file's own timestamp for the frame, so
+  // that a variable-rate video (a phone's) keeps its timing (index / fps
+  // would drift from it, and edits from their sound); index / fps for a
+  // camera; 0 for stills and folders.
+  double time = 0.0;
   std::string error;  // why `image` is empty, for per-frame status
 };
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -111,23 +112,44 @@ std::string VideoWriter::encoder_log() const {
   return last;
 }
 
-void VideoWriter::write(const cv::Mat& bgr_in) {
-  if (pipe_fd_ < 0) throw Error("video writer for " + path_.string() + " is closed");
-  cv::Mat bgr = bgr_in;
+namespace {
+
+// A frame of the writer's size: odd sizes padded by one replicated
+// row/column for yuv420p, other sizes resized.
+cv::Mat fitted_to(const cv::Mat& bgr, int width, int height) {
   if (bgr.type() != CV_8UC3) throw Error("video writer: frames must be 8-bit BGR");
-  const int pad_x = options_.width - bgr.cols;
-  const int pad_y = options_.height - bgr.rows;
-  if (pad_x != 0 || pad_y != 0) {
-    cv::Mat fitted;
-    if (pad_x >= 0 && pad_x <= 1 && pad_y >= 0 && pad_y <= 1) {
-      // Odd input sizes: one replicated row/column for yuv420p.
-      cv::copyMakeBorder(bgr, fitted, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
-    } else {
-      cv::resize(bgr, fitted, cv::Size(options_.width, options_.height), 0, 0, cv::INTER_AREA);
-    }
-    bgr = fitted;
+  const int pad_x = width - bgr.cols;
+  const int pad_y = height - bgr.rows;
+  if (pad_x == 0 && pad_y == 0) return bgr;
+  cv::Mat fitted;
+  if (pad_x >= 0 && pad_x <= 1 && pad_y >= 0 && pad_y <= 1) {
+    cv::copyMakeBorder(bgr, fitted, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
+  } else {
+    cv::resize(bgr, fitted, cv::Size(width, height), 0, 0, cv::INTER_AREA);
   }
-  if (!bgr.isContinuous()) bgr = bgr.clone();
+  return fitted;
+}
+
+}  // namespace
+
+void VideoWriter::write(const cv::Mat& bgr) {
+  if (pipe_fd_ < 0) throw Error("video writer for " + path_.string() + " is closed");
+  send(fitted_to(bgr, options_.width, options_.height));
+}
+
+void VideoWriter::write(const cv::Mat& bgr, double time) {
+  if (pipe_fd_ < 0) throw Error("video writer for " + path_.string() + " is closed");
+  const cv::Mat fitted = fitted_to(bgr, options_.width, options_.height);
+  if (last_.empty()) first_time_ = time;
+  const long long slot = std::llround((time - first_time_) * options_.fps);
+  if (!last_.empty() && slot < frames_) return;  // its slot is taken
+  while (!last_.empty() && frames_ < slot) send(last_);
+  send(fitted);
+  fitted.copyTo(last_);
+}
+
+void VideoWriter::send(const cv::Mat& fitted) {
+  const cv::Mat bgr = fitted.isContinuous() ? fitted : fitted.clone();
   const char* data = reinterpret_cast<const char*>(bgr.data);
   size_t left = bgr.total() * bgr.elemSize();
   while (left > 0) {
@@ -177,11 +199,19 @@ void VideoWriter::finish() {
   finished_ = true;
 }
 
+namespace {
+constexpr double kStillsFps = 25.0;  // a folder's frames, one after another
+}  // namespace
+
+double output_time(const InputInfo& input, int index, double time) {
+  return has_timeline(input) ? time : index / (input.fps > 0 ? input.fps : kStillsFps);
+}
+
 VideoWriterOptions output_like(const InputInfo& input, int max_frames) {
   VideoWriterOptions o;
   o.width = input.width;
   o.height = input.height;
-  o.fps = input.fps > 0 ? input.fps : 25.0;
+  o.fps = input.fps > 0 ? input.fps : kStillsFps;
   if (input.audio) {
     o.audio_source = std::filesystem::path(input.spec);
     o.audio_start = start_time(input);

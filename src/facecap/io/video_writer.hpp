@@ -51,12 +51,20 @@ class VideoWriter {
 
   // Appends one BGR frame of the declared size (other sizes are resized).
   void write(const cv::Mat& bgr);
+  // The same for a frame shown at `time` (seconds; Frame::time) on the input's
+  // timeline. The output has a constant rate (options.fps), and each frame
+  // takes the slot nearest its time, counted from the first frame's: where a
+  // variable-rate input leaves slots empty, the frame before fills them; a
+  // frame whose slot is taken is dropped. So the picture keeps to the input's
+  // sound. For a constant-rate input, every frame takes the next slot.
+  void write(const cv::Mat& bgr, double time);
   // Closes the stream, waits for ffmpeg and renames the file into place.
   void finish();
   int frames_written() const { return frames_; }
 
  private:
   void stop_encoder(bool kill);
+  void send(const cv::Mat& fitted);  // one frame of the output's size down the pipe
   std::string encoder_log() const;
 
   std::filesystem::path path_;
@@ -67,11 +75,18 @@ class VideoWriter {
   int pid_ = -1;
   int frames_ = 0;
   bool finished_ = false;
+  double first_time_ = 0;  // the first timed frame's time
+  cv::Mat last_;           // the last timed frame sent, for the slots after it (a copy)
 };
 
 // An output of the input's size and rate carrying its audio (if any) from
 // where the input starts (InputInfo::first_frame), cut to max_frames'
 // length when a run stops early (0: all of it).
 VideoWriterOptions output_like(const InputInfo& input, int max_frames = 0);
+
+// Where frame `index` (at `time`, Frame::time) goes on an output_like(input)
+// video, for VideoWriter::write(bgr, time): its time on a video's or a
+// camera's timeline; a still's and a folder's frames one after another.
+double output_time(const InputInfo& input, int index, double time);
 
 }  // namespace facecap

@@ -173,7 +173,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
       if (!options.gltf.empty())
         append_animation_key(keys, has_timeline(info), f.index, f.time, t.pose, t.expression, key_gaze(f.fit.gaze));
     }
-    writer.write(result.image);
+    writer.write(result.image, output_time(info, f.index, f.time));
     if (options.on_frame) options.on_frame(f, result);
   });
   CaptureOptions capture = options.capture;

@@ -291,7 +291,8 @@ class FrameWriter {
       }
     }
     draw_caption(canvas, "frame " + std::to_string(f.index) + "  " + to_string(f.status));
-    overlay_->write(canvas);
+    const double time = output_time(info_, f.index, f.time);
+    overlay_->write(canvas, time);
     if (!shaded_) return;
     cv::Mat shaded = f.image * 0.3;
     cv::Mat heat = f.image * 0.4;
@@ -315,8 +316,8 @@ class FrameWriter {
     }
     draw_caption(shaded, "frame " + std::to_string(f.index) + "  refined geometry");
     draw_caption(heat, "frame " + std::to_string(f.index) + "  photometric error (red = 40 levels)");
-    shaded_->write(shaded);
-    heatmap_->write(heat);
+    shaded_->write(shaded, time);
+    heatmap_->write(heat, time);
   }
 
   const FaceModel& model_;

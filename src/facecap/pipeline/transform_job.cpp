@@ -86,7 +86,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
         composite_layer(out, layer);
         summary.timings.render_ms += ms_since(t0);
       }
-      writer.write(out);
+      writer.write(out, output_time(info, p.frame.index, p.frame.time));
       if (t.valid && !options.gltf.empty())
         append_animation_key(keys, has_timeline(info), t.index, t.time, p.frame.fit.pose, t.weights,
                              key_gaze(p.frame.fit.gaze));
