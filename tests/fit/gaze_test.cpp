@@ -97,18 +97,33 @@ TEST(Gaze, AnIrisWhereATurnedEyeShowsItGivesThatTurnBack) {
   }
 }
 
-TEST(Gaze, AnIrisBesideTheEyeballGivesTheNearestDirectionAndNoIrisNone) {
+// An iris beside the eyeball (a dark gap between the fingers of a hand over
+// the eye), or where only an eye turned beyond what eyes do would show it,
+// gives no gaze; of two eyes that disagree beyond what vergence explains,
+// the farther turned is dropped; no iris gives none.
+TEST(Gaze, AnIrisWhereNoEyeCouldLookGivesNoGaze) {
   FACECAP_REQUIRE_MODEL(model);
   const EyeballGeometry eyes = eyeball_geometry(*model, Eigen::VectorXd());
   const PinholeCamera camera{1000, 320, 240};
   const HeadPose pose = pose_of(0, 0, 0, Vec3d(0, 0, 60));
-  const Vec2d centre = project_iris_centre(eyes, 0, eyes.rest_axis[0], pose, camera);
-  const GazeEstimate g = estimate_gaze(eyes, pose, camera, {Vec2d(centre + Vec2d(-200, 0)), std::nullopt});
-  ASSERT_TRUE(g.eyes[0].has_value());
-  EXPECT_TRUE(g.eyes[0]->ray_missed);
-  EXPECT_NEAR(g.eyes[0]->direction.norm(), 1.0, 1e-9);
-  // Far to the image's left of a frontal face is the subject's right: -x, and sideways.
-  EXPECT_LT(g.eyes[0]->direction.x(), -0.9);
+  auto iris_at = [&](int eye, double yaw, double pitch) {
+    return project_iris_centre(eyes, eye, turned_axis(eyes, eye, yaw, pitch), pose, camera);
+  };
+  const Vec2d ahead = iris_at(0, 0, 0);
+  EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {Vec2d(ahead + Vec2d(-200, 0)), std::nullopt}).valid());
+  EXPECT_TRUE(estimate_gaze(eyes, pose, camera, {iris_at(0, 0, -43), std::nullopt}).valid());
+  EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {iris_at(0, 0, -47), std::nullopt}).valid());
+  EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {iris_at(0, 33, 33), std::nullopt}).valid());  // 46 deg
+  // Turned 20 and 12 degrees from rest, to the subject's right and left
+  // (rest axes 2 degrees outward each): 36 degrees apart, the right eye's the
+  // farther turn.
+  const GazeEstimate apart = estimate_gaze(eyes, pose, camera, {iris_at(0, -20, 0), iris_at(1, 12, 0)});
+  EXPECT_FALSE(apart.eyes[0].has_value());
+  ASSERT_TRUE(apart.eyes[1].has_value());
+  EXPECT_NEAR(gaze_angles_deg(apart.eyes[1]->direction).x(), gaze_angles_deg(turned_axis(eyes, 1, 12, 0)).x(), 1e-6);
+  // 12 and 12: 28 degrees apart, both kept.
+  const GazeEstimate near = estimate_gaze(eyes, pose, camera, {iris_at(0, -12, 0), iris_at(1, 12, 0)});
+  EXPECT_TRUE(near.eyes[0] && near.eyes[1]);
   EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {}).valid());
 }
 

@@ -1,8 +1,17 @@
 #include "facecap/fit/gaze.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace facecap {
+
+namespace {
+
+double angle_deg(const Vec3d& a, const Vec3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
+}
+
+}  // namespace
 
 Vec3d GazeEstimate::direction() const {
   Vec3d sum = Vec3d::Zero();
@@ -35,7 +44,13 @@ GazeEstimate estimate_gaze(const EyeballGeometry& eyes, const HeadPose& pose, co
     g.camera_direction = ((on_sphere - centre) / radius).normalized();
     g.camera_iris = on_sphere;
     g.direction = rf.transpose() * g.camera_direction;
-    if (g.direction.allFinite()) out.eyes[eye] = g;
+    if (g.direction.allFinite() && angle_deg(g.direction, eyes.rest_axis[eye]) <= kMaxEyeTurnDeg) out.eyes[eye] = g;
+  }
+  if (out.eyes[0] && out.eyes[1] &&
+      angle_deg(out.eyes[0]->direction, out.eyes[1]->direction) > kMaxEyeDisagreementDeg) {
+    const bool right_farther =
+        angle_deg(out.eyes[0]->direction, eyes.rest_axis[0]) > angle_deg(out.eyes[1]->direction, eyes.rest_axis[1]);
+    out.eyes[right_farther ? 0 : 1].reset();
   }
   return out;
 }

@@ -34,6 +34,20 @@ struct GazeEstimate {
 
 using IrisCentres = std::array<std::optional<Vec2d>, 2>;
 
+// Beyond what eyes do, so taken for a wrong iris (a dark gap between the
+// fingers of a hand over the eye, a lash line) or a wrong head pose:
+// - an eye turned more than this from its rest axis (people turn their heads
+//   long before their eyes reach 45 degrees; on the clips of ../shared/data,
+//   2 of 4,640 eyes beyond it where the face is clear, 39 of 584 on
+//   `emotions_pexels`, whose hands cover her eyes);
+inline constexpr double kMaxEyeTurnDeg = 45.0;
+// - the farther turned of two eyes that disagree by more than this (the
+//   eyes' lines of sight converge by a few degrees on a near point; on the
+//   clear clips the two eyes' directions differ by at most 28 degrees, by a
+//   median of 2.5-16).
+inline constexpr double kMaxEyeDisagreementDeg = 30.0;
+
+// The gaze of each eye with an iris, less the implausible ones (above).
 GazeEstimate estimate_gaze(const EyeballGeometry& eyes, const HeadPose& pose, const PinholeCamera& camera,
                            const IrisCentres& iris);
 
