@@ -53,15 +53,17 @@ nlohmann::json run_demo(const FaceModel& model, const DemoOptions& options) {
   const CaptureSummary& cs = summary.capture;
 
   nlohmann::json report;
-  report["input"] = {{"video", synth.video.string()},
+  // The paths only where they outlive the run (--keep).
+  const bool kept = !options.keep_dir.empty();
+  report["input"] = {{"video", kept ? synth.video.string() : "(deleted; --keep DIR keeps it)"},
                      {"frames", options.frames},
                      {"size", "1280x720"},
                      {"seed", options.seed},
-                     {"kept_in", options.keep_dir.empty() ? "" : dir.string()}};
+                     {"kept_in", kept ? dir.string() : ""}};
   report["capture"] = {{"frames", cs.frames},
                        {"lost_frames", lost},
                        {"fps_after_setup", cs.timings.fps()},
-                       {"outputs", track_dir.string()}};
+                       {"outputs", kept ? track_dir.string() : "(deleted; --keep DIR keeps them)"}};
   report["recovered_vs_truth"] = {
       {"focal_px", cs.identity.focal},
       {"focal_true_px", truth.camera.focal},
