@@ -121,6 +121,18 @@ TEST(Input, AVariableRateVideosFramesKeepTheirTimestamps) {
     EXPECT_EQ(frames[size_t(index)].index, index);
     EXPECT_NEAR(frames[size_t(index)].time, seconds, 1e-3) << "frame " << index;
   }
+  // Starting part-way gives the first frame at or after the time, wherever
+  // the mean rate guesses it (for 1.0 s frame 19, at 1.56 s; for 0.37 s
+  // frame 7, at 0.28 s).
+  for (const auto& [start, first] : std::vector<std::pair<double, int>>{{0.2, 5}, {0.37, 10}, {1.0, 10}, {1.3, 13}}) {
+    auto part = open_input(vfr.string(), start);
+    Frame f;
+    ASSERT_TRUE(part->read(f)) << start;
+    EXPECT_EQ(f.index, first) << start;
+    EXPECT_NEAR(f.time, frames[size_t(first)].time, 1e-9) << start;
+    EXPECT_NEAR(start_time(part->info()), f.time, 1e-9) << start;
+    EXPECT_EQ(cv::norm(f.image, frames[size_t(first)].image, cv::NORM_INF), 0.0) << start;
+  }
 }
 
 TEST(Input, BadInputsGetOneClearMessage) {

@@ -137,7 +137,7 @@ class VideoSource final : public FrameSource {
     if (!capture_.read(first_) || first_.empty()) {
       throw Error("cannot decode " + info_.spec + ": no frame could be decoded (corrupt or unsupported video)");
     }
-    first_time_ = frame_time(0);
+    first_time_ = frame_time(0, true);
     info_.width = first_.cols;
     info_.height = first_.rows;
     if (info_.fps <= 0) info_.fps = capture_.get(cv::CAP_PROP_FPS);
@@ -150,7 +150,8 @@ class VideoSource final : public FrameSource {
     if (info_.kind != InputKind::kVideo) FrameSource::seek(seconds);
     if (!std::isfinite(seconds) || seconds < 0) throw Error("a start time must be 0 or more seconds");
     if (index_ != 0 || first_.empty()) throw Error("cannot seek " + info_.spec + " after reading from it");
-    // The first frame whose time (index / fps) is at or after `seconds`.
+    // The first frame whose time is at or after `seconds`: index / fps where
+    // the rate is constant, found from there by the timestamps where not.
     const int target = int(std::ceil(seconds * info_.fps - 1e-6));
     const std::string past_end =
         "cannot start " + info_.spec + " at " + seconds_text(seconds) + ": " +
@@ -162,9 +163,32 @@ class VideoSource final : public FrameSource {
     first_.release();
     if (target > 1) capture_.set(cv::CAP_PROP_POS_FRAMES, target);
     if (target > 0 && (!capture_.read(first_) || first_.empty())) throw Error(past_end);
-    index_ = target;
-    info_.first_frame = target;
-    first_time_ = info_.first_time = frame_time(target);
+    int index = target;
+    double time = frame_time(index, true);
+    const double tolerance = 1e-6;
+    if (time > seconds + 0.5 / info_.fps && index > 0) {
+      // A variable-rate video: the mean rate's guess is late (frames came
+      // faster before it). Its timestamps grow with the index, so the first
+      // frame at or after `seconds` lies in (0, index]: halve that.
+      int earlier = 0;
+      while (index - earlier > 1) {
+        const int middle = (earlier + index) / 2;
+        capture_.set(cv::CAP_PROP_POS_FRAMES, middle);
+        if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
+        (frame_time(middle, true) >= seconds - tolerance ? index : earlier) = middle;
+      }
+      capture_.set(cv::CAP_PROP_POS_FRAMES, index);
+      if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
+      time = frame_time(index, true);
+    }
+    // Early (frames came slower before it): decode on to the first at or after.
+    while (time < seconds - tolerance) {
+      if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
+      time = frame_time(++index, true);
+    }
+    index_ = index;
+    info_.first_frame = index;
+    first_time_ = info_.first_time = time;
   }
 
   bool read(Frame& frame) override {
@@ -177,7 +201,7 @@ class VideoSource final : public FrameSource {
     } else if (!capture_.read(image) || image.empty()) {
       return false;
     } else {
-      time = frame_time(index_);
+      time = frame_time(index_, false);
     }
     frame = Frame{image, index_, time, {}};
     previous_time_ = time;
@@ -188,13 +212,13 @@ class VideoSource final : public FrameSource {
  private:
   // The time of the frame just decoded, index `index`: a file's timestamp
   // (OpenCV's FFmpeg backend gives the frame's pts from the stream's start),
-  // unless it is missing or does not move forward (broken timestamps), where
-  // the frame is taken to follow the last by 1 / fps; a camera's index / fps.
-  double frame_time(int index) const {
+  // unless it is missing or, after the first frame read, does not move
+  // forward (broken timestamps), where the frame is taken to follow the last
+  // by 1 / fps; a camera's index / fps.
+  double frame_time(int index, bool first) const {
     const double nominal = index / info_.fps;
     if (info_.kind != InputKind::kVideo) return nominal;
     const double pts = capture_.get(cv::CAP_PROP_POS_MSEC) / 1000.0;
-    const bool first = index == info_.first_frame && previous_time_ < 0;
     if (std::isfinite(pts) && pts >= 0 && (first || pts > previous_time_)) return pts;
     return first ? nominal : previous_time_ + 1.0 / info_.fps;
   }
