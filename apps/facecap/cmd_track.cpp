@@ -60,6 +60,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                  s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
                  t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
                  s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
+    if (s.capture.most_faces > 1) {
+      std::fprintf(stderr, "facecap: up to %d faces in view; the largest is tracked (one face per run)\n",
+                   s.capture.most_faces);
+    }
     if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty()) {
       std::fprintf(stderr, "facecap: %s\n", note.c_str());
     }

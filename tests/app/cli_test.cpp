@@ -337,6 +337,33 @@ TEST(Cli, TrackSaysWhichFramesOfAFolderCouldNotBeRead) {
   EXPECT_TRUE(std::filesystem::exists(edited));
 }
 
+// Two faces side by side (Obama's portrait, 72 px between the eye corners,
+// and Biden's, 115 px): the larger is tracked, and the summary says there
+// were two.
+TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+  cv::Mat left = cv::imread(obama.string()), right = cv::imread(biden.string());
+  ASSERT_FALSE(left.empty() || right.empty());
+  cv::resize(right(cv::Rect(0, 0, right.cols, 800)), right, cv::Size(), 0.7, 0.7, cv::INTER_AREA);
+  cv::resize(left, left, cv::Size(left.cols * right.rows / left.rows, right.rows), 0, 0, cv::INTER_AREA);
+  cv::Mat both;
+  cv::hconcat(left, right, both);
+  TempDir dir;
+  const auto image = dir.path() / "two.png";
+  ASSERT_TRUE(cv::imwrite(image.string(), both));
+  const RunResult r = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                        (dir.path() / "out").string() + " 2>&1 >/dev/null");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("up to 2 faces in view; the largest is tracked"), std::string::npos) << r.out;
+  std::ifstream jsonl(dir.path() / "out" / "frames.jsonl");
+  std::string line;
+  ASSERT_TRUE(std::getline(jsonl, line));
+  const nlohmann::json row = nlohmann::json::parse(line);
+  EXPECT_GT(row["landmarks"][30][0].get<double>(), left.cols) << "the nose tip of the face on the right";
+}
+
 // The README's main job, end to end on a short performance: it prints its
 // report as JSON, loses no frame, recovers the head's turn to a few degrees
 // (dlib's landmarks on the renders: 3.1 deg median on 60 frames), and keeps

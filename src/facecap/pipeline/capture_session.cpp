@@ -1,5 +1,6 @@
 #include "facecap/pipeline/capture_session.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <opencv2/imgproc.hpp>
@@ -54,6 +55,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;
+      summary.most_faces = std::max(summary.most_faces, out.faces_seen);
       if (!out.error.empty() && summary.unreadable++ == 0) summary.first_error = out.error;
       ++summary.frames;
       sink(out);
