@@ -160,9 +160,11 @@ class VideoSource final : public FrameSource {
     // OpenCV's FFmpeg backend seeks to the keyframe before and decodes on to
     // the frame: the same pixels as a read from the start, on every clip of
     // ../shared/data at every 9th of its first 160 frames (and on a corrupted and a rotated one).
-    first_.release();
-    if (target > 1) capture_.set(cv::CAP_PROP_POS_FRAMES, target);
-    if (target > 0 && (!capture_.read(first_) || first_.empty())) throw Error(past_end);
+    if (target > 0) {  // else the frame decoded on opening is the one
+      first_.release();
+      if (target > 1) capture_.set(cv::CAP_PROP_POS_FRAMES, target);
+      if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
+    }
     int index = target;
     double time = frame_time(index, true);
     const double tolerance = 1e-6;
