@@ -160,13 +160,23 @@ class VideoSource final : public FrameSource {
     // OpenCV's FFmpeg backend seeks to the keyframe before and decodes on to
     // the frame: the same pixels as a read from the start, on every clip of
     // ../shared/data at every 9th of its first 160 frames (and on a corrupted and a rotated one).
-    if (target > 0) {  // else the frame decoded on opening is the one
-      first_.release();
-      if (target > 1) capture_.set(cv::CAP_PROP_POS_FRAMES, target);
+    // Decodes the next frame, or frame `at`, into first_; its time.
+    const auto decode_next = [&](int index) {
       if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
-    }
+      return frame_time(index, true);
+    };
+    const auto decode_at = [&](int at) {
+      capture_.set(cv::CAP_PROP_POS_FRAMES, at);
+      return decode_next(at);
+    };
     int index = target;
-    double time = frame_time(index, true);
+    double time = 0;
+    if (target == 0) {
+      time = frame_time(0, true);  // the frame decoded on opening is the one
+    } else {
+      first_.release();
+      time = target > 1 ? decode_at(target) : decode_next(target);
+    }
     const double tolerance = 1e-6;
     if (time > seconds + 0.5 / info_.fps && index > 0) {
       // A variable-rate video: the mean rate's guess is late (frames came
@@ -175,19 +185,12 @@ class VideoSource final : public FrameSource {
       int earlier = 0;
       while (index - earlier > 1) {
         const int middle = (earlier + index) / 2;
-        capture_.set(cv::CAP_PROP_POS_FRAMES, middle);
-        if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
-        (frame_time(middle, true) >= seconds - tolerance ? index : earlier) = middle;
+        (decode_at(middle) >= seconds - tolerance ? index : earlier) = middle;
       }
-      capture_.set(cv::CAP_PROP_POS_FRAMES, index);
-      if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
-      time = frame_time(index, true);
+      time = decode_at(index);
     }
     // Early (frames came slower before it): decode on to the first at or after.
-    while (time < seconds - tolerance) {
-      if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
-      time = frame_time(++index, true);
-    }
+    while (time < seconds - tolerance) time = decode_next(++index);
     index_ = index;
     info_.first_frame = index;
     first_time_ = info_.first_time = time;
