@@ -112,6 +112,31 @@ TEST(VideoWriter, TimedFramesTakeTheSlotsOfTheirTimes) {
   EXPECT_EQ(shown, (std::vector<int>{0, 1, 2, 3, 4, 4, 4, 4, 4, 4, 5, 7}));
 }
 
+// A run stopped early (output_like's max_frames) ends the audio with the
+// last frame written, wherever its time puts it: here 30 frames a slot apart
+// on the input's timeline, as a variable-rate input gives them, make 59
+// frames of video, twice what 30 frames over the rate would say.
+TEST(VideoWriter, ARunStoppedEarlyEndsItsAudioWithItsLastFrame) {
+  FACECAP_REQUIRE_DATA(source, "address_720p_a.mp4");
+  TempDir dir;
+  const fs::path out = dir.path() / "cut.mp4";
+  const InputInfo input = probe_video_file(source);
+  const VideoWriterOptions o = output_like(input, 30);
+  {
+    VideoWriter w(out, o);
+    for (int i = 0; i < 30; ++i) w.write(cv::Mat(o.height, o.width, CV_8UC3, cv::Scalar::all(i * 8)), 2.0 * i / o.fps);
+    w.finish();
+  }
+  const InputInfo info = probe_video_file(out);
+  ASSERT_EQ(info.frames, 59);
+  ASSERT_TRUE(info.audio);
+  // Within one AAC frame (1024 samples, 21-23 ms) and the encoder's padding.
+  EXPECT_NEAR(info.audio_duration, 59 / o.fps, 0.05);
+  // A run that reads to the input's end keeps the whole track.
+  EXPECT_FALSE(output_like(input, input.frames).audio_ends_with_video);
+  EXPECT_TRUE(output_like(input, input.frames - 1).audio_ends_with_video);
+}
+
 TEST(VideoWriter, OddSizesArePaddedForYuv420) {
   TempDir dir;
   VideoWriterOptions o;

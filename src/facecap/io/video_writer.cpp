@@ -61,9 +61,9 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
   const bool audio = options_.audio_source.has_value();
   if (audio) {
     if (options_.audio_start > 0) args.insert(args.end(), {"-ss", std::to_string(options_.audio_start)});
-    if (options_.audio_seconds > 0) args.insert(args.end(), {"-t", std::to_string(options_.audio_seconds)});
     args.insert(args.end(), {"-i", options_.audio_source->string(), "-map", "0:v:0", "-map", "1:a:0?", "-c:a", "aac",
                              "-b:a", "160k"});
+    if (options_.audio_ends_with_video) args.push_back("-shortest");
   }
   args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.preset, "-crf", std::to_string(options_.crf),
                            "-pix_fmt", "yuv420p"});
@@ -215,7 +215,9 @@ VideoWriterOptions output_like(const InputInfo& input, int max_frames) {
   if (input.audio) {
     o.audio_source = std::filesystem::path(input.spec);
     o.audio_start = start_time(input);
-    if (max_frames > 0) o.audio_seconds = max_frames / o.fps;
+    // Only where the run stops before the input's end: a whole run keeps the
+    // audio's tail past the last frame, as the input has it.
+    o.audio_ends_with_video = max_frames > 0 && (input.frames < 0 || input.first_frame + max_frames < input.frames);
   }
   return o;
 }

@@ -30,10 +30,11 @@ struct VideoWriterOptions {
   double fps = 30.0;
   // Take the audio track from this file (the input), if it has one.
   std::optional<std::filesystem::path> audio_source;
-  // Where in that audio to start (runs that start part-way), and how many
-  // seconds to take (0: all), for runs that stop early.
+  // Where in that audio to start (runs that start part-way), and whether to
+  // end it with the last frame written (runs that stop early): a frame count
+  // over the mean rate would misplace the end of a variable-rate video.
   double audio_start = 0;
-  double audio_seconds = 0;
+  bool audio_ends_with_video = false;
   // Container metadata (mp4/mov/Matroska tags), e.g. {"comment", "..."}.
   std::map<std::string, std::string> metadata;
   int crf = 18;                     // x264 quality: lower is better, 18 is visually lossless
@@ -80,8 +81,8 @@ class VideoWriter {
 };
 
 // An output of the input's size and rate carrying its audio (if any) from
-// where the input starts (InputInfo::first_frame), cut to max_frames'
-// length when a run stops early (0: all of it).
+// where the input starts (InputInfo::first_frame), ending with the last
+// frame written when max_frames stops the run before the input's end (0: all).
 VideoWriterOptions output_like(const InputInfo& input, int max_frames = 0);
 
 // Where frame `index` (at `time`, Frame::time) goes on an output_like(input)

@@ -6,6 +6,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
+#include "facecap/io/video_writer.hpp"
 
 namespace facecap {
 
@@ -89,10 +90,12 @@ TransformEval evaluate_transform(const FaceModel& model, const std::string& vide
   r.input_audio = in.audio;
   const InputInfo result = probe_video_file(out);
   const double fps = in.fps > 0 ? in.fps : 25.0;
-  // The input's audio (cut to --max-frames' length when the run stopped early), against the output's.
+  // The input's audio (ending with the output's last frame when --max-frames
+  // stopped the run early), against the output's.
   const double audio_in = in.audio_duration > 0 ? in.audio_duration : in.duration;
-  const bool cut = o.capture.max_frames > 0 && r.frames >= o.capture.max_frames;
-  r.audio_seconds_in = in.audio ? (cut ? std::min(audio_in, o.capture.max_frames / fps) : audio_in) : 0;
+  const bool cut = output_like(in, o.capture.max_frames).audio_ends_with_video;
+  const double video_out = result.fps > 0 ? result.frames / result.fps : result.duration;
+  r.audio_seconds_in = in.audio ? (cut ? std::min(audio_in, video_out) : audio_in) : 0;
   r.audio_seconds_out = result.audio ? result.audio_duration : 0;
   // One frame of slack: AAC frames are 1024 samples (21-23 ms) and the encoder pads.
   r.audio_ok = in.audio && result.audio && std::abs(r.audio_seconds_out - r.audio_seconds_in) <= 1.0 / fps + 0.05;
