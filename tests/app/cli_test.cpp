@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -19,6 +20,8 @@
 #include "test_support.hpp"
 
 namespace facecap {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -187,6 +190,37 @@ TEST(Cli, EditsRefuseAFolderAsTheirOutput) {
     EXPECT_NE(r.out.find("is a folder"), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
+}
+
+// An output that names an input (the same spelling, another one, or a link
+// to it) is refused up front: committing it would replace the footage the
+// edit was made from. The input is left as it was.
+TEST(Cli, EditsRefuseToWriteOverTheirInput) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
+  TempDir dir;
+  const fs::path clip = dir.path() / "clip.mp4", photo = dir.path() / "photo.jpg", link = dir.path() / "link.mp4";
+  fs::copy_file(video, clip);
+  fs::copy_file(portrait, photo);
+  fs::create_symlink(clip, link);
+  const auto clip_size = fs::file_size(clip), photo_size = fs::file_size(photo);
+  const std::string c = clip.string(), p = photo.string(), out = (dir.path() / "out.mp4").string();
+  const std::string swap = "swap --source " + p + " --target " + c + " --max-frames 3";
+  const std::string transform = "transform " + c + " --max-frames 3";
+  const std::string spelled_again = (dir.path() / "." / "clip.mp4").string();
+  for (const std::string& args :
+       {transform + " -o " + c, transform + " -o " + spelled_again, transform + " -o " + link.string(),
+        transform + " -o " + out + " --gltf " + c, transform + " -o " + out + " --plot " + c, swap + " -o " + c,
+        swap + " -o " + p, swap + " -o " + out + " --gltf " + p}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find("the input would be replaced"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  EXPECT_EQ(fs::file_size(clip), clip_size);
+  EXPECT_EQ(fs::file_size(photo), photo_size);
 }
 
 TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {

@@ -28,6 +28,15 @@ void ensure_writable_file(const fs::path& path) {
   if (fs::is_directory(path, ec)) throw Error("cannot write " + path.string() + ": it is a folder");
 }
 
+void ensure_not_an_input(const fs::path& output, std::initializer_list<std::string_view> inputs) {
+  for (const std::string_view input : inputs) {
+    std::error_code ec;
+    if (fs::equivalent(output, fs::path(input), ec) && !ec)
+      throw Error("output " + output.string() + " is the input " + std::string(input) +
+                  ": write it under another name (the input would be replaced)");
+  }
+}
+
 AtomicFile::AtomicFile(fs::path final_path) : final_(std::move(final_path)) {
   ensure_writable_file(final_);
   static std::atomic<int> counter{0};

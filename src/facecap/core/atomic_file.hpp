@@ -6,7 +6,9 @@
 // removed by the destructor.
 #include <cstddef>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 
 namespace facecap {
 
@@ -35,6 +37,12 @@ void ensure_writable_dir(const std::filesystem::path& dir);
 // can be created) and is writable, and the path is not itself a folder. For
 // checking an output before the work that fills it.
 void ensure_writable_file(const std::filesystem::path& path);
+
+// Throws facecap::Error when `output` names the same file as one of `inputs`
+// (by identity: another spelling or a link to it counts), as in
+// `transform in.mp4 -o in.mp4`: the committed output would replace what the
+// run reads. Inputs that are no file (cam:0, a missing path) never match.
+void ensure_not_an_input(const std::filesystem::path& output, std::initializer_list<std::string_view> inputs);
 
 // Writes text, or bytes, atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);

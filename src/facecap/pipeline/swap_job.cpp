@@ -102,8 +102,12 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      const fs::path& output, const SwapJobOptions& options) {
   // Unwritable outputs fail before the work (the source's fit included).
   ensure_writable_file(fs::absolute(output));
+  ensure_not_an_input(output, {source_photo, target});
   video_container(output);
-  if (!options.gltf.empty()) ensure_writable_file(fs::absolute(options.gltf));
+  if (!options.gltf.empty()) {
+    ensure_writable_file(fs::absolute(options.gltf));
+    ensure_not_an_input(options.gltf, {source_photo, target});
+  }
   auto input = open_input(target, options.capture.start_seconds);  // a bad target fails before the source's fit
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();

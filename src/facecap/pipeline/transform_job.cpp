@@ -44,8 +44,14 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   }
   if (options.transform.from != Emotion::kNeutral) mapper.pair(options.transform.from);
 
-  // An unwritable glTF path fails before the work, as the video's does.
-  if (!options.gltf.empty()) ensure_writable_file(fs::absolute(options.gltf));
+  // An output that would replace the input, or an unwritable glTF path,
+  // fails before the work, as an unwritable video path does.
+  ensure_not_an_input(output, {input});
+  if (!options.gltf.empty()) {
+    ensure_writable_file(fs::absolute(options.gltf));
+    ensure_not_an_input(options.gltf, {input});
+  }
+  if (!options.plot.empty()) ensure_not_an_input(options.plot, {input});
 
   SyntheticMark mark;
   mark.kind = "expression-transform";
