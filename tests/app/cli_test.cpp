@@ -195,7 +195,7 @@ TEST(Cli, EditsRefuseAFolderAsTheirOutput) {
 // An output that names an input (the same spelling, another one, or a link
 // to it) is refused up front: committing it would replace the footage the
 // edit was made from. The input is left as it was.
-TEST(Cli, EditsRefuseToWriteOverTheirInput) {
+TEST(Cli, OutputsNeverReplaceTheirInput) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
@@ -219,6 +219,13 @@ TEST(Cli, EditsRefuseToWriteOverTheirInput) {
     EXPECT_NE(r.out.find("the input would be replaced"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(out)) << args;
   }
+  // Nor does track write its overlay over an overlay it is given.
+  const fs::path overlay = dir.path() / "overlay.mp4";
+  fs::copy_file(video, overlay);
+  const RunResult r = run("track " + overlay.string() + " -o " + dir.path().string() + " --overlay --max-frames 3");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("the input would be replaced"), std::string::npos) << r.out;
+  EXPECT_EQ(fs::file_size(overlay), clip_size);
   EXPECT_EQ(fs::file_size(clip), clip_size);
   EXPECT_EQ(fs::file_size(photo), photo_size);
 }

@@ -344,6 +344,9 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
                        const TrackOptions& options) {
   auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
   ensure_writable_dir(dir);
+  // Re-tracking an earlier run's overlay into its own folder would replace it.
+  for (const char* name : {"overlay.mp4", "shaded.mp4", "heatmap.mp4", "albedo.png"})
+    ensure_not_an_input(dir / name, {input});
   const InputInfo info = source->info();
   TrackSummary summary;
   summary.output_dir = dir;
