@@ -66,6 +66,10 @@ TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
   o.capture.max_frames = 36;
   o.meshes = true;
   o.overlay = true;
+  // An earlier, longer run's mesh in the folder, and a file of the user's.
+  fs::create_directories(dir.path() / "meshes");
+  std::ofstream(dir.path() / "meshes" / "frame_000050.obj") << "v 0 0 0\n";
+  std::ofstream(dir.path() / "meshes" / "notes.txt") << "mine\n";
   const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
   EXPECT_EQ(s.capture.frames, 36);
 
@@ -90,9 +94,12 @@ TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
   EXPECT_EQ(id["identity_weights"].size(), 50u);
   EXPECT_GT(id["focal_px"].get<double>(), 100.0);
 
+  // One sequence: this run's meshes, the earlier run's gone, the user's file kept.
   int meshes = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / "meshes")) ++meshes;
+  for (const auto& e : fs::directory_iterator(dir.path() / "meshes")) meshes += e.path().extension() == ".obj";
   EXPECT_EQ(meshes, 36 - s.capture.lost);
+  EXPECT_FALSE(fs::exists(dir.path() / "meshes" / "frame_000050.obj"));
+  EXPECT_TRUE(fs::exists(dir.path() / "meshes" / "notes.txt"));
   const auto obj = lines(dir.path() / "meshes" / "frame_000000.obj");
   EXPECT_GT(std::count_if(obj.begin(), obj.end(), [](const std::string& l) { return l.rfind("vt ", 0) == 0; }), 1000);
   EXPECT_EQ(open_input((dir.path() / "overlay.mp4").string())->info().frames, 36);

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <unordered_set>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
@@ -192,6 +194,7 @@ class FrameWriter {
     jsonl_.commit();
     for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
       if (w) w->finish();
+    if (options_.meshes) remove_earlier_meshes();
   }
 
   int meshes_written() const { return meshes_; }
@@ -203,6 +206,7 @@ class FrameWriter {
     if (!options_.meshes) return;
     char name[64];
     std::snprintf(name, sizeof(name), "frame_%06d.obj", f.index);
+    meshes_written_.insert(name);
     const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
     const std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
                                 (camera_space ? "\ncamera space (x right, y down, z forward), cm"
@@ -232,6 +236,18 @@ class FrameWriter {
       write_obj(dir_ / "meshes" / name, {&out, &face_polygons_, &model_.uvs, comment});
     }
     ++meshes_;
+  }
+
+  // An earlier run's meshes in this folder that this run did not write (frames
+  // past its end, or lost in it) would read as part of its sequence: removed,
+  // as an earlier identity.json is. Other files are left alone.
+  void remove_earlier_meshes() const {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir_ / "meshes", ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with("frame_") && name.ends_with(".obj") && !meshes_written_.contains(name))
+        fs::remove(entry.path(), ec);
+    }
   }
 
   // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
@@ -336,6 +352,7 @@ class FrameWriter {
   std::vector<Polygon> refined_polygons_;
   std::vector<FaceAnimationKey> animation_keys_;
   int meshes_ = 0;
+  std::unordered_set<std::string> meshes_written_;  // their file names
 };
 
 }  // namespace
