@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
       }
     }
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 2;  // usage errors exit with 2, as facecap's do
   } catch (const Error& e) {
     std::fprintf(stderr, "facecap-train: error: %s\n", e.what());
     return 1;

@@ -35,7 +35,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // Prints the help, the version or the usage error; usage errors exit
+    // with 2 (CLI11's own codes, 105-109, tell a script nothing more).
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const Error& e) {
     std::fprintf(stderr, "facecap: error: %s\n", e.what());
     return 1;

@@ -69,7 +69,10 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("--frames"), std::string::npos) << r.out;
   EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
-  EXPECT_NE(run("probe").code, 0);
+  // Usage errors exit with 2, whichever CLI11 error they are: a missing
+  // argument, a value out of range, an unknown option or subcommand.
+  for (const char* args : {"probe", "track in.mp4 -o x --start -5", "track in.mp4 -o x --bogus", "nosuchcommand"})
+    EXPECT_EQ(run(args).code, 2) << args;
   const RunResult shading = run("eval refine --video whatever.mp4 --true-shading");
   EXPECT_EQ(shading.code, 1) << shading.out;
   EXPECT_EQ(lines(shading.out), 1) << shading.out;
