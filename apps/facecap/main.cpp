@@ -1,6 +1,9 @@
 // facecap: real-time face capture and manipulation from ordinary RGB video.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+
+#include <opencv2/core/utils/logger.hpp>
 
 #include "commands.hpp"
 #include "facecap/core/allocator_tuning.hpp"
@@ -12,6 +15,9 @@
 int main(int argc, char** argv) {
   using namespace facecap;
   keep_large_allocations_resident();
+  // OpenCV's own warnings (a camera that does not open, GStreamer's fallback)
+  // would add lines to our one-line errors; OPENCV_LOG_LEVEL still chooses.
+  if (std::getenv("OPENCV_LOG_LEVEL") == nullptr) cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
   CLI::App app{"facecap " + std::string(kFacecapVersion) +
                ": capture a face from RGB video: head pose, focal length, identity, 53 expression\n"
                "weights, and with --refine SH lighting, albedo and wrinkle-level geometry.\n"

@@ -56,6 +56,15 @@ TEST(Cli, BadInputsExitNonZeroWithOneLine) {
   }
 }
 
+// A camera that is not there (this machine has none at cam:7) is one line,
+// without OpenCV's warnings from the backends it tried.
+TEST(Cli, AMissingCameraIsOneLine) {
+  const RunResult r = run("probe cam:7");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("cannot open camera 7"), std::string::npos) << r.out;
+}
+
 TEST(Cli, UnwritableOutputFolderIsAClearError) {
   FACECAP_REQUIRE_MODEL(model);
   const RunResult r = run("synth -o /proc/facecap-test --frames 2");
