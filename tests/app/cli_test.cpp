@@ -354,6 +354,25 @@ TEST(Cli, ProbeAndTrackFindAFaceInAWideShot) {
   EXPECT_EQ(row.find(",lost,"), std::string::npos) << row;
 }
 
+// A video whose stream is damaged past its first frames: its frames decode
+// with their damage and are tracked or lost, and libav's line per broken
+// macroblock ("[h264 @ ...] error while decoding MB") stays out of the output.
+TEST(Cli, ADamagedVideoIsTrackedWithoutTheDecodersChatter) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  std::ifstream in(video, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (size_t i = 60000; i + 1 < bytes.size() && i < 400000; i += 2000) bytes[i] = char(~bytes[i]);
+  const auto damaged = dir.path() / "damaged.mp4";
+  std::ofstream(damaged, std::ios::binary) << bytes;
+  const RunResult r = run("track " + damaged.string() + " -o " + (dir.path() / "out").string() + " --max-frames 120");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out.find("error while decoding"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("[h264"), std::string::npos) << r.out;
+  EXPECT_LE(lines(r.out), 3) << r.out;
+}
+
 // A folder of photos of different sizes is not one camera's frames: the
 // photos unlike the first are lost, each with its reason in frames.jsonl,
 // and the closing summary says so in one line. Output videos keep the frame,

@@ -264,6 +264,7 @@ std::unique_ptr<FrameSource> open_source(const std::string& spec) {
   InputInfo info = probe_video_file(path);
   cv::VideoCapture capture(path.string(), cv::CAP_FFMPEG);
   if (!capture.isOpened()) throw Error("cannot decode " + spec + ": not a video OpenCV's FFmpeg backend can read");
+  quiet_ffmpeg_log();
   return std::make_unique<VideoSource>(std::move(capture), info);
 }
 

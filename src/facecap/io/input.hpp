@@ -69,6 +69,12 @@ std::unique_ptr<FrameSource> open_input(const std::string& spec, double start_se
 // (via libavformat); throws facecap::Error when the file is not a readable video.
 InputInfo probe_video_file(const std::filesystem::path& path);
 
+// Silences libav's own log, which OpenCV's FFmpeg backend turns back on when
+// it opens a video: a damaged stream would print a line per broken
+// macroblock ("error while decoding MB ...") between facecap's own lines.
+// Such frames still decode (with their damage) and are tracked or lost.
+void quiet_ffmpeg_log();
+
 // The container's metadata tags (mp4 udta/ilst), keys as FFmpeg names them.
 std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path);
 

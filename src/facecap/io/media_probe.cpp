@@ -24,7 +24,7 @@ std::string av_message(int code) {
 }
 
 std::unique_ptr<AVFormatContext, FormatCloser> open_container(const std::filesystem::path& path) {
-  av_log_set_level(AV_LOG_QUIET);
+  quiet_ffmpeg_log();
   AVFormatContext* raw = nullptr;
   const int open_code = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
   if (open_code < 0) {
@@ -34,6 +34,8 @@ std::unique_ptr<AVFormatContext, FormatCloser> open_container(const std::filesys
 }
 
 }  // namespace
+
+void quiet_ffmpeg_log() { av_log_set_level(AV_LOG_QUIET); }
 
 std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path) {
   const auto ctx = open_container(path);
