@@ -36,6 +36,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
+  add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->callback([a, &global] {
@@ -60,6 +61,15 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                  s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
                  t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
                  s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
+    if (s.capture.cuts > 0) {
+      std::string starts;
+      for (const CaptureSummary::Shot& shot : s.capture.shots)
+        starts += (starts.empty() ? "" : ", ") + std::to_string(shot.first_frame);
+      std::fprintf(stderr,
+                   "facecap: %d shot cut(s); identity and focal solved again for each shot with a face (starting at "
+                   "frames %s; identity.json \"shots\", frames.jsonl \"shot\")\n",
+                   s.capture.cuts, starts.c_str());
+    }
     if (s.capture.most_faces > 1) {
       std::fprintf(stderr, "facecap: up to %d faces in view; the largest is tracked (one face per run)\n",
                    s.capture.most_faces);

@@ -29,6 +29,8 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames);
 // --start SECONDS: where track, transform, swap and bench track start reading
 // a video (CaptureOptions::start_seconds).
 void add_start_option(CLI::App& cmd, double& start_seconds);
+// --no-shot-cuts: one identity and focal length for the whole input (CaptureOptions::shot_cuts).
+void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.

@@ -39,6 +39,14 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames) {
       ->capture_default_str();
 }
 
+void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts) {
+  cmd.add_flag_callback(
+      "--no-shot-cuts", [&shot_cuts] { shot_cuts = false; },
+      "Keep one identity and focal length for the whole input. By default a shot cut (the picture changes "
+      "all at once: an edit to another speaker, another camera) starts a new shot whose identity and focal "
+      "length are solved again");
+}
+
 void add_start_option(CLI::App& cmd, double& start_seconds) {
   cmd.add_option("--start", start_seconds,
                  "Start this many seconds into the video (frames keep their own numbers and times; an output video "

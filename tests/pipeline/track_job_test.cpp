@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "app/command.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
@@ -103,6 +104,71 @@ TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
   const auto obj = lines(dir.path() / "meshes" / "frame_000000.obj");
   EXPECT_GT(std::count_if(obj.begin(), obj.end(), [](const std::string& l) { return l.rfind("vt ", 0) == 0; }), 1000);
   EXPECT_EQ(open_input((dir.path() / "overlay.mp4").string())->info().frames, 36);
+}
+
+// An edit that cuts from one speaker to another (address_720p_a, then
+// talking_webcam2 scaled into the same 1280x720 frame): the cut starts a
+// second shot, whose identity and focal length are solved from its own
+// frames. It comes out as the second clip's own (solved from it alone) to
+// 0.24 in identity weights, where the two people lie 4.2 apart; with one
+// identity for the whole video, the second speaker is fitted with the first
+// one's face.
+TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(first, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(second, "talking_webcam2_400x300.mp4");
+  TempDir dir;
+  // 40 frames of each, both read as 25 fps (-r before -i: frames kept, not resampled).
+  const std::string scaled = "scale=960:720,pad=1280:720:160:0,setsar=1";
+  auto make = [&](const std::string& name, const std::string& inputs, const std::string& graph) {
+    const fs::path out = dir.path() / name;
+    const test::CommandResult r =
+        test::run_command("ffmpeg -nostdin -hide_banner -loglevel error -y " + inputs + " -filter_complex \"" + graph +
+                          "\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " + out.string() + " 2>&1");
+    EXPECT_EQ(r.code, 0) << r.out;
+    return out;
+  };
+  const fs::path joined =
+      make("joined.mp4", "-r 25 -i " + first.string() + " -r 25 -i " + second.string(),
+           "[0:v]trim=end_frame=40,setsar=1[a];[1:v]trim=end_frame=40," + scaled + "[b];[a][b]concat=n=2:v=1:a=0[v]");
+  const fs::path alone = make("alone.mp4", "-r 25 -i " + second.string(), "[0:v]trim=end_frame=40," + scaled + "[v]");
+  TrackOptions o;
+  o.capture.quiet = true;
+  auto identity_of = [](const fs::path& run_dir) {
+    std::ifstream in(run_dir / "identity.json");
+    return nlohmann::json::parse(in);
+  };
+  auto distance = [](const nlohmann::json& a, const nlohmann::json& b) {
+    const auto x = a.get<std::vector<double>>(), y = b.get<std::vector<double>>();
+    double d = 0;
+    for (size_t i = 0; i < x.size(); ++i) d += (x[i] - y[i]) * (x[i] - y[i]);
+    return std::sqrt(d);
+  };
+  run_track(*model, alone.string(), dir.path() / "alone", o);
+  const nlohmann::json own = identity_of(dir.path() / "alone")["identity_weights"];
+
+  const TrackSummary s = run_track(*model, joined.string(), dir.path() / "joined", o);
+  EXPECT_EQ(s.capture.cuts, 1);
+  ASSERT_EQ(s.capture.shots.size(), 2u);
+  EXPECT_EQ(s.capture.shots[1].first_frame, 40);
+  EXPECT_EQ(s.capture.lost, 0);
+  const nlohmann::json id = identity_of(dir.path() / "joined");
+  ASSERT_EQ(id["shots"].size(), 2u);
+  EXPECT_EQ(id["shots"][1]["first_frame"], 40);
+  EXPECT_EQ(id["identity_weights"], id["shots"][0]["identity_weights"]);  // the top level: the first shot
+  EXPECT_LT(distance(id["shots"][1]["identity_weights"], own), 1.0);
+  EXPECT_GT(distance(id["shots"][0]["identity_weights"], own), 2.0);
+  const auto rows = lines(dir.path() / "joined" / "frames.jsonl");
+  ASSERT_EQ(rows.size(), 80u);
+  EXPECT_EQ(nlohmann::json::parse(rows[39])["shot"], 0);
+  EXPECT_EQ(nlohmann::json::parse(rows[40])["shot"], 1);
+
+  // One identity for the whole video (--no-shot-cuts): the first speaker's.
+  o.capture.shot_cuts = false;
+  const TrackSummary one = run_track(*model, joined.string(), dir.path() / "one", o);
+  EXPECT_EQ(one.capture.cuts, 0);
+  EXPECT_FALSE(identity_of(dir.path() / "one").contains("shots"));
+  EXPECT_GT(distance(identity_of(dir.path() / "one")["identity_weights"], own), 2.0);
 }
 
 // --start: the frames keep the video's numbers and times, and the overlay's

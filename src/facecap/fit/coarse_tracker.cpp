@@ -9,9 +9,22 @@ namespace facecap {
 
 CoarseTracker::CoarseTracker(const FaceModel& model, const CoarseFitOptions& options, int width, int height)
     : model_(model), fitter_(model, options, width, height) {
+  reset_identity();
+}
+
+void CoarseTracker::reset_identity() {
+  identity_ = IdentityEstimate{};
   identity_.identity = Eigen::VectorXd::Zero(fitter_.identity_modes());
   identity_.focal_guess = fitter_.focal_guess();
   identity_.focal = identity_.focal_guess;
+  initialized_ = false;
+}
+
+void CoarseTracker::start_shot() {
+  pending_.clear();
+  pending_faces_ = 0;
+  previous_.reset();
+  reset_identity();
 }
 
 std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::optional<Landmarks>& landmarks,

@@ -60,6 +60,10 @@ class CoarseTracker {
                               IrisSearch iris_search = {});
   // End of input: fits still waiting for the identity solve.
   std::vector<CoarseFit> finish();
+  // After finish(), at a shot cut: the frames from here on are another shot
+  // (maybe another person, another lens), so their identity and focal length
+  // are solved afresh over its first frames, with no temporal link across it.
+  void start_shot();
 
   bool initialized() const { return initialized_; }
   const IdentityEstimate& identity() const { return identity_; }
@@ -74,6 +78,7 @@ class CoarseTracker {
     std::optional<IrisPair> irises;  // once searched (for the identity solve)
   };
   void initialize();
+  void reset_identity();  // the mean face at the focal length's guess, not yet solved
   CoarseFit track(const Pending& frame);
 
   const FaceModel& model_;

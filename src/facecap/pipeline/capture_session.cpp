@@ -38,6 +38,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     int faces_seen;
     cv::Mat image;
     std::string error;
+    int shot;
   };
   std::map<int, Waiting> waiting;  // frames whose fit is not final yet
   auto deliver = [&](const std::vector<CoarseFit>& fits) {
@@ -52,6 +53,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       out.image = it->second.image;
       out.error = it->second.error;
       out.identity = tracker.identity();
+      out.shot = it->second.shot;
       waiting.erase(it);
       summary.lost += out.status == TrackStatus::kLost;
       summary.redetected += out.status == TrackStatus::kRedetected;
@@ -67,6 +69,29 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       options.max_frames > 0 && (remaining <= 0 || options.max_frames < remaining) ? options.max_frames : remaining;
   Progress progress("capture", total, options.quiet);
   StageTimings& t = summary.timings;
+
+  // The tracker's output, timed: its identity solves (one a shot) apart from
+  // the per-frame fits.
+  auto timed = [&](auto&& call) {
+    const bool was_initialized = tracker.initialized();
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<CoarseFit> fits = call();
+    t.fit_ms += ms_since(t0);
+    if (!was_initialized && tracker.initialized()) {
+      t.identity_ms += tracker.identity().solve_ms;
+      t.fit_ms -= tracker.identity().solve_ms;
+    }
+    return fits;
+  };
+  // A shot ends: its frames still waiting are fitted with what it showed,
+  // and its identity is kept.
+  int shot = 0, shot_start = summary.input.first_frame;
+  auto end_shot = [&] {
+    deliver(timed([&] { return tracker.finish(); }));
+    if (tracker.initialized()) summary.shots.push_back({shot, shot_start, tracker.identity()});
+  };
+  ShotCutDetector cuts(options.shot_cut);
+  const bool find_cuts = options.shot_cuts && summary.input.kind != InputKind::kImage;
 
   // Decoding (and the grey conversion the landmarks need) runs on its own
   // thread, a few frames ahead of the landmark and fit stages.
@@ -102,6 +127,14 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     const Frame& frame = d->frame;
     t.decode_ms += d->decode_ms;
 
+    if (find_cuts && cuts.next(d->grey)) {
+      end_shot();
+      tracker.start_shot();
+      face_tracker.reset();  // the last shot's box says nothing of this one
+      ++shot;
+      shot_start = frame.index;
+      ++summary.cuts;
+    }
     TrackedFace face;
     if (!d->grey.empty()) face = face_tracker.next(d->grey);
     t.detect_ms += face.detector_ms;
@@ -116,7 +149,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       kept = frame.image.empty() ? cv::Mat(summary.input.height, summary.input.width, CV_8UC3, cv::Scalar::all(0))
                                  : frame.image;
     }
-    waiting[frame.index] = {face.status, face.faces_seen, kept, frame.error};
+    waiting[frame.index] = {face.status, face.faces_seen, kept, frame.error, shot};
     IrisSearch iris_search;
     if (landmarks && options.gaze) {
       // Timed where the tracker calls it (maybe later, after the identity solve).
@@ -129,14 +162,8 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       };
     }
 
-    const bool was_initialized = tracker.initialized();
-    auto t0 = std::chrono::steady_clock::now();
-    const std::vector<CoarseFit> fits = tracker.push(frame.index, frame.time, landmarks, std::move(iris_search));
-    t.fit_ms += ms_since(t0);
-    if (!was_initialized && tracker.initialized()) {
-      t.identity_ms = tracker.identity().solve_ms;
-      t.fit_ms -= t.identity_ms;
-    }
+    const std::vector<CoarseFit> fits =
+        timed([&] { return tracker.push(frame.index, frame.time, landmarks, std::move(iris_search)); });
     // A fit that rejects the landmarks means the box tracker followed
     // something that is not the face: detect afresh on the next frame.
     for (const CoarseFit& fit : fits) {
@@ -148,17 +175,10 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
   }
   decoder.join();
   if (decode_error) std::rethrow_exception(decode_error);
-  const bool was_initialized = tracker.initialized();
-  const auto t0 = std::chrono::steady_clock::now();
-  deliver(tracker.finish());
-  t.fit_ms += ms_since(t0);
-  if (!was_initialized && tracker.initialized()) {
-    t.identity_ms = tracker.identity().solve_ms;
-    t.fit_ms -= t.identity_ms;
-  }
+  end_shot();
   t.fit_ms -= t.iris_ms;  // the tracker runs the iris searches
   progress.finish();
-  summary.identity = tracker.identity();
+  summary.identity = summary.shots.empty() ? tracker.identity() : summary.shots.front().identity;
   t.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

@@ -4,11 +4,13 @@
 // the first ones arrive together once the identity and focal length are solved.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "facecap/detect/face_tracker.hpp"
 #include "facecap/detect/iris.hpp"
+#include "facecap/detect/shot_cut.hpp"
 #include "facecap/fit/coarse_tracker.hpp"
 #include "facecap/fit/gaze.hpp"
 #include "facecap/io/input.hpp"
@@ -24,7 +26,12 @@ struct CaptureOptions {
   double start_seconds = 0;
   bool keep_images = false;  // hand each frame's image to the sink
   bool gaze = true;          // find the irises and the gaze, which guides the eyeLook weights (gaze.hpp)
-  bool quiet = false;        // no progress bar
+  // Shot cuts (shot_cut.hpp) start a new shot: the identity and focal length
+  // are solved again over its first frames, so that a video cutting between
+  // two people (or two lenses) is not fitted with the first one's face.
+  bool shot_cuts = true;
+  ShotCutOptions shot_cut;
+  bool quiet = false;  // no progress bar
 };
 
 struct CapturedFrame {
@@ -34,6 +41,7 @@ struct CapturedFrame {
   int faces_seen = 0;                       // faces the detector found in this frame (0 when it did not run)
   CoarseFit fit;                            // with the irises and gaze when CaptureOptions::gaze
   IdentityEstimate identity;  // the identity and focal the fit used (a copy: frames may outlive the session)
+  int shot = 0;               // which shot of the input (CaptureOptions::shot_cuts), from 0
   cv::Mat image;              // when CaptureOptions::keep_images (black where the input could not give the frame)
   std::string error;          // why the frame could not be read (it is then lost); "" otherwise
 };
@@ -60,7 +68,16 @@ struct CaptureSummary {
   int most_faces = 0;       // the most faces the detector found in one frame (the largest is tracked)
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons
+  // The identity and focal length of the first shot with a face (the only
+  // shot unless the input cuts), and of every shot with a face.
   IdentityEstimate identity;
+  struct Shot {
+    int index = 0;        // CapturedFrame::shot
+    int first_frame = 0;  // the input's frame number where it starts
+    IdentityEstimate identity;
+  };
+  std::vector<Shot> shots;
+  int cuts = 0;  // shot cuts found
   StageTimings timings;
   InputInfo input;
 };

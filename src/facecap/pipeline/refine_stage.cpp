@@ -34,6 +34,10 @@ void RefineStage::run() {
     while (std::optional<CapturedFrame> f = queue_.pop()) {
       RefinedFrame out;
       out.frame = std::move(*f);
+      if (out.frame.shot != shot_) {
+        refiner_.start_shot();
+        shot_ = out.frame.shot;
+      }
       if (out.frame.status != TrackStatus::kLost && !out.frame.image.empty()) {
         out.camera = PinholeCamera::centered(out.frame.fit.focal, out.frame.image.cols, out.frame.image.rows);
         out.coarse = to_camera(

@@ -46,6 +46,7 @@ class RefineStage {
   std::exception_ptr error_;
   double refine_ms_ = 0;
   int refined_ = 0;
+  int shot_ = 0;  // of the last frame (CapturedFrame::shot): a new one restarts the albedo
   std::jthread worker_;
 };
 

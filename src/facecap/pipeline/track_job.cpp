@@ -103,7 +103,7 @@ class FrameWriter {
     const bool ok = f.status != TrackStatus::kLost;
     std::ofstream& o = csv_.stream();
     o << f.index << ',' << number(f.time) << ',' << to_string(f.status);
-    nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}};
+    nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}, {"shot", f.shot}};
     if (!f.error.empty()) row["error"] = f.error;
     if (ok) {
       const Vec3d ypr = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
@@ -144,7 +144,8 @@ class FrameWriter {
     write_videos(f, ref, coarse, camera);
   }
 
-  void finish(const IdentityEstimate& id, const Refiner* refiner) {
+  void finish(const CaptureSummary& capture, const Refiner* refiner) {
+    const IdentityEstimate& id = capture.identity;
     nlohmann::json j;
     j["format"] = "facecap-identity";
     j["version"] = 1;
@@ -158,6 +159,21 @@ class FrameWriter {
     // The face's size, which landmarks hardly show (identity_size.hpp).
     j["size_correction"] = {{"factor", id.size_factor}, {"identity_modes_determined", id.effective_modes}};
     j["expression_names"] = model_.expression_names;
+    // A video that cuts: the top-level identity is the first shot's; each
+    // shot with a face has its own (frames.jsonl's "shot" says which).
+    if (capture.cuts > 0) {
+      nlohmann::json shots = nlohmann::json::array();
+      for (const CaptureSummary::Shot& shot : capture.shots) {
+        const Eigen::VectorXd& w = shot.identity.identity;
+        shots.push_back({{"shot", shot.index},
+                         {"first_frame", shot.first_frame},
+                         {"identity_weights", std::vector<double>(w.data(), w.data() + w.size())},
+                         {"focal_px", shot.identity.focal},
+                         {"frames_used", shot.identity.frames_used},
+                         {"size_correction", {{"factor", shot.identity.size_factor}}}});
+      }
+      j["shots"] = shots;
+    }
     j["conventions"] = {
         {"units", "centimetres"},
         {"camera", "x right, y down, z forward (OpenCV); pixel centres at integer coordinates"},
@@ -400,7 +416,7 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
     summary.refine_ms = stage->refine_ms();
   }
   if (summary.capture.frames == 0) throw Error("no frames could be read from " + input);
-  writer.finish(summary.capture.identity, stage ? &stage->refiner() : nullptr);
+  writer.finish(summary.capture, stage ? &stage->refiner() : nullptr);
   summary.meshes_written = writer.meshes_written();
   summary.gaze_frames = writer.gaze_frames();
   return summary;

@@ -37,6 +37,15 @@ const Positions& Refiner::coarse_albedo() const {
   return albedo_ ? albedo_->albedo() : empty;
 }
 
+void Refiner::start_shot() {
+  if (!initialised()) return;
+  albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo);
+  albedo_frames_.clear();
+  frame_count_ = 0;
+  lighting_.reset();
+  for (Eigen::VectorXf& d : previous_) d = Eigen::VectorXf();
+}
+
 Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
                            const KnownShading* known) {
   if (known && known->albedo.cols() != num_vertices_)

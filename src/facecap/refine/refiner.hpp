@@ -118,6 +118,11 @@ class Refiner {
   Refinement refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
                     const KnownShading* known = nullptr);
 
+  // A shot cut (shot_cut.hpp): the albedo is estimated again over the next
+  // frames, and the lighting and displacements start afresh; the hierarchy,
+  // built on the first frame, is kept (its meshes stay one topology).
+  void start_shot();
+
   bool initialised() const { return hierarchy_.num_levels() > 0; }
   const MeshHierarchy& hierarchy() const { return hierarchy_; }
   // The albedo at the coarsest level (3 x N RGB) and whether it is final.
