@@ -308,6 +308,25 @@ TEST(Cli, SwapTakesItsSourceFromAVideo) {
   EXPECT_EQ(bad.code, 1) << bad.out;
   EXPECT_NE(bad.out.find("--source-frames"), std::string::npos) << bad.out;
   EXPECT_TRUE(std::filesystem::exists(out));  // the good output of the first run is kept
+
+  // A folder of photos of the face taken apart (here a frame and its mirror
+  // image: to the shot-cut test, as unlike as two rooms) is one face: its
+  // identity is solved over both, not over the first alone.
+  const fs::path photos = dir.path() / "photos";
+  fs::create_directories(photos);
+  const RunResult extracted = test::run_command("ffmpeg -nostdin -v error -y -i " + source.string() + " -frames:v 1 " +
+                                                (photos / "1.png").string() + " 2>&1");
+  ASSERT_EQ(extracted.code, 0) << extracted.out;
+  const cv::Mat photo = cv::imread((photos / "1.png").string());
+  cv::Mat mirrored;
+  cv::flip(photo, mirrored, 1);
+  ASSERT_TRUE(cv::imwrite((photos / "2.png").string(), mirrored));
+  const RunResult folder =
+      run("swap --source " + photos.string() + " --target " + target.string() + " --max-frames 2 -o " + out);
+  ASSERT_EQ(folder.code, 0) << folder.out;
+  std::ifstream folder_sidecar(out + ".json");
+  const std::string folder_mark((std::istreambuf_iterator<char>(folder_sidecar)), std::istreambuf_iterator<char>());
+  EXPECT_NE(folder_mark.find("\"source_frames_used\": \"2\""), std::string::npos) << folder_mark;
   const std::string plain = (dir.path() / "plain.mp4").string();
   ASSERT_EQ(run("swap --source " + source.string() + " --source-frames 8 --target " + target.string() +
                 " --max-frames 4 --no-expression-ratio -o " + plain)

@@ -39,6 +39,9 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   CaptureOptions capture;
   capture.quiet = true;
   capture.keep_images = true;
+  // The source is one face by the user's word: photos of it taken apart
+  // (other rooms, other days) are not shot cuts to solve apart.
+  capture.shot_cuts = false;
   if (!still) capture.max_frames = source_frames;
   std::optional<CapturedFrame> fit;
   const CaptureSummary summary = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
