@@ -14,6 +14,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/pipeline/transform_job.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
@@ -162,6 +163,21 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   ASSERT_EQ(rows.size(), 80u);
   EXPECT_EQ(nlohmann::json::parse(rows[39])["shot"], 0);
   EXPECT_EQ(nlohmann::json::parse(rows[40])["shot"], 1);
+
+  // transform's smoothing window (2k + 1 = 3 frames) stops at the cut: the
+  // first shot's last frame is smoothed as at the end of the input, the same
+  // as a run of those 40 frames alone (it took in the second speaker's first
+  // frame before).
+  TransformJobOptions to;
+  to.capture.quiet = true;
+  to.description = "test";
+  const TransformSummary whole = run_transform(*model, joined.string(), dir.path() / "whole.mp4", to);
+  to.capture.max_frames = 40;
+  const TransformSummary first_shot = run_transform(*model, joined.string(), dir.path() / "first.mp4", to);
+  ASSERT_EQ(whole.frames.size(), 80u);
+  ASSERT_EQ(first_shot.frames.size(), 40u);
+  ASSERT_TRUE(whole.frames[39].valid && first_shot.frames[39].valid);
+  EXPECT_LT((whole.frames[39].smoothed - first_shot.frames[39].smoothed).cwiseAbs().maxCoeff(), 1e-5);
 
   // One identity for the whole video (--no-shot-cuts): the first speaker's.
   o.capture.shot_cuts = false;
