@@ -34,7 +34,8 @@ void RefineStage::run() {
     while (std::optional<CapturedFrame> f = queue_.pop()) {
       RefinedFrame out;
       out.frame = std::move(*f);
-      if (out.frame.shot != shot_) {
+      out.starts_shot = out.frame.shot != shot_;
+      if (out.starts_shot) {
         refiner_.start_shot();
         shot_ = out.frame.shot;
       }

@@ -18,6 +18,10 @@ struct RefinedFrame {
   std::optional<Refinement> refinement;  // empty for lost frames
   PinholeCamera camera;
   Positions coarse;  // camera-space coarse face (tracked frames)
+  // The first frame of a shot after a cut (CapturedFrame::shot): the refiner
+  // started its albedo and lighting again here, and so should a consumer
+  // whatever it learns across frames.
+  bool starts_shot = false;
 };
 
 class RefineStage {
@@ -46,7 +50,7 @@ class RefineStage {
   std::exception_ptr error_;
   double refine_ms_ = 0;
   int refined_ = 0;
-  int shot_ = 0;  // of the last frame (CapturedFrame::shot): a new one restarts the albedo
+  int shot_ = 0;  // of the last frame (CapturedFrame::shot)
   std::jthread worker_;
 };
 

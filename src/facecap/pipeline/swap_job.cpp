@@ -158,14 +158,12 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   // stage's thread, concurrently with the next frames' capture (§4.4.1's
   // pipelining); frames reach it and leave it in order, so the results are
   // those of one thread.
-  int swapper_shot = 0;
   RefineStage stage(model, refine, [&](const RefinedFrame& r) {
     const CapturedFrame& f = r.frame;
-    if (f.shot != swapper_shot) {
+    if (r.starts_shot) {
       // A shot cut: what the swapper learnt of the target's first frames
       // (appearance, light colour, expression reference) is of the last shot.
       swapper = FaceSwapper(model, summary.source.photo, summary.source.face, options.swap);
-      swapper_shot = f.shot;
     }
     SwappedFrame result;
     if (!r.refinement) {

@@ -26,6 +26,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Files of the output folder that an input could be (a re-tracked overlay).
+constexpr const char* kOverlayVideo = "overlay.mp4";
+constexpr const char* kShadedVideo = "shaded.mp4";
+constexpr const char* kHeatmapVideo = "heatmap.mp4";
+constexpr const char* kAlbedoImage = "albedo.png";
+
 // A text output written through a temporary file and renamed at the end.
 class StagedText {
  public:
@@ -89,12 +95,12 @@ class FrameWriter {
     if (options.overlay) {
       VideoWriterOptions vo = output_like(info, options.capture.max_frames);
       vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
-      overlay_ = std::make_unique<VideoWriter>(dir / "overlay.mp4", vo);
+      overlay_ = std::make_unique<VideoWriter>(dir / kOverlayVideo, vo);
       if (options.refine) {
         vo.metadata["comment"] = "facecap refined geometry (shaded) of " + fs::path(input).filename().string();
-        shaded_ = std::make_unique<VideoWriter>(dir / "shaded.mp4", vo);
+        shaded_ = std::make_unique<VideoWriter>(dir / kShadedVideo, vo);
         vo.metadata["comment"] = "facecap photometric error heat map of " + fs::path(input).filename().string();
-        heatmap_ = std::make_unique<VideoWriter>(dir / "heatmap.mp4", vo);
+        heatmap_ = std::make_unique<VideoWriter>(dir / kHeatmapVideo, vo);
       }
     }
   }
@@ -192,7 +198,7 @@ class FrameWriter {
     }
     std::vector<uint8_t> albedo_png;
     if (refiner != nullptr) albedo_png = face_albedo_png(model_, *refiner);
-    if (!albedo_png.empty()) write_binary_file(dir_ / "albedo.png", albedo_png.data(), albedo_png.size());
+    if (!albedo_png.empty()) write_binary_file(dir_ / kAlbedoImage, albedo_png.data(), albedo_png.size());
     if (options_.gltf) {
       // Like identity.json: no tracked frame, no face to animate.
       if (id.frames_used > 0 && !animation_keys_.empty()) {
@@ -378,7 +384,7 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
   auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
   ensure_writable_dir(dir);
   // Re-tracking an earlier run's overlay into its own folder would replace it.
-  for (const char* name : {"overlay.mp4", "shaded.mp4", "heatmap.mp4", "albedo.png"})
+  for (const char* name : {kOverlayVideo, kShadedVideo, kHeatmapVideo, kAlbedoImage})
     ensure_not_an_input(dir / name, {input});
   const InputInfo info = source->info();
   TrackSummary summary;

@@ -105,14 +105,9 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   // mapping and the re-render run on the refinement stage's thread,
   // concurrently with the next frames' capture (§4.4.1's pipelining); frames
   // reach it and leave it in order, so the results are those of one thread.
-  int transformer_shot = 0;
   RefineStage stage(model, lighting_only_refinement(), [&](const RefinedFrame& r) {
     const CapturedFrame& f = r.frame;
-    if (f.shot != transformer_shot) {
-      // A shot cut: the smoothing window does not reach across it.
-      emit(transformer.finish());
-      transformer_shot = f.shot;
-    }
+    if (r.starts_shot) emit(transformer.finish());  // the smoothing window does not reach across a cut
     Pending p;
     p.frame = f;
     std::optional<Eigen::VectorXf> weights;
