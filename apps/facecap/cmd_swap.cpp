@@ -31,7 +31,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--gltf", a->options.gltf,
                   "Also write the swapped performance as an animated glTF (.glb, as track --gltf): the source's face "
                   "at the target's size with its harmonised texture, keyed by the target's pose and expression; "
-                  "marked as synthetic, with a sidecar OUT.glb.json");
+                  "marked as synthetic, with a sidecar OUT.glb.json. A target that cuts gets one per shot: "
+                  "OUT_shot<N>.glb after the first");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
@@ -66,8 +67,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                  a->output.c_str(), a->output.c_str());
     if (const std::string note = unreadable_frames_note(s.target, a->target); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
-    if (!a->options.gltf.empty())
-      std::fprintf(stderr, "wrote %s and %s.json\n", a->options.gltf.c_str(), a->options.gltf.c_str());
+    for (const std::filesystem::path& file : s.animation_files)
+      std::fprintf(stderr, "wrote %s and %s.json\n", file.c_str(), file.c_str());
   });
 }
 

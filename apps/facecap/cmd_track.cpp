@@ -28,7 +28,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--gltf", a->options.gltf,
                 "Write DIR/animation.glb: the face with its 53 blend shapes as morph targets, head pose and weights "
                 "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "
-                "textured with the albedo)");
+                "textured with the albedo). A video that cuts gets one per shot: DIR/animation_shot<N>.glb after the "
+                "first");
   cmd->add_flag("--refine", a->options.refine,
                 "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
   add_device_option(*cmd, a->options.refine_options.device);
@@ -82,7 +83,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                    s.refine_ms / std::max(1, s.refined_frames));
     }
     std::printf("%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
-    if (a->options.gltf) std::printf("%s\n", (std::filesystem::path(a->out) / "animation.glb").string().c_str());
+    for (const std::filesystem::path& file : s.animation_files) std::printf("%s\n", file.string().c_str());
   });
 }
 

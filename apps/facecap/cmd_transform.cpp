@@ -32,7 +32,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
   cmd->add_option("--gltf", a->gltf,
                   "Also write the transformed performance as an animated glTF (.glb, as track --gltf; marked as "
-                  "synthetic, with a sidecar .json)");
+                  "synthetic, with a sidecar .json). An input that cuts gets one per shot: OUT_shot<N>.glb after "
+                  "the first");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
@@ -65,7 +66,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                  s.timings.render_ms / n, a->output.c_str(), a->output.c_str());
     if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
-    if (!a->gltf.empty()) std::fprintf(stderr, "wrote %s and %s.json\n", a->gltf.c_str(), a->gltf.c_str());
+    for (const std::filesystem::path& file : s.animation_files)
+      std::fprintf(stderr, "wrote %s and %s.json\n", file.c_str(), file.c_str());
   });
 }
 

@@ -14,6 +14,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
@@ -148,7 +149,15 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   run_track(*model, alone.string(), dir.path() / "alone", o);
   const nlohmann::json own = identity_of(dir.path() / "alone")["identity_weights"];
 
-  const TrackSummary s = run_track(*model, joined.string(), dir.path() / "joined", o);
+  // With its glTF and albedo, which are per shot too; an earlier run's
+  // later shot in that folder is not this run's.
+  TrackOptions with_files = o;
+  with_files.gltf = true;
+  with_files.refine = true;
+  const fs::path jd = dir.path() / "joined";
+  fs::create_directories(jd);
+  for (const char* name : {"animation_shot4.glb", "albedo_shot4.png"}) std::ofstream(jd / name) << "earlier run";
+  const TrackSummary s = run_track(*model, joined.string(), jd, with_files);
   EXPECT_EQ(s.capture.cuts, 1);
   ASSERT_EQ(s.capture.shots.size(), 2u);
   EXPECT_EQ(s.capture.shots[1].first_frame, 40);
@@ -164,6 +173,44 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   EXPECT_EQ(nlohmann::json::parse(rows[39])["shot"], 0);
   EXPECT_EQ(nlohmann::json::parse(rows[40])["shot"], 1);
 
+  // One glTF per shot: its own face, keys, camera and albedo.
+  ASSERT_EQ(s.animation_files, (std::vector<fs::path>{jd / "animation.glb", jd / "animation_shot1.glb"}));
+  EXPECT_FALSE(fs::exists(jd / "animation_shot4.glb"));
+  EXPECT_FALSE(fs::exists(jd / "albedo_shot4.png"));
+  std::vector<std::vector<float>> rest_shapes;
+  for (int shot = 0; shot < 2; ++shot) {
+    const test::Glb g = test::Glb::read(s.animation_files[shot]);
+    const std::vector<float> times = g.floats(g.doc["animations"][0]["samplers"][0]["input"]);
+    ASSERT_EQ(times.size(), 40u) << shot;
+    EXPECT_NEAR(times.front(), shot * 40 / 25.0, 1e-4) << shot;  // the video's own times
+    EXPECT_NEAR(times.back(), (shot * 40 + 39) / 25.0, 1e-4) << shot;
+    const double yfov = g.doc["cameras"][0]["perspective"]["yfov"];
+    EXPECT_NEAR(360.0 / std::tan(yfov / 2), double(id["shots"][shot]["focal_px"]), 0.01) << shot;
+    const fs::path albedo = jd / (shot == 0 ? "albedo.png" : "albedo_shot1.png");
+    const cv::Mat texture = cv::imread(albedo.string());
+    ASSERT_FALSE(texture.empty()) << albedo;
+    EXPECT_GT(cv::mean(texture)[2], 20.0) << albedo;  // skin, not the restarted refiner's nothing
+    const auto& view = g.doc["bufferViews"][int(g.doc["images"][0]["bufferView"])];
+    EXPECT_EQ(size_t(view["byteLength"]), fs::file_size(albedo)) << shot;
+    rest_shapes.push_back(g.floats(g.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]));
+  }
+  // The first shot's albedo is the one that shot's frames alone give (baked
+  // before the refiner starts again for the next shot).
+  TrackOptions first_only = with_files;
+  first_only.gltf = false;
+  first_only.capture.max_frames = 40;
+  run_track(*model, joined.string(), dir.path() / "first40", first_only);
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_TRUE(bytes(jd / "albedo.png") == bytes(dir.path() / "first40" / "albedo.png"));
+  ASSERT_EQ(rest_shapes[0].size(), rest_shapes[1].size());
+  float largest = 0;  // metres
+  for (size_t i = 0; i < rest_shapes[0].size(); ++i)
+    largest = std::max(largest, std::abs(rest_shapes[0][i] - rest_shapes[1][i]));
+  EXPECT_GT(largest, 0.003f);  // two people's faces
+
   // transform's smoothing window (2k + 1 = 3 frames) stops at the cut: the
   // first shot's last frame is smoothed as at the end of the input, the same
   // as a run of those 40 frames alone (it took in the second speaker's first
@@ -171,7 +218,34 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   TransformJobOptions to;
   to.capture.quiet = true;
   to.description = "test";
+  to.gltf = dir.path() / "whole.glb";
   const TransformSummary whole = run_transform(*model, joined.string(), dir.path() / "whole.mp4", to);
+  // Its glTF is per shot as track's, each file marked as synthetic.
+  ASSERT_EQ(whole.animation_files, (std::vector<fs::path>{dir.path() / "whole.glb", dir.path() / "whole_shot1.glb"}));
+  for (const fs::path& file : whole.animation_files) {
+    EXPECT_TRUE(fs::exists(file.string() + ".json")) << file;
+    const test::Glb g = test::Glb::read(file);
+    EXPECT_EQ(g.floats(g.doc["animations"][0]["samplers"][0]["input"]).size(), 40u) << file;
+  }
+  to.gltf.clear();
+
+  // So is swap's: the source's face placed and textured for each shot, seen
+  // through that shot's camera.
+  FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  SwapJobOptions so;
+  so.capture.quiet = true;
+  so.gltf = dir.path() / "swap.glb";
+  const SwapSummary swapped = run_swap(*model, photo.string(), joined.string(), dir.path() / "swap.mp4", so);
+  ASSERT_EQ(swapped.animation_files, (std::vector<fs::path>{dir.path() / "swap.glb", dir.path() / "swap_shot1.glb"}));
+  for (int shot = 0; shot < 2; ++shot) {
+    const fs::path& file = swapped.animation_files[shot];
+    EXPECT_TRUE(fs::exists(file.string() + ".json")) << file;
+    const test::Glb g = test::Glb::read(file);
+    EXPECT_EQ(g.floats(g.doc["animations"][0]["samplers"][0]["input"]).size(), 40u) << file;
+    const double yfov = g.doc["cameras"][0]["perspective"]["yfov"];
+    EXPECT_NEAR(360.0 / std::tan(yfov / 2), swapped.target.shots[shot].identity.focal, 0.01) << file;
+  }
+
   to.capture.max_frames = 40;
   const TransformSummary first_shot = run_transform(*model, joined.string(), dir.path() / "first.mp4", to);
   ASSERT_EQ(whole.frames.size(), 80u);

@@ -36,6 +36,7 @@ void RefineStage::run() {
       out.frame = std::move(*f);
       out.starts_shot = out.frame.shot != shot_;
       if (out.starts_shot) {
+        if (shot_end_) shot_end_();
         refiner_.start_shot();
         shot_ = out.frame.shot;
       }

@@ -31,6 +31,12 @@ class RefineStage {
   RefineStage(const FaceModel& model, const RefineOptions& options, Consumer consumer, int queue_size = 3);
   ~RefineStage();
 
+  // Runs on the stage's thread at a shot cut, after the last shot's last
+  // frame reached the consumer and before the refiner starts its albedo and
+  // lighting again: what a consumer keeps per shot (the glTF's albedo) is
+  // still the last shot's here. Set it before the first push().
+  void on_shot_end(std::function<void()> hook) { shot_end_ = std::move(hook); }
+
   // Queues a frame (blocks while the queue is full). Rethrows a failure of the worker.
   void push(const CapturedFrame& frame);
   // Waits for the queue to drain; rethrows a failure of the worker.
@@ -46,6 +52,7 @@ class RefineStage {
   const FaceModel& model_;
   Refiner refiner_;
   Consumer consumer_;
+  std::function<void()> shot_end_;
   BoundedQueue<CapturedFrame> queue_;
   std::exception_ptr error_;
   double refine_ms_ = 0;

@@ -15,6 +15,7 @@
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
+#include "facecap/pipeline/shot_animations.hpp"
 
 namespace facecap {
 
@@ -153,7 +154,23 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     refine.displacements = true;
     refine.hierarchy.levels = 2;
   }
-  std::vector<FaceAnimationKey> keys;
+  // --gltf: one file per shot, each with the swapper's placement and
+  // texture for that shot and the shot's focal length.
+  std::optional<ShotAnimations> animations;
+  if (!options.gltf.empty()) {
+    animations.emplace(
+        options.gltf,
+        [&](const fs::path& file, const ShotKeys& shot) {
+          GltfAnimatedMesh glb = swapped_animation(model, swapper, summary.source.face, shot.keys,
+                                                   {shot.identity.focal, info.width, info.height}, mark);
+          glb.animation_name =
+              fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")";
+          if (shot.shot > 0) glb.animation_name += " shot " + std::to_string(shot.shot);
+          write_glb(file, glb);
+          write_synthetic_sidecar(file, mark);
+        },
+        std::vector<std::string>{source_photo, target});
+  }
   // The target's lighting, the swap and the output run on the refinement
   // stage's thread, concurrently with the next frames' capture (§4.4.1's
   // pipelining); frames reach it and leave it in order, so the results are
@@ -163,6 +180,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     if (r.starts_shot) {
       // A shot cut: what the swapper learnt of the target's first frames
       // (appearance, light colour, expression reference) is of the last shot.
+      if (animations) animations->end_shot();
       swapper = FaceSwapper(model, summary.source.photo, summary.source.face, options.swap);
     }
     SwappedFrame result;
@@ -182,8 +200,9 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
       }
       result = swapper.swap(f.image, t, &summary.timings.swap);
       ++summary.timings.swapped;
-      if (!options.gltf.empty())
-        append_animation_key(keys, has_timeline(info), f.index, f.time, t.pose, t.expression, key_gaze(f.fit.gaze));
+      if (animations)
+        append_animation_key(animations->keys(f.shot, f.identity), has_timeline(info), f.index, f.time, t.pose,
+                             t.expression, key_gaze(f.fit.gaze));
     }
     writer.write(result.image, output_time(info, f.index, f.time));
     if (options.on_frame) options.on_frame(f, result);
@@ -198,14 +217,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
   write_synthetic_sidecar(output, mark);
-  if (!options.gltf.empty()) {
-    GltfAnimatedMesh glb = swapped_animation(model, swapper, summary.source.face, keys,
-                                             {summary.target.identity.focal, info.width, info.height}, mark);
-    glb.animation_name =
-        fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")";
-    write_glb(options.gltf, glb);
-    write_synthetic_sidecar(options.gltf, mark);
-  }
+  if (animations) summary.animation_files = animations->finish();
   return summary;
 }
 

@@ -37,7 +37,8 @@ struct SwapJobOptions {
   // source's identity at the size the swap gives it, performing the target's
   // keys (pose and expression), textured with the source's harmonised albedo
   // (FaceSwapper::harmonised_texture), and marked as synthetic, with a
-  // sidecar GLTF.json. Empty: none.
+  // sidecar GLTF.json; one per shot where the target cuts
+  // (shot_animations.hpp). Empty: none.
   std::filesystem::path gltf;
   // Called with each output frame (and the target frame it came from).
   std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
@@ -54,6 +55,7 @@ struct SwapSummary {
   CaptureSummary target;
   SourceReconstruction source;
   SwapJobTimings timings;
+  std::vector<std::filesystem::path> animation_files;  // --gltf: one per shot with a face (shot_animations.hpp)
 };
 
 SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,

@@ -16,6 +16,7 @@
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
+#include "facecap/pipeline/shot_animations.hpp"
 #include "facecap/render/overlay.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
@@ -92,6 +93,16 @@ class FrameWriter {
          "iris_left_y";
     o << '\n';
     if (options.meshes) fs::create_directories(dir / "meshes");
+    if (options.gltf) {
+      animations_.emplace(dir / "animation.glb", [this](const fs::path& file, const ShotKeys& shot) {
+        const IdentityEstimate& id = shot.identity;
+        GltfAnimatedMesh glb = face_animation(model_, id.identity, shot.keys, {id.focal, info_.width, info_.height});
+        glb.primitives.front().base_colour_png = shot_albedo_png_;  // the face part
+        glb.animation_name = fs::path(input_).stem().string();
+        if (shot.shot > 0) glb.animation_name += " shot " + std::to_string(shot.shot);
+        write_glb(file, glb);
+      });
+    }
     if (options.overlay) {
       VideoWriterOptions vo = output_like(info, options.capture.max_frames);
       vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
@@ -107,6 +118,11 @@ class FrameWriter {
 
   void write(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& camera) {
     const bool ok = f.status != TrackStatus::kLost;
+    if (f.shot != shot_) {
+      end_shot();
+      shot_ = f.shot;
+    }
+    shot_has_face_ = shot_has_face_ || ok;
     std::ofstream& o = csv_.stream();
     o << f.index << ',' << number(f.time) << ',' << to_string(f.status);
     nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}, {"shot", f.shot}};
@@ -144,13 +160,31 @@ class FrameWriter {
     o << '\n';
     jsonl_.stream() << row.dump() << '\n';
     if (ok) write_mesh(f, ref, coarse);
-    if (ok && options_.gltf)
-      append_animation_key(animation_keys_, has_timeline(info_), f.index, f.time, f.fit.pose, f.fit.expression,
-                           key_gaze(f.fit.gaze));
+    if (ok && animations_)
+      append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
+                           f.fit.expression, key_gaze(f.fit.gaze));
     write_videos(f, ref, coarse, camera);
   }
 
-  void finish(const CaptureSummary& capture, const Refiner* refiner) {
+  // What is written per shot (shot_animations.hpp): its albedo texture
+  // (with --refine) and its glTF. The first shot with a face takes the plain
+  // names, later ones `_shot<N>`. Called at a cut before the refiner starts
+  // again (RefineStage::on_shot_end), and again harmlessly by the next
+  // shot's first frame.
+  void end_shot() {
+    if (!shot_has_face_) return;
+    shot_has_face_ = false;
+    shot_albedo_png_.clear();
+    if (refiner_ != nullptr) shot_albedo_png_ = face_albedo_png(model_, *refiner_);
+    if (!shot_albedo_png_.empty()) {
+      const fs::path file = shot_file(dir_ / kAlbedoImage, shot_, albedo_files_.empty());
+      write_binary_file(file, shot_albedo_png_.data(), shot_albedo_png_.size());
+      albedo_files_.push_back(file);
+    }
+    if (animations_) animations_->end_shot();
+  }
+
+  void finish(const CaptureSummary& capture) {
     const IdentityEstimate& id = capture.identity;
     nlohmann::json j;
     j["format"] = "facecap-identity";
@@ -196,22 +230,11 @@ class FrameWriter {
       std::error_code ec;
       fs::remove(dir_ / "identity.json", ec);
     }
-    std::vector<uint8_t> albedo_png;
-    if (refiner != nullptr) albedo_png = face_albedo_png(model_, *refiner);
-    if (!albedo_png.empty()) write_binary_file(dir_ / kAlbedoImage, albedo_png.data(), albedo_png.size());
-    if (options_.gltf) {
-      // Like identity.json: no tracked frame, no face to animate.
-      if (id.frames_used > 0 && !animation_keys_.empty()) {
-        GltfAnimatedMesh glb =
-            face_animation(model_, id.identity, animation_keys_, {id.focal, info_.width, info_.height});
-        glb.primitives.front().base_colour_png = std::move(albedo_png);  // the face part
-        glb.animation_name = fs::path(input_).stem().string();
-        write_glb(dir_ / "animation.glb", glb);
-      } else {
-        std::error_code ec;
-        fs::remove(dir_ / "animation.glb", ec);
-      }
-    }
+    end_shot();
+    // Like identity.json: no tracked frame, no face to animate (an earlier
+    // run's animation.glb is removed, and so are its later shots' files).
+    if (animations_) animation_files_ = animations_->finish();
+    if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     csv_.commit();
     jsonl_.commit();
     for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
@@ -220,6 +243,7 @@ class FrameWriter {
   }
 
   int meshes_written() const { return meshes_; }
+  const std::vector<fs::path>& animation_files() const { return animation_files_; }
   int gaze_frames() const { return gaze_frames_; }
   void set_refiner(const Refiner* r) { refiner_ = r; }
 
@@ -372,7 +396,12 @@ class FrameWriter {
   const Refiner* refiner_ = nullptr;
   std::optional<std::vector<Vec2f>> refined_uvs_;
   std::vector<Polygon> refined_polygons_;
-  std::vector<FaceAnimationKey> animation_keys_;
+  std::optional<ShotAnimations> animations_;
+  std::vector<fs::path> animation_files_;
+  int shot_ = 0;
+  bool shot_has_face_ = false;
+  std::vector<uint8_t> shot_albedo_png_;
+  std::vector<fs::path> albedo_files_;
   int meshes_ = 0;
   std::unordered_set<std::string> meshes_written_;  // their file names
 };
@@ -400,6 +429,7 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
       writer.write(r.frame, r.refinement ? &*r.refinement : nullptr, r.coarse, r.camera);
     });
     writer.set_refiner(&stage->refiner());
+    stage->on_shot_end([&] { writer.end_shot(); });
   }
   summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
     if (stage) {
@@ -422,7 +452,8 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
     summary.refine_ms = stage->refine_ms();
   }
   if (summary.capture.frames == 0) throw Error("no frames could be read from " + input);
-  writer.finish(summary.capture, stage ? &stage->refiner() : nullptr);
+  writer.finish(summary.capture);
+  summary.animation_files = writer.animation_files();
   summary.meshes_written = writer.meshes_written();
   summary.gaze_frames = writer.gaze_frames();
   return summary;

@@ -7,18 +7,21 @@
 //   DIR/identity.json  identity weights, focal length, image size, conventions
 //   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with UVs
 //   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
-//   DIR/animation.glb  (--gltf) the whole capture as one animated glTF: the
-//                      face with the 53 blend shapes as morph targets, head
-//                      pose and weights keyed per frame, the fitted camera
-//                      (face_animation.hpp); with --refine its albedo texture
+//   DIR/animation.glb  (--gltf) the capture as an animated glTF: the face
+//                      with the 53 blend shapes as morph targets, head pose
+//                      and weights keyed per frame, the fitted camera
+//                      (face_animation.hpp); with --refine its albedo texture.
+//                      A video that cuts: one per shot (shot_animations.hpp)
 // With --refine (shading-based refinement, §4.2-4.3) also:
-//   lighting columns l0..l8 per frame, DIR/albedo.png (ICT UV layout),
+//   lighting columns l0..l8 per frame, DIR/albedo.png (ICT UV layout; one
+//   per shot, as the glTF),
 //   refined finest-level meshes with --meshes, and with --overlay
 //   DIR/shaded.mp4 (the refined geometry shaded) and DIR/heatmap.mp4 (the
 //   photometric error, paper Fig. 4.11).
 // Every file is written under a temporary name and renamed when complete.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/refine/refiner.hpp"
@@ -42,7 +45,8 @@ struct TrackSummary {
   CaptureSummary capture;
   std::filesystem::path output_dir;
   int meshes_written = 0;
-  int gaze_frames = 0;  // frames with an iris found (gaze.hpp)
+  std::vector<std::filesystem::path> animation_files;  // --gltf: one per shot with a face (shot_animations.hpp)
+  int gaze_frames = 0;                                 // frames with an iris found (gaze.hpp)
   int refined_frames = 0;
   double refine_ms = 0;  // total, on the refinement thread
 };

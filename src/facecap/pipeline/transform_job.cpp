@@ -18,6 +18,7 @@
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
+#include "facecap/pipeline/shot_animations.hpp"
 
 namespace facecap {
 
@@ -73,7 +74,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
 
   TransformSummary summary;
   std::map<int, Pending> pending;
-  std::vector<FaceAnimationKey> keys;  // for the glTF
+  std::optional<ShotAnimations> animations;  // --gltf, one file per shot
   auto emit = [&](const std::vector<TransformedFrame>& done) {
     for (const TransformedFrame& t : done) {
       auto it = pending.find(t.index);
@@ -93,9 +94,9 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
         summary.timings.render_ms += ms_since(t0);
       }
       writer.write(out, output_time(info, p.frame.index, p.frame.time));
-      if (t.valid && !options.gltf.empty())
-        append_animation_key(keys, has_timeline(info), t.index, t.time, p.frame.fit.pose, t.weights,
-                             key_gaze(p.frame.fit.gaze));
+      if (t.valid && animations)
+        append_animation_key(animations->keys(p.frame.shot, p.frame.identity), has_timeline(info), t.index, t.time,
+                             p.frame.fit.pose, t.weights, key_gaze(p.frame.fit.gaze));
       summary.frames.push_back(t);
       pending.erase(it);
     }
@@ -107,7 +108,6 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   // reach it and leave it in order, so the results are those of one thread.
   RefineStage stage(model, lighting_only_refinement(), [&](const RefinedFrame& r) {
     const CapturedFrame& f = r.frame;
-    if (r.starts_shot) emit(transformer.finish());  // the smoothing window does not reach across a cut
     Pending p;
     p.frame = f;
     std::optional<Eigen::VectorXf> weights;
@@ -122,6 +122,27 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     summary.timings.mapping_ms += ms_since(t0);
     emit(done);
   });
+  // At a cut the smoothing window stops (it does not reach across), and the
+  // shot's glTF is written while the refiner still holds its albedo.
+  stage.on_shot_end([&] {
+    emit(transformer.finish());
+    if (animations) animations->end_shot();
+  });
+  if (!options.gltf.empty()) {
+    animations.emplace(
+        options.gltf,
+        [&](const fs::path& file, const ShotKeys& shot) {
+          const IdentityEstimate& id = shot.identity;
+          GltfAnimatedMesh glb = face_animation(model, id.identity, shot.keys, {id.focal, info.width, info.height});
+          glb.primitives.front().base_colour_png = face_albedo_png(model, stage.refiner());  // the face part
+          glb.animation_name = fs::path(input).stem().string() + " (" + options.description + ")";
+          if (shot.shot > 0) glb.animation_name += " shot " + std::to_string(shot.shot);
+          glb.asset_extras.merge(synthetic_metadata(mark));
+          write_glb(file, glb);
+          write_synthetic_sidecar(file, mark);
+        },
+        std::vector<std::string>{input});
+  }
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
   summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stage.push(f); });
@@ -135,15 +156,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
   write_synthetic_sidecar(output, mark);
-  if (!options.gltf.empty()) {
-    const IdentityEstimate& id = summary.capture.identity;
-    GltfAnimatedMesh glb = face_animation(model, id.identity, keys, {id.focal, info.width, info.height});
-    glb.primitives.front().base_colour_png = face_albedo_png(model, stage.refiner());  // the face part
-    glb.animation_name = fs::path(input).stem().string() + " (" + options.description + ")";
-    glb.asset_extras.merge(synthetic_metadata(mark));
-    write_glb(options.gltf, glb);
-    write_synthetic_sidecar(options.gltf, mark);
-  }
+  if (animations) summary.animation_files = animations->finish();
   if (!options.plot.empty()) write_weight_plot(options.plot, summary.frames, model.expression_names);
   return summary;
 }

@@ -8,6 +8,7 @@
 // and the synthetic-media marks.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "facecap/expr/expression_transform.hpp"
 #include "facecap/pipeline/capture_session.hpp"
@@ -21,7 +22,8 @@ struct TransformJobOptions {
   std::filesystem::path models_dir = default_expression_models_dir();
   std::filesystem::path plot;  // PNG of weight curves (empty: none)
   // The transformed performance as an animated glTF (face_animation.hpp),
-  // marked as synthetic like the video (empty: none).
+  // marked as synthetic like the video (empty: none); one per shot where
+  // the input cuts (shot_animations.hpp).
   std::filesystem::path gltf;
   std::string description;  // for the synthetic mark, e.g. "neutral to happiness"
 };
@@ -37,6 +39,7 @@ struct TransformSummary {
   CaptureSummary capture;
   std::vector<TransformedFrame> frames;  // weights per frame (no images)
   TransformTimings timings;
+  std::vector<std::filesystem::path> animation_files;  // --gltf: one per shot with a face (shot_animations.hpp)
 };
 
 TransformSummary run_transform(const FaceModel& model, const std::string& input, const std::filesystem::path& output,
