@@ -38,6 +38,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
+  add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->callback([a, &global] {
@@ -72,7 +73,9 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                    s.capture.cuts, starts.c_str());
     }
     if (s.capture.most_faces > 1) {
-      std::fprintf(stderr, "facecap: up to %d faces in view; the largest is tracked (one face per run)\n",
+      std::fprintf(stderr,
+                   "facecap: up to %d faces in view; one is tracked per run (--face chooses which: largest, left, "
+                   "right or X,Y)\n",
                    s.capture.most_faces);
     }
     if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty()) {

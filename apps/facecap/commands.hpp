@@ -10,6 +10,10 @@
 #include "facecap/refine/compute_device.hpp"
 #include "facecap/swap/face_swapper.hpp"
 
+namespace facecap {
+struct FacePick;
+}
+
 namespace facecap::cli {
 
 struct GlobalOptions {
@@ -31,6 +35,9 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames);
 void add_start_option(CLI::App& cmd, double& start_seconds);
 // --no-shot-cuts: one identity and focal length for the whole input (CaptureOptions::shot_cuts).
 void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
+// --face largest|left|right|X,Y: which face to follow where several are in
+// view (FaceTrackerOptions::pick).
+void add_face_option(CLI::App& cmd, FacePick& pick);
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
+#include "facecap/detect/face_tracker.hpp"
 #include "facecap/model/model_cache.hpp"
 
 namespace facecap::cli {
@@ -45,6 +46,22 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts) {
       "Keep one identity and focal length for the whole input. By default a shot cut (the picture changes "
       "all at once: an edit to another speaker, another camera) starts a new shot whose identity and focal "
       "length are solved again");
+}
+
+void add_face_option(CLI::App& cmd, FacePick& pick) {
+  cmd.add_option_function<std::string>(
+         "--face", [&pick](const std::string& text) { pick = parse_face_pick(text); },
+         "Which face to follow where several are in view: largest (default), left, right, or X,Y (pixels: the "
+         "face nearest that point). It chooses at the start of each shot; after a loss the face nearest where "
+         "it was last seen is taken up again")
+      ->check([](const std::string& text) {
+        try {
+          parse_face_pick(text);
+          return std::string();
+        } catch (const Error&) {
+          return "must be largest, left, right or X,Y (pixels), not '" + text + "'";
+        }
+      });
 }
 
 void add_start_option(CLI::App& cmd, double& start_seconds) {

@@ -447,12 +447,25 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   const RunResult r = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                         (dir.path() / "out").string() + " 2>&1 >/dev/null");
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("up to 2 faces in view; the largest is tracked"), std::string::npos) << r.out;
-  std::ifstream jsonl(dir.path() / "out" / "frames.jsonl");
-  std::string line;
-  ASSERT_TRUE(std::getline(jsonl, line));
-  const nlohmann::json row = nlohmann::json::parse(line);
-  EXPECT_GT(row["landmarks"][30][0].get<double>(), left.cols) << "the nose tip of the face on the right";
+  EXPECT_NE(r.out.find("up to 2 faces in view; one is tracked per run (--face chooses which"), std::string::npos)
+      << r.out;
+  auto nose_x = [&](const fs::path& out) {
+    std::ifstream jsonl(out / "frames.jsonl");
+    std::string line;
+    std::getline(jsonl, line);
+    return nlohmann::json::parse(line)["landmarks"][30][0].get<double>();
+  };
+  EXPECT_GT(nose_x(dir.path() / "out"), left.cols) << "the nose tip of the larger face, on the right";
+  // --face picks the other one.
+  const RunResult l = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                        (dir.path() / "left").string() + " --face left 2>&1 >/dev/null");
+  ASSERT_EQ(l.code, 0) << l.out;
+  EXPECT_LT(nose_x(dir.path() / "left"), left.cols) << "the nose tip of the face on the left";
+  const RunResult bad = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                          (dir.path() / "bad").string() + " --face middle 2>&1");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--face: must be largest, left, right or X,Y (pixels), not 'middle'"), std::string::npos)
+      << bad.out;
 }
 
 // The README's main job, end to end on a short performance: it prints its

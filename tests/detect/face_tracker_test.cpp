@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
+#include "facecap/core/error.hpp"
 #include "facecap/io/input.hpp"
 #include "test_support.hpp"
 
@@ -100,6 +101,72 @@ TEST(FaceTracker, FindsAndFollowsAFaceSmallerThanTheDetectorsWindow) {
   ASSERT_FALSE(errors.empty());
   std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
   EXPECT_LT(errors[errors.size() / 2], 0.03f) << "median NME against the full-size face's landmarks";
+}
+
+// Two people side by side (a two-shot): address_720p_a at 640x360 on the
+// left, its face the larger, and talking_webcam2 on the right. --face picks
+// either; and where the followed face is covered for five frames, those
+// frames are lost rather than fitted on the other person (before: the
+// search after the loss took the largest face, the other person's).
+TEST(FaceTracker, FollowsTheChosenFaceOfTwoAndNotTheOtherWhenItIsCovered) {
+  FACECAP_REQUIRE_DATA(left_video, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(right_video, "talking_webcam2_400x300.mp4");
+  const LandmarkDetector detector;
+  auto pick = [](const char* text) {
+    FaceTrackerOptions o;
+    o.pick = parse_face_pick(text);
+    return o;
+  };
+  FaceTracker largest(detector), right(detector, pick("right")), near_point(detector, pick("900,150")),
+      covered(detector, pick("right"));
+  auto left_source = open_input(left_video.string());
+  auto right_source = open_input(right_video.string());
+  const cv::Rect right_face(860, 40, 220, 260);  // where talking_webcam2's face is, and stays
+  auto centre_x = [](const TrackedFace& f) { return bounding_box(f.landmarks).center().x(); };
+  Frame a, b;
+  int frames = 0;
+  std::vector<TrackStatus> covered_status;
+  while (frames < 40 && left_source->read(a) && right_source->read(b)) {
+    cv::Mat canvas(360, 1280, CV_8UC3), right_half;
+    cv::resize(a.image, canvas(cv::Rect(0, 0, 640, 360)), cv::Size(640, 360), 0, 0, cv::INTER_AREA);
+    canvas(cv::Rect(640, 0, 640, 360)).setTo(cv::Scalar(0, 0, 0));
+    cv::resize(b.image, right_half, cv::Size(480, 360), 0, 0, cv::INTER_LINEAR);
+    right_half.copyTo(canvas(cv::Rect(720, 0, 480, 360)));
+    const TrackedFace l = largest.next(canvas), r = right.next(canvas), p = near_point.next(canvas);
+    ASSERT_NE(l.status, TrackStatus::kLost) << frames;
+    ASSERT_NE(r.status, TrackStatus::kLost) << frames;
+    ASSERT_NE(p.status, TrackStatus::kLost) << frames;
+    EXPECT_LT(centre_x(l), 640.0f) << frames;
+    EXPECT_GT(centre_x(r), 640.0f) << frames;
+    EXPECT_GT(centre_x(p), 640.0f) << frames;
+    if (frames == 0) {
+      EXPECT_EQ(l.faces_seen, 2);
+    }
+    if (frames >= 20 && frames < 25) canvas(right_face).setTo(cv::Scalar(0, 0, 0));
+    const TrackedFace c = covered.next(canvas);
+    covered_status.push_back(c.status);
+    if (c.status != TrackStatus::kLost) {
+      EXPECT_GT(centre_x(c), 640.0f) << frames;
+    }
+    ++frames;
+  }
+  ASSERT_EQ(frames, 40);
+  for (int i = 20; i < 25; ++i) EXPECT_EQ(covered_status[i], TrackStatus::kLost) << i;
+  for (int i = 26; i < 40; ++i) EXPECT_NE(covered_status[i], TrackStatus::kLost) << i;  // taken up again
+}
+
+TEST(FaceTracker, FacePicksParseAndChoose) {
+  std::vector<FaceDetection> faces(3);
+  faces[0].box = {100, 50, 120, 120};  // the largest
+  faces[1].box = {10, 60, 60, 60};     // the leftmost
+  faces[2].box = {600, 40, 80, 80};    // the rightmost
+  EXPECT_EQ(&choose_face(faces, parse_face_pick("largest")), &faces[0]);
+  EXPECT_EQ(&choose_face(faces, parse_face_pick("left")), &faces[1]);
+  EXPECT_EQ(&choose_face(faces, parse_face_pick("right")), &faces[2]);
+  EXPECT_EQ(&choose_face(faces, parse_face_pick("30.5,100")), &faces[1]);
+  EXPECT_EQ(&choose_face(faces, parse_face_pick("500,0")), &faces[2]);
+  for (const char* bad : {"", "middle", "12", "1,2,3", "1,x", "nan,4", "left "})
+    EXPECT_THROW(parse_face_pick(bad), Error) << bad;
 }
 
 }  // namespace facecap

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
+#include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
 
 namespace facecap {
@@ -28,6 +32,43 @@ const char* to_string(TrackStatus status) {
   return "lost";
 }
 
+FacePick parse_face_pick(std::string_view text) {
+  FacePick pick;
+  if (text == "largest") return pick;
+  if (text == "left" || text == "right") {
+    pick.rule = text == "left" ? FacePick::Rule::kLeftmost : FacePick::Rule::kRightmost;
+    return pick;
+  }
+  const std::string s(text);
+  float x = 0, y = 0;
+  int used = 0;
+  if (std::sscanf(s.c_str(), "%f,%f%n", &x, &y, &used) == 2 && used == int(s.size()) && std::isfinite(x) &&
+      std::isfinite(y)) {
+    pick.rule = FacePick::Rule::kNearest;
+    pick.point = {x, y};
+    return pick;
+  }
+  throw Error("--face must be largest, left, right or X,Y (pixels), not '" + s + "'");
+}
+
+const FaceDetection& choose_face(const std::vector<FaceDetection>& faces, const FacePick& pick) {
+  auto by = [&](auto key) -> const FaceDetection& {
+    return *std::min_element(faces.begin(), faces.end(),
+                             [&](const FaceDetection& a, const FaceDetection& b) { return key(a) < key(b); });
+  };
+  switch (pick.rule) {
+    case FacePick::Rule::kLeftmost:
+      return by([](const FaceDetection& f) { return f.box.center().x(); });
+    case FacePick::Rule::kRightmost:
+      return by([](const FaceDetection& f) { return -f.box.center().x(); });
+    case FacePick::Rule::kNearest:
+      return by([&](const FaceDetection& f) { return (f.box.center() - pick.point).squaredNorm(); });
+    case FacePick::Rule::kLargest:
+      break;
+  }
+  return by([](const FaceDetection& f) { return -f.box.area(); });
+}
+
 FaceTracker::FaceTracker(const LandmarkDetector& landmarks, FaceTrackerOptions options)
     : landmarks_(landmarks),
       options_(options),
@@ -44,11 +85,28 @@ void FaceTracker::reset() {
   frames_since_check_ = 0;
 }
 
-std::optional<Box> FaceTracker::detect_largest(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) {
-  const auto faces = detector.detect(grey);
+void FaceTracker::start_shot() {
+  reset();
+  last_seen_.reset();
+}
+
+std::optional<Box> FaceTracker::detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const {
+  std::vector<FaceDetection> faces = detector.detect(grey);
   *faces_seen = static_cast<int>(faces.size());
+  if (last_seen_ && frames_unseen_ < options_.follow_frames) {
+    // Lost a moment ago: the face comes back where it was, or not at all.
+    const Vec2f centre = last_seen_->center();
+    const float radius = options_.follow_radius * 0.5f * (last_seen_->width + last_seen_->height);
+    std::erase_if(faces, [&](const FaceDetection& f) { return (f.box.center() - centre).norm() > radius; });
+    if (faces.empty()) return std::nullopt;
+    return std::min_element(faces.begin(), faces.end(),
+                            [&](const FaceDetection& a, const FaceDetection& b) {
+                              return (a.box.center() - centre).squaredNorm() < (b.box.center() - centre).squaredNorm();
+                            })
+        ->box;
+  }
   if (faces.empty()) return std::nullopt;
-  return faces.front().box;
+  return choose_face(faces, options_.pick).box;
 }
 
 Box FaceTracker::box_from_landmarks(const Landmarks& lm) const {
@@ -110,8 +168,14 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
         // The shape predictor was trained on detector boxes: when the box
         // implied by the tracked landmarks has drifted from the detector's,
         // re-anchor on the detector's box.
-        const Box& det = faces.front().box;
-        if (box_overlap(det, box_from_landmarks(lm)) < options_.min_box_overlap) {
+        // Of the faces in the crop (two heads close together), the one the
+        // landmarks are on.
+        const Box tracked = box_from_landmarks(lm);
+        const Box& det =
+            std::max_element(faces.begin(), faces.end(), [&](const FaceDetection& a, const FaceDetection& b) {
+              return box_overlap(a.box, tracked) < box_overlap(b.box, tracked);
+            })->box;
+        if (box_overlap(det, tracked) < options_.min_box_overlap) {
           t0 = std::chrono::steady_clock::now();
           lm = landmarks_.detect(grey, det);
           out.landmarks_ms += ms_since(t0);
@@ -126,6 +190,8 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
       out.landmarks = lm;
       out.box = used;
       previous_ = lm;
+      last_seen_ = bounding_box(lm);
+      frames_unseen_ = 0;
       return out;
     }
     previous_.reset();
@@ -133,9 +199,9 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
 
   int faces_seen = 0;
   auto t0 = std::chrono::steady_clock::now();
-  auto box = detect_largest(detector_, grey, &faces_seen);
+  auto box = detect_face(detector_, grey, &faces_seen);
   if (!box && options_.fine_search_every > 0 && failed_searches_ % options_.fine_search_every == 0) {
-    box = detect_largest(fine_detector_, grey, &faces_seen);
+    box = detect_face(fine_detector_, grey, &faces_seen);
     out.fine_search = true;
   }
   out.detector_ms += ms_since(t0);
@@ -144,6 +210,7 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
   out.faces_seen = faces_seen;
   if (!box) {
     ++failed_searches_;
+    ++frames_unseen_;
     out.status = TrackStatus::kLost;
     return out;
   }
@@ -156,6 +223,8 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
   out.landmarks = lm;
   out.box = *box;
   previous_ = lm;
+  last_seen_ = bounding_box(lm);
+  frames_unseen_ = 0;
   frames_since_check_ = 0;
   return out;
 }

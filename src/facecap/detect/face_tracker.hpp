@@ -4,6 +4,8 @@
 // (downscaled, and at twice that size where it finds nothing) only at the
 // start and after a loss, and checks each tracked face on a small crop.
 #include <optional>
+#include <string_view>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -18,7 +20,26 @@ float box_overlap(const Box& a, const Box& b);
 enum class TrackStatus { kTracked, kRedetected, kLost };
 const char* to_string(TrackStatus status);
 
+// Which face to follow where the detector finds several (an interview's
+// two-shot, a crowd): the largest (the default), the leftmost or rightmost
+// in the picture, or the one nearest a point. It chooses where a shot starts
+// and once the face has been gone a while (FaceTrackerOptions::follow_frames);
+// before that, the tracker takes up only a face where its face was last seen,
+// so that a face that turns away or is covered for a moment is not swapped for
+// another one beside it.
+struct FacePick {
+  enum class Rule { kLargest, kLeftmost, kRightmost, kNearest };
+  Rule rule = Rule::kLargest;
+  Vec2f point{0, 0};  // kNearest: pixels of the frame
+};
+// "largest", "left", "right" or "X,Y" (pixels); throws facecap::Error otherwise.
+FacePick parse_face_pick(std::string_view text);
+
+// The face `pick` chooses among `faces` (not empty).
+const FaceDetection& choose_face(const std::vector<FaceDetection>& faces, const FacePick& pick);
+
 struct FaceTrackerOptions {
+  FacePick pick;
   FaceDetectorOptions detector;
   // Re-check every this many tracked frames that a face is still in the box
   // (detector on a crop 1.6 times the face, scaled to 130 px: about 1.3 ms at
@@ -42,6 +63,12 @@ struct FaceTrackerOptions {
   // a face and every this many after it, so that a long stretch with no face
   // costs little more; 0 never searches at twice the size.
   int fine_search_every = 8;
+  // For this many frames after the face was last seen in a shot, a face is
+  // taken up again only within follow_radius face sizes (the landmarks' box)
+  // of where it was: until then a frame where only someone else shows is
+  // lost, not fitted with this face's identity. Then `pick` chooses again.
+  int follow_frames = 50;
+  float follow_radius = 1.0f;
 };
 
 struct TrackedFace {
@@ -63,12 +90,16 @@ class FaceTracker {
   // Landmarks for the next frame of the sequence (BGR or grey image).
   TrackedFace next(const cv::Mat& image);
   // Forget the previous frame (the next call detects from scratch; how long
-  // no face has been found, which paces the searches at twice the size, is
-  // kept: the caller resets on every frame it rejects, lost ones included).
+  // no face has been found, which paces the searches at twice the size, and
+  // where the face was last seen are kept: the caller resets on every frame
+  // it rejects, lost ones included).
   void reset();
+  // A new shot (shot_cut.hpp): reset(), and where the face was last seen
+  // says nothing of this shot, so FaceTrackerOptions::pick chooses again.
+  void start_shot();
 
  private:
-  static std::optional<Box> detect_largest(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen);
+  std::optional<Box> detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const;
   Box box_from_landmarks(const Landmarks& lm) const;
   void learn_box_relation(const Box& detector_box, const Landmarks& lm);
 
@@ -78,6 +109,8 @@ class FaceTracker {
   FaceDetector fine_detector_;  // the whole frame at twice the size
   FaceDetector verifier_;
   std::optional<Landmarks> previous_;
+  std::optional<Box> last_seen_;  // the landmarks' box in the last frame with the face, this shot
+  int frames_unseen_ = 0;         // frames since, lost ones counted
   int frames_since_check_ = 0;
   int failed_searches_ = 0;  // whole-frame searches in a row that found no face
   // Detector box relative to the landmark bounding box: centre offset and

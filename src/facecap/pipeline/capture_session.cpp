@@ -130,7 +130,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     if (find_cuts && cuts.next(d->grey)) {
       end_shot();
       tracker.start_shot();
-      face_tracker.reset();  // the last shot's box says nothing of this one
+      face_tracker.start_shot();  // the last shot's box says nothing of this one
       ++shot;
       shot_start = frame.index;
       ++summary.cuts;

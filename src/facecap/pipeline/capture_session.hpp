@@ -65,7 +65,7 @@ struct CaptureSummary {
   int frames = 0;
   int lost = 0;
   int redetected = 0;
-  int most_faces = 0;       // the most faces the detector found in one frame (the largest is tracked)
+  int most_faces = 0;       // the most faces the detector found in one frame (--face chooses which is tracked)
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons
   // The identity and focal length of the first shot with a face (the only
