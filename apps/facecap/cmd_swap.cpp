@@ -18,12 +18,16 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source,
-                  "Portrait photo whose face is put in (the largest face is used), or a short video or folder of "
+                  "Portrait photo whose face is put in (of several, the largest or --source-face's), or a short video "
+                  "or folder of "
                   "photos of that face: its identity is then solved over --source-frames frames")
       ->required();
   cmd->add_option("--source-frames", a->options.source_frames,
                   "Frames of a source video or folder the identity is solved from (the appearance is its first)")
       ->capture_default_str();
+  add_face_option(*cmd, a->options.source_face, "--source-face",
+                  "Which face of the source to use where it shows several (a group photo): largest (default), left, "
+                  "right, or X,Y (pixels: the face nearest that point)");
   cmd->add_option("--target", a->target, "Video (or image folder, or cam:N) whose face is replaced")->required();
   cmd->add_option("-o,--output", a->output,
                   "Output video (.mp4, .m4v, .mov or .mkv); OUT.mp4.json is its synthetic-media sidecar")

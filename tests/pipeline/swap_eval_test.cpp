@@ -267,7 +267,7 @@ TEST(SwapJob, APhotoWithoutAFaceIsAClearErrorAndWritesNothing) {
   }
 }
 
-TEST(SwapJob, SeveralFacesInThePhotoUseTheLargest) {
+TEST(SwapJob, SeveralFacesInThePhotoUseTheLargestOrThePickedOne) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
   FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
@@ -284,6 +284,13 @@ TEST(SwapJob, SeveralFacesInThePhotoUseTheLargest) {
   // The face used is Obama's (the larger, on the left): his nose tip projects there.
   const Vec3f nose = r.face.camera_points.col(model->landmarks.vertices[30]);
   EXPECT_LT(r.face.camera.project(nose).x(), a.cols);
+  // --source-face picks the other: Biden's, on the right.
+  for (const char* pick : {"right", "2000,300"}) {
+    const SourceReconstruction other =
+        reconstruct_source(*model, (dir.path() / "two.jpg").string(), true, 30, parse_face_pick(pick));
+    const Vec3f other_nose = other.face.camera_points.col(model->landmarks.vertices[30]);
+    EXPECT_GT(other.face.camera.project(other_nose).x(), a.cols) << pick;
+  }
 }
 
 TEST(SwapJob, APhotoAndAVideoOfOneFaceReachNearbyIdentities) {

@@ -51,6 +51,23 @@ FacePick parse_face_pick(std::string_view text) {
   throw Error("--face must be largest, left, right or X,Y (pixels), not '" + s + "'");
 }
 
+std::string describe(const FacePick& pick) {
+  switch (pick.rule) {
+    case FacePick::Rule::kLeftmost:
+      return "leftmost";
+    case FacePick::Rule::kRightmost:
+      return "rightmost";
+    case FacePick::Rule::kNearest: {
+      char text[64];
+      std::snprintf(text, sizeof(text), "one nearest (%g, %g)", pick.point.x(), pick.point.y());
+      return text;
+    }
+    case FacePick::Rule::kLargest:
+      break;
+  }
+  return "largest";
+}
+
 const FaceDetection& choose_face(const std::vector<FaceDetection>& faces, const FacePick& pick) {
   auto by = [&](auto key) -> const FaceDetection& {
     return *std::min_element(faces.begin(), faces.end(),

@@ -4,6 +4,7 @@
 // (downscaled, and at twice that size where it finds nothing) only at the
 // start and after a loss, and checks each tracked face on a small crop.
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -34,6 +35,8 @@ struct FacePick {
 };
 // "largest", "left", "right" or "X,Y" (pixels); throws facecap::Error otherwise.
 FacePick parse_face_pick(std::string_view text);
+// For messages: "largest", "leftmost", "rightmost" or "one nearest (X, Y)".
+std::string describe(const FacePick& pick);
 
 // The face `pick` chooses among `faces` (not empty).
 const FaceDetection& choose_face(const std::vector<FaceDetection>& faces, const FacePick& pick);

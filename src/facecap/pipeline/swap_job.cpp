@@ -22,11 +22,11 @@ namespace facecap {
 namespace fs = std::filesystem;
 
 SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& source, bool quiet,
-                                        int source_frames) {
+                                        int source_frames, const FacePick& pick) {
   SourceReconstruction r;
   if (!fs::exists(source)) throw Error("source not found: " + source);
   // One decode and one capture of the source: the detector's full-frame search
-  // (which counts the faces), the landmarks of the largest, the fit (a still
+  // (which counts the faces), the landmarks of the picked one, the fit (a still
   // image's, or a video's identity over the burst).
   std::unique_ptr<FrameSource> input;
   try {
@@ -43,6 +43,7 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   // The source is one face by the user's word: photos of it taken apart
   // (other rooms, other days) are not shot cuts to solve apart.
   capture.shot_cuts = false;
+  capture.tracker.pick = pick;
   if (!still) capture.max_frames = source_frames;
   std::optional<CapturedFrame> fit;
   const CaptureSummary summary = run_capture(model, *input, capture, [&](const CapturedFrame& f) {
@@ -55,7 +56,8 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
     std::fprintf(stderr, "facecap: %s\n", note.c_str());
   }
   if (r.faces_found > 1 && !quiet) {
-    std::fprintf(stderr, "facecap: %d faces in %s; using the largest\n", r.faces_found, source.c_str());
+    std::fprintf(stderr, "facecap: %d faces in %s; using the %s (--source-face chooses which)\n", r.faces_found,
+                 source.c_str(), describe(pick).c_str());
   }
   if (!fit) throw Error("no face could be fitted in " + what + source);
   r.frames_used = summary.identity.frames_used;
@@ -115,7 +117,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   auto input = open_input(target, options.capture.start_seconds);  // a bad target fails before the source's fit
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();
-  summary.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames);
+  summary.source =
+      reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames, options.source_face);
   summary.timings.source_ms = ms_since(t0);
   const InputInfo info = input->info();
 

@@ -18,7 +18,7 @@ struct SourceReconstruction {
   cv::Mat photo;        // the image the appearance comes from
   int frames_used = 1;  // frames the source identity was solved from
   SourceFace face;
-  int faces_found = 0;  // faces the detector saw in the photo (the largest is used)
+  int faces_found = 0;  // faces the detector saw in the photo (the pick chooses which is used)
 };
 
 // The source is a photo, or a short video or a folder of photos of one face
@@ -26,13 +26,15 @@ struct SourceReconstruction {
 // `source_frames` frames, as a video's is, and the appearance comes from its
 // first frame with a face. Throws facecap::Error naming the file when it
 // cannot be read or holds no face.
+// `pick`: which face of a photo with several (a group photo).
 SourceReconstruction reconstruct_source(const FaceModel& model, const std::string& source, bool quiet = false,
-                                        int source_frames = 30);
+                                        int source_frames = 30, const FacePick& pick = {});
 
 struct SwapJobOptions {
   CaptureOptions capture;
   SwapOptions swap;
   int source_frames = 30;  // frames of a source video or folder the identity is solved from
+  FacePick source_face;    // which face of the source where it shows several (capture.tracker.pick: the target's)
   // The swapped performance as an animated glTF (face_animation.hpp): the
   // source's identity at the size the swap gives it, performing the target's
   // keys (pose and expression), textured with the source's harmonised albedo
