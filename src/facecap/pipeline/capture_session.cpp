@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <thread>
@@ -122,7 +123,20 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
     ~CloseOnExit() { q.close(); }  // unblocks the decoder if a stage throws
   } close_on_exit{decoded};
 
+  // A camera has no end of its own: Ctrl-C ends it, and what was captured is
+  // kept. Anything else is a job that was stopped: nothing is written.
+  const bool live = summary.input.kind == InputKind::kCamera;
+  struct LiveInput {
+    explicit LiveInput(bool live) { set_interrupt_ends_input(live); }
+    ~LiveInput() { set_interrupt_ends_input(false); }
+  } live_input{live};
   while (std::optional<Decoded> d = decoded.pop()) {
+    if (live && interrupted()) {
+      clear_interrupt();
+      summary.stopped_by_user = true;
+      decoded.close();  // the decoder stops at its next frame
+      break;
+    }
     throw_if_interrupted();
     const Frame& frame = d->frame;
     t.decode_ms += d->decode_ms;
@@ -178,6 +192,8 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
   end_shot();
   t.fit_ms -= t.iris_ms;  // the tracker runs the iris searches
   progress.finish();
+  if (summary.stopped_by_user && !options.quiet)
+    std::fprintf(stderr, "facecap: the camera was stopped (Ctrl-C) after %d frames; they are written\n", t.frames);
   summary.identity = summary.shots.empty() ? tracker.identity() : summary.shots.front().identity;
   t.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

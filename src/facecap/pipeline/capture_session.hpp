@@ -78,6 +78,9 @@ struct CaptureSummary {
   };
   std::vector<Shot> shots;
   int cuts = 0;  // shot cuts found
+  // A camera ended by Ctrl-C (interrupt.hpp: set_interrupt_ends_input): the
+  // frames before it are all delivered, and the job completes with them.
+  bool stopped_by_user = false;
   StageTimings timings;
   InputInfo input;
 };

@@ -1,0 +1,83 @@
+#include "facecap/pipeline/capture_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/interrupt.hpp"
+#include "facecap/io/input.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+namespace {
+
+// A video read as if it were a camera (which the test machine has none of),
+// whose user presses Ctrl-C when `stop_after` frames have been read.
+class PressedCtrlC : public FrameSource {
+ public:
+  PressedCtrlC(std::unique_ptr<FrameSource> video, InputKind kind, int stop_after)
+      : video_(std::move(video)), info_(video_->info()), stop_after_(stop_after) {
+    info_.kind = kind;
+    if (kind == InputKind::kCamera) info_.frames = -1;
+  }
+  const InputInfo& info() const override { return info_; }
+  bool read(Frame& frame) override {
+    if (++reads_ == stop_after_) std::raise(SIGINT);
+    return video_->read(frame);
+  }
+
+ private:
+  std::unique_ptr<FrameSource> video_;
+  InputInfo info_;
+  int stop_after_;
+  int reads_ = 0;
+};
+
+struct InterruptHandler {
+  InterruptHandler() { install_interrupt_handler(); }
+  ~InterruptHandler() {
+    clear_interrupt();
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+};
+
+// A camera has no end but the user's: Ctrl-C ends the input, and every frame
+// captured until then is delivered, fitted with the identity solved from them.
+TEST(CaptureSession, ACameraStoppedByCtrlCDeliversWhatItCaptured) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const InterruptHandler handler;
+  PressedCtrlC camera(open_input(video.string()), InputKind::kCamera, 45);
+  CaptureOptions options;
+  options.quiet = true;
+  int delivered = 0, tracked = 0;
+  const CaptureSummary s = run_capture(*model, camera, options, [&](const CapturedFrame& f) {
+    EXPECT_EQ(f.index, delivered);
+    ++delivered;
+    tracked += f.status != TrackStatus::kLost;
+  });
+  EXPECT_TRUE(s.stopped_by_user);
+  EXPECT_FALSE(interrupted());  // handled: the job goes on to write its files
+  EXPECT_EQ(delivered, s.frames);
+  EXPECT_GE(s.frames, 40);  // the decoder reads a few frames ahead of the fit
+  EXPECT_LE(s.frames, 45);
+  EXPECT_EQ(tracked, s.frames);
+  EXPECT_EQ(s.identity.frames_used, 30);
+}
+
+// Anything else stopped by Ctrl-C is a job that did not finish: it throws,
+// and the job's outputs are never committed.
+TEST(CaptureSession, AVideoStoppedByCtrlCThrows) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const InterruptHandler handler;
+  PressedCtrlC stopped(open_input(video.string()), InputKind::kVideo, 20);
+  CaptureOptions options;
+  options.quiet = true;
+  EXPECT_THROW(run_capture(*model, stopped, options, [](const CapturedFrame&) {}), Error);
+}
+
+}  // namespace
+}  // namespace facecap
