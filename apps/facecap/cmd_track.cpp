@@ -1,3 +1,4 @@
+#include <csignal>
 #include <cstdio>
 
 #include "commands.hpp"
@@ -13,6 +14,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       "DIR/frames.jsonl, DIR/identity.json, and optionally meshes, an animated glTF and an overlay video");
   struct Args {
     std::string input, out, mesh_space = "model";
+    bool stream = false;
     TrackOptions options;
   };
   auto a = std::make_shared<Args>();
@@ -39,6 +41,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   add_face_option(*cmd, a->options.capture.tracker.pick);
+  cmd->add_flag("--stream", a->stream,
+                "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "
+                "reading the capture live (cam:N; rows start once the identity is solved, after --init-frames "
+                "frames); the closing list of files then goes to stderr");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->callback([a, &global] {
@@ -46,6 +52,18 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     a->options.capture.fit.check();
     a->options.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
+    if (a->stream) {
+      // A reader that goes away (`| head`) ends the stream, not the capture.
+      std::signal(SIGPIPE, SIG_IGN);
+      a->options.on_row = [open = true](const std::string& row) mutable {
+        if (!open) return;
+        if (std::fwrite(row.data(), 1, row.size(), stdout) != row.size() || std::fputc('\n', stdout) == EOF ||
+            std::fflush(stdout) != 0) {
+          open = false;
+          std::fprintf(stderr, "facecap: stdout was closed; --stream stops, and the files are still written\n");
+        }
+      };
+    }
     const TrackSummary s = run_track(model, a->input, a->out, a->options);
     if (s.capture.identity.frames_used == 0) {
       // frames.csv is still written (every frame "lost"), but there is nothing else to give.
@@ -85,8 +103,9 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
                    s.refine_ms / std::max(1, s.refined_frames));
     }
-    std::printf("%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
-    for (const std::filesystem::path& file : s.animation_files) std::printf("%s\n", file.string().c_str());
+    FILE* const files = a->stream ? stderr : stdout;  // stdout holds the rows
+    std::fprintf(files, "%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
+    for (const std::filesystem::path& file : s.animation_files) std::fprintf(files, "%s\n", file.string().c_str());
   });
 }
 

@@ -1,11 +1,13 @@
 // The facecap program end to end: exit codes and one-line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -466,6 +468,43 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   EXPECT_EQ(bad.code, 2) << bad.out;
   EXPECT_NE(bad.out.find("--face: must be largest, left, right or X,Y (pixels), not 'middle'"), std::string::npos)
       << bad.out;
+}
+
+// --stream: each frame's row on stdout as it is done, the same as frames.jsonl's,
+// and nothing else there (the closing list of files goes to stderr). A reader
+// that stops early (`| head -1`) ends the stream, not the capture.
+TEST(Cli, TrackStreamsEachFramesRowOnStdout) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  auto lines_of = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+  };
+  auto file_lines = [&](const fs::path& p) {
+    std::ifstream in(p);
+    return lines_of(std::string(std::istreambuf_iterator<char>(in), {}));
+  };
+  const std::string track =
+      std::string(FACECAP_BINARY) + " -q track " + video.string() + " --stream --max-frames 36 -o ";
+  const RunResult r = test::run_command(track + (dir.path() / "a").string() + " 2>/dev/null");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::vector<std::string> rows = lines_of(r.out);
+  EXPECT_EQ(rows.size(), 36u);
+  EXPECT_EQ(rows, file_lines(dir.path() / "a" / "frames.jsonl"));
+  for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(nlohmann::json::parse(rows[i])["frame"], int(i));
+
+  const RunResult early = test::run_command("sh -c '" + track + (dir.path() / "b").string() + " 2>" +
+                                            (dir.path() / "b.err").string() + " | head -1'");
+  EXPECT_EQ(early.code, 0);
+  EXPECT_EQ(lines_of(early.out).size(), 1u);
+  EXPECT_EQ(file_lines(dir.path() / "b" / "frames.jsonl").size(), 36u);  // the capture went on
+  const std::vector<std::string> err = file_lines(dir.path() / "b.err");
+  EXPECT_NE(
+      std::find(err.begin(), err.end(), "facecap: stdout was closed; --stream stops, and the files are still written"),
+      err.end());
 }
 
 // The README's main job, end to end on a short performance: it prints its

@@ -158,7 +158,9 @@ class FrameWriter {
     }
     write_gaze(f, o, row);
     o << '\n';
-    jsonl_.stream() << row.dump() << '\n';
+    const std::string line = row.dump();
+    jsonl_.stream() << line << '\n';
+    if (options_.on_row) options_.on_row(line);
     if (ok) write_mesh(f, ref, coarse);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,

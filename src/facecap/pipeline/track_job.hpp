@@ -20,6 +20,7 @@
 //   photometric error, paper Fig. 4.11).
 // Every file is written under a temporary name and renamed when complete.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct TrackOptions {
   bool refine = false;
   RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
+  // Optional: each frame's frames.jsonl row (one line of JSON, no newline),
+  // in frame order, as soon as it is written (`track --stream`).
+  std::function<void(const std::string&)> on_row;
 };
 
 struct TrackSummary {
