@@ -30,7 +30,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                   "right, or X,Y (pixels: the face nearest that point)");
   cmd->add_option("--target", a->target, "Video (or image folder, or cam:N) whose face is replaced")->required();
   cmd->add_option("-o,--output", a->output,
-                  "Output video (.mp4, .m4v, .mov or .mkv); OUT.mp4.json is its synthetic-media sidecar")
+                  "Output video (.mp4, .m4v, .mov or .mkv), or for a photo target also an image (.png, .jpg, .jpeg) "
+                  "marked as synthetic in its metadata; OUT.json is its synthetic-media sidecar")
       ->required();
   cmd->add_option("--gltf", a->options.gltf,
                   "Also write the swapped performance as an animated glTF (.glb, as track --gltf): the source's face "

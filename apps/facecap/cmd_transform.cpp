@@ -19,7 +19,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
   cmd->add_option("-o,--output", a->output,
-                  "Output video (.mp4, .m4v, .mov or .mkv; OUT.mp4.json is its synthetic-media sidecar)")
+                  "Output video (.mp4, .m4v, .mov or .mkv), or for a photo also an image (.png, .jpg, .jpeg) marked "
+                  "as synthetic in its metadata; OUT.json is its synthetic-media sidecar")
       ->required();
   cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
   cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();

@@ -18,6 +18,8 @@
 
 #include "app/command.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/marked_image.hpp"
+#include "facecap/io/synthetic_mark.hpp"
 #include "facecap/refine/compute_device.hpp"
 #include "test_support.hpp"
 
@@ -337,6 +339,55 @@ TEST(Cli, SwapTakesItsSourceFromAVideo) {
   std::ifstream plain_sidecar(plain + ".json");
   const std::string plain_mark((std::istreambuf_iterator<char>(plain_sidecar)), std::istreambuf_iterator<char>());
   EXPECT_NE(plain_mark.find("\"expression_ratio\": \"false\""), std::string::npos) << plain_mark;
+}
+
+// A photo's edit can be a photo (.png, .jpg): the marks are in the file's own
+// metadata (XMP with IPTC's DigitalSourceType, text chunks or a comment) as
+// well as in its sidecar; the picture outside the face is the input's.
+TEST(Cli, EditsOfAPhotoWriteAMarkedPhoto) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(source, "portrait_biden.jpg");
+  FACECAP_REQUIRE_DATA(target, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const cv::Mat input = cv::imread(target.string());
+  ASSERT_FALSE(input.empty());
+  const cv::Rect corner(0, 0, 120, 120);  // curtain and flag, far from the face
+  auto face_change = [&](const cv::Mat& out) {
+    const cv::Rect face(input.cols / 3, input.rows / 12, input.cols / 3, input.rows / 4);
+    return cv::norm(out(face), input(face), cv::NORM_L1) / face.area();
+  };
+
+  const fs::path swapped = dir.path() / "swapped.jpg";
+  const RunResult s =
+      run("swap --source " + source.string() + " --target " + target.string() + " -o " + swapped.string());
+  ASSERT_EQ(s.code, 0) << s.out;
+  EXPECT_TRUE(carries_synthetic_marks(swapped));
+  const auto swap_tags = read_image_tags(swapped);
+  EXPECT_EQ(swap_tags.at("facecap_edit"), "face-swap");
+  EXPECT_NE(swap_tags.at("comment").find("The face in this image was replaced"), std::string::npos);
+  const cv::Mat swap_out = cv::imread(swapped.string());
+  ASSERT_EQ(swap_out.size(), input.size());
+  EXPECT_GT(face_change(swap_out), 10.0);                                                  // another face
+  EXPECT_LT(cv::norm(swap_out(corner), input(corner), cv::NORM_L1) / corner.area(), 3.0);  // JPEG's own
+
+  const fs::path smiling = dir.path() / "smiling.png";
+  const RunResult t = run("transform " + target.string() + " --to happiness -o " + smiling.string());
+  ASSERT_EQ(t.code, 0) << t.out;
+  EXPECT_TRUE(carries_synthetic_marks(smiling));
+  EXPECT_EQ(read_image_tags(smiling).at("facecap_edit"), "expression-transform");
+  const cv::Mat smile_out = cv::imread(smiling.string());
+  ASSERT_EQ(smile_out.size(), input.size());
+  EXPECT_GT(face_change(smile_out), 5.0);
+  EXPECT_EQ(cv::norm(smile_out(corner), input(corner), cv::NORM_INF), 0.0);  // PNG: exactly the input
+
+  // A video's edit is a video: an image name for it is refused before any work.
+  const fs::path still = dir.path() / "still.png";
+  const RunResult v = run("transform " + video.string() + " --to happiness -o " + still.string());
+  EXPECT_EQ(v.code, 1);
+  EXPECT_EQ(lines(v.out), 1) << v.out;
+  EXPECT_NE(v.out.find("an image output (.png, .jpg, .jpeg) is for a photo input"), std::string::npos) << v.out;
+  EXPECT_FALSE(fs::exists(still));
 }
 
 TEST(Cli, ProbeDescribesAVideoAsJson) {

@@ -9,6 +9,7 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/version.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/io/marked_image.hpp"
 
 namespace facecap {
 
@@ -40,8 +41,9 @@ void write_synthetic_sidecar(const std::filesystem::path& media_path, const Synt
 }
 
 bool carries_synthetic_marks(const std::filesystem::path& media_path) {
-  // Matroska's tag names are upper case (SYNTHETIC), mp4's as written.
-  const auto tags = read_container_tags(media_path);
+  // Matroska's tag names are upper case (SYNTHETIC), mp4's as written; an
+  // image's are its text chunks or XMP.
+  const auto tags = is_still_image_path(media_path) ? read_image_tags(media_path) : read_container_tags(media_path);
   const bool tagged = std::any_of(tags.begin(), tags.end(), [](const auto& tag) {
     std::string key = tag.first;
     std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return char(std::tolower(c)); });

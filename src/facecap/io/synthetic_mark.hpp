@@ -1,7 +1,8 @@
 #pragma once
 // The marks every synthetic or manipulated output of facecap carries:
 // container metadata (mp4 tags `synthetic=true`, `facecap_edit=<kind>` and a
-// human-readable `comment`) and a sidecar JSON `<output>.json` that states
+// human-readable `comment`; a photo's in its XMP and text, marked_image.hpp)
+// and a sidecar JSON `<output>.json` that states
 // what was done, from which inputs, by which version, and when.
 #include <filesystem>
 #include <map>
@@ -26,7 +27,8 @@ void write_synthetic_sidecar(const std::filesystem::path& media_path, const Synt
 // The sidecar path for an output file.
 std::filesystem::path sidecar_path(const std::filesystem::path& media_path);
 
-// True when a video carries both marks: the `synthetic=true` tag and its sidecar.
+// True when a video or image carries both marks: the `synthetic=true` tag (an
+// image's: marked_image.hpp) and its sidecar.
 bool carries_synthetic_marks(const std::filesystem::path& media_path);
 
 }  // namespace facecap

@@ -8,6 +8,7 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
@@ -109,12 +110,12 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   // Unwritable outputs fail before the work (the source's fit included).
   ensure_writable_file(fs::absolute(output));
   ensure_not_an_input(output, {source_photo, target});
-  video_container(output);
   if (!options.gltf.empty()) {
     ensure_writable_file(fs::absolute(options.gltf));
     ensure_not_an_input(options.gltf, {source_photo, target});
   }
   auto input = open_input(target, options.capture.start_seconds);  // a bad target fails before the source's fit
+  check_edit_output(output, input->info().kind);                   // a video, or an image for a photo target
   SwapSummary summary;
   auto t0 = std::chrono::steady_clock::now();
   summary.source =
@@ -124,8 +125,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
 
   SyntheticMark mark;
   mark.kind = "face-swap";
-  mark.description = "The face in this video was replaced by facecap with the face from " +
-                     fs::path(source_photo).filename().string() + ".";
+  mark.description = std::string("The face in this ") + (info.kind == InputKind::kImage ? "image" : "video") +
+                     " was replaced by facecap with the face from " + fs::path(source_photo).filename().string() + ".";
   mark.sources = {source_photo, target};
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
                      {"warp_background", options.swap.warp_background ? "true" : "false"},
@@ -139,7 +140,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      {"target_start_seconds", std::to_string(start_time(info))}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
-  VideoWriter writer(output, vo);
+  EditOutput writer(output, info.kind, vo);
 
   FaceSwapper swapper(model, summary.source.photo, summary.source.face, options.swap);
   // The target's albedo from its first 4 frames in a row (not every 3rd):

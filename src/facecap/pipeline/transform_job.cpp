@@ -12,6 +12,7 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
@@ -39,6 +40,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
                                const TransformJobOptions& options) {
   auto source = open_input(input, options.capture.start_seconds);
   const InputInfo info = source->info();
+  ensure_writable_file(fs::absolute(output));  // a folder, say, is named as such
+  check_edit_output(output, info.kind);         // a video, or an image for a photo
   const ExpressionMapper mapper(options.models_dir);
   for (const ScheduleKey& k : options.transform.schedule.keys()) {
     if (k.target != Emotion::kNeutral) mapper.pair(k.target);  // fail before any work on a missing model
@@ -64,7 +67,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
                      {"start_seconds", std::to_string(start_time(info))}};
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
-  VideoWriter writer(output, vo);
+  EditOutput writer(output, info.kind, vo);
 
   ExpressionTransformer transformer(mapper, lip_basis(model), options.transform);
   const TriangleMesh face = model.region_mesh(regions::kFace);
