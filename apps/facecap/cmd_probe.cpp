@@ -1,14 +1,26 @@
+#include <cmath>
+
 #include "commands.hpp"
 #include "facecap/pipeline/probe.hpp"
 
 namespace facecap::cli {
 
 void register_probe(CLI::App& app, GlobalOptions&) {
-  auto* cmd = app.add_subcommand("probe", "Describe an input (video, image, image folder or cam:N) as JSON");
+  auto* cmd = app.add_subcommand("probe",
+                                 "Describe an input (video, image, image folder or cam:N) as JSON, with the faces of "
+                                 "its first frame (face_boxes, left to right: a centre is a --face X,Y)");
   auto input = std::make_shared<std::string>();
   cmd->add_option("INPUT", *input, "Video file, image, folder of images, or cam:N")->required();
   cmd->callback([input] {
     const ProbeReport r = probe_input(*input);
+    // Where each face is, for track's --face X,Y: its box and centre, rounded to the pixel.
+    nlohmann::json boxes = nlohmann::json::array();
+    for (const Box& b : r.face_boxes)
+      boxes.push_back({{"x", std::lround(b.x)},
+                       {"y", std::lround(b.y)},
+                       {"width", std::lround(b.width)},
+                       {"height", std::lround(b.height)},
+                       {"centre", {std::lround(b.center().x()), std::lround(b.center().y())}}});
     print_json({{"input", r.info.spec},
                 {"kind", to_string(r.info.kind)},
                 {"width", r.info.width},
@@ -17,7 +29,8 @@ void register_probe(CLI::App& app, GlobalOptions&) {
                 {"frames", r.info.frames},
                 {"duration", r.info.duration},
                 {"audio", r.info.audio},
-                {"faces", r.faces}});
+                {"faces", r.faces},
+                {"face_boxes", boxes}});
   });
 }
 

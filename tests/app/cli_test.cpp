@@ -514,6 +514,19 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
                                         (dir.path() / "left").string() + " --face left 2>&1 >/dev/null");
   ASSERT_EQ(l.code, 0) << l.out;
   EXPECT_LT(nose_x(dir.path() / "left"), left.cols) << "the nose tip of the face on the left";
+  // probe says where the faces are, left to right; a centre is a --face X,Y.
+  const RunResult p = test::run_command(std::string(FACECAP_BINARY) + " -q probe " + image.string());
+  ASSERT_EQ(p.code, 0) << p.out;
+  const nlohmann::json boxes = nlohmann::json::parse(p.out)["face_boxes"];
+  ASSERT_EQ(boxes.size(), 2u) << p.out;
+  EXPECT_LT(boxes[0]["centre"][0].get<int>(), left.cols);
+  EXPECT_GT(boxes[1]["centre"][0].get<int>(), left.cols);
+  const std::string at =
+      std::to_string(boxes[0]["centre"][0].get<int>()) + "," + std::to_string(boxes[0]["centre"][1].get<int>());
+  const RunResult point = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                            (dir.path() / "point").string() + " --face " + at + " 2>&1 >/dev/null");
+  ASSERT_EQ(point.code, 0) << point.out;
+  EXPECT_LT(nose_x(dir.path() / "point"), left.cols) << "the face at " << at;
   const RunResult bad = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                           (dir.path() / "bad").string() + " --face middle 2>&1");
   EXPECT_EQ(bad.code, 2) << bad.out;

@@ -1,5 +1,7 @@
 #include "facecap/pipeline/probe.hpp"
 
+#include <algorithm>
+
 #include "facecap/core/error.hpp"
 #include "facecap/detect/face_detector.hpp"
 
@@ -15,6 +17,9 @@ ProbeReport probe_input(const std::string& spec) {
   auto faces = FaceDetector().detect(frame.image);
   if (faces.empty()) faces = FaceDetector(twice_the_size({})).detect(frame.image);
   report.faces = static_cast<int>(faces.size());
+  for (const FaceDetection& f : faces) report.face_boxes.push_back(f.box);
+  std::sort(report.face_boxes.begin(), report.face_boxes.end(),
+            [](const Box& a, const Box& b) { return a.center().x() < b.center().x(); });
   return report;
 }
 
