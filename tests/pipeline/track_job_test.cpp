@@ -78,11 +78,13 @@ TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
 
   const auto csv = lines(dir.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
-  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9);
+  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9 + 1);
   EXPECT_NE(csv[0].find(",jawOpen,"), std::string::npos);
+  EXPECT_TRUE(csv[0].ends_with(",iris_left_y,shot")) << csv[0];
   EXPECT_NE(csv[0].find(",gaze_yaw_deg,gaze_pitch_deg,"), std::string::npos);
   for (size_t i = 1; i < csv.size(); ++i) {
-    EXPECT_EQ(count_fields(csv[i]), 14 + 53 + 9) << "row " << i;
+    EXPECT_EQ(count_fields(csv[i]), 14 + 53 + 9 + 1) << "row " << i;
+    EXPECT_TRUE(csv[i].ends_with(",0")) << "row " << i;  // one shot
     EXPECT_EQ(csv[i].find("nan"), std::string::npos) << "row " << i;
   }
   const auto jsonl = lines(dir.path() / "frames.jsonl");
@@ -172,6 +174,10 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   ASSERT_EQ(rows.size(), 80u);
   EXPECT_EQ(nlohmann::json::parse(rows[39])["shot"], 0);
   EXPECT_EQ(nlohmann::json::parse(rows[40])["shot"], 1);
+  const auto csv = lines(jd / "frames.csv");
+  ASSERT_EQ(csv.size(), 81u);
+  EXPECT_TRUE(csv[40].ends_with(",0")) << csv[40];  // frame 39
+  EXPECT_TRUE(csv[41].ends_with(",1")) << csv[41];  // frame 40
 
   // One glTF per shot: its own face, keys, camera and albedo.
   ASSERT_EQ(s.animation_files, (std::vector<fs::path>{jd / "animation.glb", jd / "animation_shot1.glb"}));
@@ -365,8 +371,8 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   const auto csv = lines(out.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
-  // Every field after the status is empty, gaze included.
-  EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9, ',')) << csv[32];
+  // Every field after the status is empty, gaze included; then the shot.
+  EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9 + 1, ',') + "0") << csv[32];
   EXPECT_EQ(csv[32].find("nan"), std::string::npos);
   EXPECT_EQ(csv[34].find("lost"), std::string::npos) << csv[34];  // back
 
@@ -398,7 +404,7 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   EXPECT_EQ(s.refined_frames, 32 - s.capture.lost);
   const auto csv = lines(dir.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 33u);
-  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9 + 9);  // lighting, then gaze
+  EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9 + 9 + 1);  // lighting, then gaze, then the shot
   EXPECT_NE(csv[0].find(",l8,gaze_yaw_deg,"), std::string::npos);
   for (size_t i = 1; i < csv.size(); ++i) EXPECT_EQ(csv[i].find("nan"), std::string::npos);
   const cv::Mat albedo = cv::imread((dir.path() / "albedo.png").string());

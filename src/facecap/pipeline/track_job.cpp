@@ -91,7 +91,7 @@ class FrameWriter {
       for (int k = 0; k < 9; ++k) o << ",l" << k;
     o << ",gaze_yaw_deg,gaze_pitch_deg,gaze_camera_x,gaze_camera_y,gaze_camera_z,iris_right_x,iris_right_y,iris_left_x,"
          "iris_left_y";
-    o << '\n';
+    o << ",shot\n";  // last, so that the columns before keep their places
     if (options.meshes) fs::create_directories(dir / "meshes");
     if (options.gltf) {
       animations_.emplace(dir / "animation.glb", [this](const fs::path& file, const ShotKeys& shot) {
@@ -157,7 +157,7 @@ class FrameWriter {
       for (int k = 0; k < 11 + model_.num_expressions() + (options_.refine ? 9 : 0); ++k) o << ',';
     }
     write_gaze(f, o, row);
-    o << '\n';
+    o << ',' << f.shot << '\n';
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
