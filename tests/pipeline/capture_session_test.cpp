@@ -43,23 +43,31 @@ struct InterruptHandler {
   }
 };
 
+// Captures `video` read as an input of `kind`, with Ctrl-C pressed at its
+// `stop_after`th read.
+CaptureSummary capture_pressing_ctrl_c(const FaceModel& model, const std::filesystem::path& video, InputKind kind,
+                                       int stop_after, const FrameSink& sink) {
+  const InterruptHandler handler;
+  PressedCtrlC source(open_input(video.string()), kind, stop_after);
+  CaptureOptions options;
+  options.quiet = true;
+  const CaptureSummary s = run_capture(model, source, options, sink);
+  EXPECT_FALSE(interrupted());  // a Ctrl-C that ended the input is handled: the job goes on to write its files
+  return s;
+}
+
 // A camera has no end but the user's: Ctrl-C ends the input, and every frame
 // captured until then is delivered, fitted with the identity solved from them.
 TEST(CaptureSession, ACameraStoppedByCtrlCDeliversWhatItCaptured) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
-  const InterruptHandler handler;
-  PressedCtrlC camera(open_input(video.string()), InputKind::kCamera, 45);
-  CaptureOptions options;
-  options.quiet = true;
   int delivered = 0, tracked = 0;
-  const CaptureSummary s = run_capture(*model, camera, options, [&](const CapturedFrame& f) {
+  const CaptureSummary s = capture_pressing_ctrl_c(*model, video, InputKind::kCamera, 45, [&](const CapturedFrame& f) {
     EXPECT_EQ(f.index, delivered);
     ++delivered;
     tracked += f.status != TrackStatus::kLost;
   });
   EXPECT_TRUE(s.stopped_by_user);
-  EXPECT_FALSE(interrupted());  // handled: the job goes on to write its files
   EXPECT_EQ(delivered, s.frames);
   // Ctrl-C came as the decoder began its 45th read: it had queued 44 frames,
   // of which the queue holds at most 4, so the fit had taken at least 40,
@@ -75,11 +83,7 @@ TEST(CaptureSession, ACameraStoppedByCtrlCDeliversWhatItCaptured) {
 TEST(CaptureSession, AVideoStoppedByCtrlCThrows) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
-  const InterruptHandler handler;
-  PressedCtrlC stopped(open_input(video.string()), InputKind::kVideo, 20);
-  CaptureOptions options;
-  options.quiet = true;
-  EXPECT_THROW(run_capture(*model, stopped, options, [](const CapturedFrame&) {}), Error);
+  EXPECT_THROW(capture_pressing_ctrl_c(*model, video, InputKind::kVideo, 20, [](const CapturedFrame&) {}), Error);
 }
 
 }  // namespace
