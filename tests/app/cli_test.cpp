@@ -84,8 +84,15 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
   // Usage errors exit with 2, whichever CLI11 error they are: a missing
   // argument, a value out of range, an unknown option or subcommand.
-  for (const char* args : {"probe", "track in.mp4 -o x --start -5", "track in.mp4 -o x --bogus", "nosuchcommand"})
+  for (const char* args : {"probe", "track in.mp4 -o x --start -5", "track in.mp4 -o x --bogus", "nosuchcommand",
+                           "transform in.mp4 -o x.mp4 --face 3",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 "
+                           "--source-face up"})
     EXPECT_EQ(run(args).code, 2) << args;
+  const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
+  EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help
+  EXPECT_NE(face.out.find("--source-face: must be largest, left, right or X,Y (pixels), not 'up'"), std::string::npos)
+      << face.out;
   const RunResult shading = run("eval refine --video whatever.mp4 --true-shading");
   EXPECT_EQ(shading.code, 1) << shading.out;
   EXPECT_EQ(lines(shading.out), 1) << shading.out;
