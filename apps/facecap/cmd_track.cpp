@@ -3,9 +3,56 @@
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/pipeline/track_each_face.hpp"
 #include "facecap/pipeline/track_job.hpp"
 
 namespace facecap::cli {
+
+namespace {
+
+// The closing lines of one capture on stderr: per-stage timings, shots, faces
+// in view (not where every face is tracked), unreadable frames, the refinement.
+void report_track(const TrackSummary& s, const std::string& input, bool refine, bool all_faces) {
+  const StageTimings& t = s.capture.timings;
+  const double n = std::max(1, t.frames);
+  std::fprintf(stderr,
+               "frames %d, lost %d, redetected %d | per frame: decode %.2f ms (own thread), detect %.2f ms, "
+               "landmarks %.2f ms, fit %.2f ms, gaze %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
+               "identity and focal (%.1f px) from %d frames; gaze in %d frames\n",
+               s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
+               t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
+               s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
+  if (s.capture.cuts > 0) {
+    std::string starts;
+    for (const CaptureSummary::Shot& shot : s.capture.shots)
+      starts += (starts.empty() ? "" : ", ") + std::to_string(shot.first_frame);
+    std::fprintf(stderr,
+                 "facecap: %d shot cut(s); identity and focal solved again for each shot with a face (starting at "
+                 "frames %s; identity.json \"shots\", frames.jsonl \"shot\")\n",
+                 s.capture.cuts, starts.c_str());
+  }
+  if (s.capture.most_faces > 1 && !all_faces) {
+    std::fprintf(stderr,
+                 "facecap: up to %d faces in view; one is tracked per run (--face chooses which: largest, left, "
+                 "right or X,Y)\n",
+                 s.capture.most_faces);
+  }
+  if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty()) {
+    std::fprintf(stderr, "facecap: %s\n", note.c_str());
+  }
+  if (refine) {
+    std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
+                 s.refine_ms / std::max(1, s.refined_frames));
+  }
+}
+
+// The files a capture wrote, one per line.
+void print_track_files(const TrackSummary& s, FILE* out) {
+  std::fprintf(out, "%s\n", (s.output_dir / "frames.csv").string().c_str());
+  for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
+}
+
+}  // namespace
 
 void register_track(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand(
@@ -14,7 +61,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       "DIR/frames.jsonl, DIR/identity.json, and optionally meshes, an animated glTF and an overlay video");
   struct Args {
     std::string input, out, mesh_space = "model";
-    bool stream = false;
+    bool stream = false, all_faces = false;
     TrackOptions options;
   };
   auto a = std::make_shared<Args>();
@@ -40,11 +87,17 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_face_option(*cmd, a->options.capture.tracker.pick);
-  cmd->add_flag("--stream", a->stream,
-                "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "
-                "reading the capture live (cam:N; rows start once the identity is solved, after --init-frames "
-                "frames); the closing list of files then goes to stderr");
+  CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
+  cmd->add_flag("--all-faces", a->all_faces,
+                "Track every face the first frame shows, each into DIR/face_<k> (k from 0, left to right) as --face "
+                "at its centre would, with DIR/faces.json listing them; one capture per face")
+      ->excludes(face);
+  CLI::Option* stream =
+      cmd->add_flag("--stream", a->stream,
+                    "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "
+                    "reading the capture live (cam:N; rows start once the identity is solved, after --init-frames "
+                    "frames); the closing list of files then goes to stderr");
+  stream->excludes("--all-faces");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->callback([a, &global] {
@@ -64,6 +117,22 @@ void register_track(CLI::App& app, GlobalOptions& global) {
         }
       };
     }
+    if (a->all_faces) {
+      const EachFaceSummary each = run_track_each_face(model, a->input, a->out, a->options);
+      int with_face = 0;
+      for (size_t k = 0; k < each.runs.size(); ++k) {
+        const TrackSummary& s = each.runs[k];
+        std::fprintf(stderr, "face %zu: %s\n", k, s.output_dir.string().c_str());
+        with_face += s.capture.identity.frames_used > 0;
+        if (s.capture.identity.frames_used > 0) report_track(s, a->input, a->options.refine, true);
+      }
+      if (with_face == 0)
+        throw Error("no face could be tracked in " + a->input + " (" + std::to_string(each.runs.size()) +
+                    " in its first frame)");
+      for (const TrackSummary& s : each.runs) print_track_files(s, stdout);
+      std::printf("%s\n", (std::filesystem::path(a->out) / "faces.json").string().c_str());
+      return;
+    }
     const TrackSummary s = run_track(model, a->input, a->out, a->options);
     if (s.capture.identity.frames_used == 0) {
       // frames.csv is still written (every frame "lost"), but there is nothing else to give.
@@ -72,40 +141,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string() +
                   (note.empty() ? "" : "; " + note));
     }
-    const StageTimings& t = s.capture.timings;
-    const double n = std::max(1, t.frames);
-    std::fprintf(stderr,
-                 "frames %d, lost %d, redetected %d | per frame: decode %.2f ms (own thread), detect %.2f ms, "
-                 "landmarks %.2f ms, fit %.2f ms, gaze %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
-                 "identity and focal (%.1f px) from %d frames; gaze in %d frames\n",
-                 s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
-                 t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
-                 s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
-    if (s.capture.cuts > 0) {
-      std::string starts;
-      for (const CaptureSummary::Shot& shot : s.capture.shots)
-        starts += (starts.empty() ? "" : ", ") + std::to_string(shot.first_frame);
-      std::fprintf(stderr,
-                   "facecap: %d shot cut(s); identity and focal solved again for each shot with a face (starting at "
-                   "frames %s; identity.json \"shots\", frames.jsonl \"shot\")\n",
-                   s.capture.cuts, starts.c_str());
-    }
-    if (s.capture.most_faces > 1) {
-      std::fprintf(stderr,
-                   "facecap: up to %d faces in view; one is tracked per run (--face chooses which: largest, left, "
-                   "right or X,Y)\n",
-                   s.capture.most_faces);
-    }
-    if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty()) {
-      std::fprintf(stderr, "facecap: %s\n", note.c_str());
-    }
-    if (a->options.refine) {
-      std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
-                   s.refine_ms / std::max(1, s.refined_frames));
-    }
-    FILE* const files = a->stream ? stderr : stdout;  // stdout holds the rows
-    std::fprintf(files, "%s\n", (std::filesystem::path(a->out) / "frames.csv").string().c_str());
-    for (const std::filesystem::path& file : s.animation_files) std::fprintf(files, "%s\n", file.string().c_str());
+    report_track(s, a->input, a->options.refine, false);
+    print_track_files(s, a->stream ? stderr : stdout);  // with --stream, stdout holds the rows
   });
 }
 

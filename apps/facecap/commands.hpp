@@ -38,7 +38,8 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
 // --face largest|left|right|X,Y: which face to follow where several are in
 // view (FaceTrackerOptions::pick); `name` and `help` for another input's
 // (swap's --source-face).
-void add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name = "--face", const std::string& help = "");
+CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name = "--face",
+                             const std::string& help = "");
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.

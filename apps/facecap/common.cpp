@@ -48,13 +48,14 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts) {
       "length are solved again");
 }
 
-void add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name, const std::string& help) {
-  cmd.add_option_function<std::string>(
-         name, [&pick](const std::string& text) { pick = parse_face_pick(text); },
-         help.empty() ? "Which face to follow where several are in view: largest (default), left, right, or X,Y "
-                        "(pixels: the face nearest that point). It chooses at the start of each shot; after a loss, "
-                        "only a face where the followed one was last seen is taken up for 50 frames"
-                      : help)
+CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name, const std::string& help) {
+  return cmd
+      .add_option_function<std::string>(
+          name, [&pick](const std::string& text) { pick = parse_face_pick(text); },
+          help.empty() ? "Which face to follow where several are in view: largest (default), left, right, or X,Y "
+                         "(pixels: the face nearest that point). It chooses at the start of each shot; after a loss, "
+                         "only a face where the followed one was last seen is taken up for 50 frames"
+                       : help)
       ->check([](const std::string& text) {
         try {
           parse_face_pick(text);

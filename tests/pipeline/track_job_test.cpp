@@ -15,6 +15,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/pipeline/swap_job.hpp"
+#include "facecap/pipeline/track_each_face.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
@@ -265,6 +266,56 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   EXPECT_EQ(one.capture.cuts, 0);
   EXPECT_FALSE(identity_of(dir.path() / "one").contains("shots"));
   EXPECT_GT(distance(identity_of(dir.path() / "one")["identity_weights"], own), 2.0);
+}
+
+// --all-faces: two people side by side, each captured into a folder of their
+// own, left to right; an earlier run's third face's folder goes.
+TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
+  TempDir dir;
+  const fs::path two = dir.path() / "two.mp4";
+  const test::CommandResult made = test::run_command(
+      "ffmpeg -nostdin -hide_banner -loglevel error -y -r 25 -i " + left.string() + " -r 25 -i " + right.string() +
+      " -filter_complex \"[0:v]trim=end_frame=36,scale=640:360,setsar=1[a];[1:v]trim=end_frame=36,scale=480:360,"
+      "pad=640:360:80:0,setsar=1[b];[a][b]hstack[v]\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " +
+      two.string() + " 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out / "face_2");
+  std::ofstream(out / "face_2" / "frames.csv") << "an earlier run's\n";
+  fs::create_directories(out / "face_notes");
+  TrackOptions o;
+  o.capture.quiet = true;
+  const EachFaceSummary each = run_track_each_face(*model, two.string(), out, o);
+  ASSERT_EQ(each.faces.size(), 2u);
+  ASSERT_EQ(each.runs.size(), 2u);
+  EXPECT_LT(each.faces[0].center().x(), 640.0f);
+  EXPECT_GT(each.faces[1].center().x(), 640.0f);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(each.runs[k].capture.lost, 0) << k;
+    const auto rows = lines(face_folder(out, k) / "frames.jsonl");
+    ASSERT_EQ(rows.size(), 36u) << k;
+    for (const std::string& row : rows) {
+      const nlohmann::json frame = nlohmann::json::parse(row);
+      float x = 0;
+      for (const auto& p : frame["landmarks"]) x += p[0].get<float>() / 68;
+      EXPECT_EQ(x > 640.0f, k == 1) << "face " << k << ": " << x;
+    }
+  }
+  std::ifstream list_in(out / "faces.json");
+  const nlohmann::json list = nlohmann::json::parse(list_in);
+  ASSERT_EQ(list["faces"].size(), 2u);
+  EXPECT_EQ(list["faces"][1]["folder"], "face_1");
+  EXPECT_FALSE(fs::exists(out / "face_2"));
+  EXPECT_TRUE(fs::exists(out / "face_notes"));
+
+  // A first frame with no face is an error before anything is written.
+  const fs::path grey = dir.path() / "grey.png";
+  cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  EXPECT_THROW(run_track_each_face(*model, grey.string(), dir.path() / "none", o), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "none"));
 }
 
 // --start: the frames keep the video's numbers and times, and the overlay's

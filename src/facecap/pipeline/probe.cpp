@@ -7,8 +7,8 @@
 
 namespace facecap {
 
-ProbeReport probe_input(const std::string& spec) {
-  auto source = open_input(spec);
+ProbeReport probe_input(const std::string& spec, double start_seconds) {
+  auto source = open_input(spec, start_seconds);
   ProbeReport report;
   report.info = source->info();
   Frame frame;

@@ -15,7 +15,8 @@ struct ProbeReport {
   std::vector<Box> face_boxes;  // their boxes, left to right (pixels)
 };
 
-// Throws facecap::Error for inputs that cannot be read.
-ProbeReport probe_input(const std::string& spec);
+// The faces of the frame at `start_seconds` (FrameSource::seek). Throws
+// facecap::Error for inputs that cannot be read.
+ProbeReport probe_input(const std::string& spec, double start_seconds = 0);
 
 }  // namespace facecap

@@ -1,0 +1,62 @@
+#include "facecap/pipeline/track_each_face.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "facecap/core/atomic_file.hpp"
+#include "facecap/core/error.hpp"
+#include "facecap/pipeline/probe.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+fs::path face_folder(const fs::path& output_dir, int k) { return output_dir / ("face_" + std::to_string(k)); }
+
+EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input, const fs::path& output_dir,
+                                    const TrackOptions& options) {
+  const double start = options.capture.start_seconds;
+  const ProbeReport probe = probe_input(input, start);
+  if (probe.info.kind == InputKind::kCamera)
+    throw Error("--all-faces needs a file: a camera cannot be read once per face (use --face to choose one)");
+  if (probe.face_boxes.empty())
+    throw Error("no face in the first frame of " + input + ": --all-faces tracks the faces that frame shows");
+  ensure_writable_dir(output_dir);
+  EachFaceSummary summary;
+  summary.faces = probe.face_boxes;
+  nlohmann::json list = nlohmann::json::array();
+  const int n = static_cast<int>(summary.faces.size());
+  for (int k = 0; k < n; ++k) {
+    const Box& box = summary.faces[k];
+    TrackOptions one = options;
+    one.capture.tracker.pick.rule = FacePick::Rule::kNearest;
+    one.capture.tracker.pick.point = box.center();
+    if (!options.capture.quiet) std::fprintf(stderr, "face %d of %d (left to right)\n", k + 1, n);
+    summary.runs.push_back(run_track(model, input, face_folder(output_dir, k), one));
+    list.push_back({{"face", k},
+                    {"folder", face_folder(output_dir, k).filename().string()},
+                    {"first_frame_box", {{"x", box.x}, {"y", box.y}, {"width", box.width}, {"height", box.height}}},
+                    {"frames", summary.runs.back().capture.frames},
+                    {"lost", summary.runs.back().capture.lost}});
+  }
+  write_text_file(output_dir / "faces.json",
+                  nlohmann::json{{"input", input}, {"start_seconds", start}, {"faces", list}}.dump(2) + "\n");
+  // An earlier run's folders of faces this run did not have would read as
+  // this run's (as stale meshes would): removed where they hold a capture.
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(output_dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_directory() || !name.starts_with("face_") || !fs::exists(entry.path() / "frames.csv")) continue;
+    const std::string digits = name.substr(5);
+    if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); }))
+      continue;
+    if (std::stoi(digits) >= n) stale.push_back(entry.path());
+  }
+  for (const fs::path& p : stale) fs::remove_all(p, ec);
+  return summary;
+}
+
+}  // namespace facecap
