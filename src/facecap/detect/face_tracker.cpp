@@ -116,11 +116,7 @@ std::optional<Box> FaceTracker::detect_face(const FaceDetector& detector, const 
     const float radius = options_.follow_radius * 0.5f * (last_seen_->width + last_seen_->height);
     std::erase_if(faces, [&](const FaceDetection& f) { return (f.box.center() - centre).norm() > radius; });
     if (faces.empty()) return std::nullopt;
-    return std::min_element(faces.begin(), faces.end(),
-                            [&](const FaceDetection& a, const FaceDetection& b) {
-                              return (a.box.center() - centre).squaredNorm() < (b.box.center() - centre).squaredNorm();
-                            })
-        ->box;
+    return choose_face(faces, {FacePick::Rule::kNearest, centre}).box;
   }
   if (faces.empty()) return std::nullopt;
   return choose_face(faces, options_.pick).box;

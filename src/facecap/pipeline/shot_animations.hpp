@@ -24,6 +24,11 @@ namespace facecap {
 // (`first`), else path's stem + "_shot<shot>" + its extension.
 std::filesystem::path shot_file(const std::filesystem::path& path, int shot, bool first);
 
+// A shot's animation name: `base`, with " shot <N>" after the first shot.
+inline std::string shot_animation_name(const std::string& base, int shot) {
+  return shot > 0 ? base + " shot " + std::to_string(shot) : base;
+}
+
 // One shot's keys, as a job hands them to its writer.
 struct ShotKeys {
   int shot = 0;

@@ -167,9 +167,9 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
         [&](const fs::path& file, const ShotKeys& shot) {
           GltfAnimatedMesh glb = swapped_animation(model, swapper, summary.source.face, shot.keys,
                                                    {shot.identity.focal, info.width, info.height}, mark);
-          glb.animation_name =
-              fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")";
-          if (shot.shot > 0) glb.animation_name += " shot " + std::to_string(shot.shot);
+          glb.animation_name = shot_animation_name(
+              fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")",
+              shot.shot);
           write_glb(file, glb);
           write_synthetic_sidecar(file, mark);
         },

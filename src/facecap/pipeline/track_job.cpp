@@ -98,8 +98,7 @@ class FrameWriter {
         const IdentityEstimate& id = shot.identity;
         GltfAnimatedMesh glb = face_animation(model_, id.identity, shot.keys, {id.focal, info_.width, info_.height});
         glb.primitives.front().base_colour_png = shot_albedo_png_;  // the face part
-        glb.animation_name = fs::path(input_).stem().string();
-        if (shot.shot > 0) glb.animation_name += " shot " + std::to_string(shot.shot);
+        glb.animation_name = shot_animation_name(fs::path(input_).stem().string(), shot.shot);
         write_glb(file, glb);
       });
     }

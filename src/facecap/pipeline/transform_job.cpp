@@ -41,7 +41,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   auto source = open_input(input, options.capture.start_seconds);
   const InputInfo info = source->info();
   ensure_writable_file(fs::absolute(output));  // a folder, say, is named as such
-  check_edit_output(output, info.kind);         // a video, or an image for a photo
+  check_edit_output(output, info.kind);        // a video, or an image for a photo
   const ExpressionMapper mapper(options.models_dir);
   for (const ScheduleKey& k : options.transform.schedule.keys()) {
     if (k.target != Emotion::kNeutral) mapper.pair(k.target);  // fail before any work on a missing model
@@ -138,8 +138,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
           const IdentityEstimate& id = shot.identity;
           GltfAnimatedMesh glb = face_animation(model, id.identity, shot.keys, {id.focal, info.width, info.height});
           glb.primitives.front().base_colour_png = face_albedo_png(model, stage.refiner());  // the face part
-          glb.animation_name = fs::path(input).stem().string() + " (" + options.description + ")";
-          if (shot.shot > 0) glb.animation_name += " shot " + std::to_string(shot.shot);
+          glb.animation_name =
+              shot_animation_name(fs::path(input).stem().string() + " (" + options.description + ")", shot.shot);
           glb.asset_extras.merge(synthetic_metadata(mark));
           write_glb(file, glb);
           write_synthetic_sidecar(file, mark);
