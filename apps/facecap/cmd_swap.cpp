@@ -42,6 +42,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
+  add_identity_option(*cmd, a->options.capture.fit.known_identity);
   add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held (counted once the target's "

@@ -12,16 +12,17 @@ namespace {
 
 // The closing lines of one capture on stderr: per-stage timings, shots, faces
 // in view (not where every face is tracked), unreadable frames, the refinement.
-void report_track(const TrackSummary& s, const std::string& input, bool refine, bool all_faces) {
+void report_track(const TrackSummary& s, const std::string& input, bool refine, bool all_faces, bool identity_given) {
   const StageTimings& t = s.capture.timings;
   const double n = std::max(1, t.frames);
   std::fprintf(stderr,
                "frames %d, lost %d, redetected %d | per frame: decode %.2f ms (own thread), detect %.2f ms, "
                "landmarks %.2f ms, fit %.2f ms, gaze %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
-               "identity and focal (%.1f px) from %d frames; gaze in %d frames\n",
+               "%s (%.1f px) from %d frame(s); gaze in %d frames\n",
                s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
                t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
-               s.capture.identity.focal, s.capture.identity.frames_used, s.gaze_frames);
+               identity_given ? "identity given; focal" : "identity and focal", s.capture.identity.focal,
+               s.capture.identity.frames_used, s.gaze_frames);
   if (s.capture.cuts > 0) {
     std::string starts;
     for (const CaptureSummary::Shot& shot : s.capture.shots)
@@ -87,6 +88,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
+  add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_flag("--all-faces", a->all_faces,
                 "Track every face the first frame shows, each into DIR/face_<k> (k from 0, left to right) as --face "
@@ -124,7 +126,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
         const TrackSummary& s = each.runs[k];
         std::fprintf(stderr, "face %zu: %s\n", k, s.output_dir.string().c_str());
         with_face += s.capture.identity.frames_used > 0;
-        if (s.capture.identity.frames_used > 0) report_track(s, a->input, a->options.refine, true);
+        if (s.capture.identity.frames_used > 0)
+          report_track(s, a->input, a->options.refine, true, a->options.capture.fit.known_identity.has_value());
       }
       if (with_face == 0)
         throw Error("no face could be tracked in " + a->input + " (" + std::to_string(each.runs.size()) +
@@ -141,7 +144,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string() +
                   (note.empty() ? "" : "; " + note));
     }
-    report_track(s, a->input, a->options.refine, false);
+    report_track(s, a->input, a->options.refine, false, a->options.capture.fit.known_identity.has_value());
     print_track_files(s, a->stream ? stderr : stdout);  // with --stream, stdout holds the rows
   });
 }

@@ -40,6 +40,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
+  add_identity_option(*cmd, a->options.capture.fit.known_identity);
   add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->callback([a, &global] {
     const auto to = parse_emotion(a->to), from = parse_emotion(a->from);

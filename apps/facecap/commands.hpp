@@ -2,8 +2,10 @@
 // The subcommands of the facecap program. Each registers its options on the
 // CLI and maps them onto the library's option structs; none holds an algorithm.
 #include <CLI/CLI.hpp>
+#include <Eigen/Core>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "facecap/model/face_model.hpp"
@@ -40,6 +42,9 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
 // (swap's --source-face).
 CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name = "--face",
                              const std::string& help = "");
+// --identity FILE: hold the identity of an earlier capture's identity.json
+// (CoarseFitOptions::known_identity), read when the option is parsed.
+void add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.

@@ -8,6 +8,7 @@
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_tracker.hpp"
 #include "facecap/model/model_cache.hpp"
+#include "facecap/pipeline/identity_file.hpp"
 
 namespace facecap::cli {
 
@@ -64,6 +65,13 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
           return "must be largest, left, right or X,Y (pixels), not '" + text + "'";
         }
       });
+}
+
+void add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {
+  cmd.add_option_function<std::string>(
+      "--identity", [&identity](const std::string& path) { identity = read_identity_weights(path); },
+      "Hold the face of an earlier capture's identity.json (facecap track) rather than solve it: takes of one "
+      "person then share one face; with --focal F --focal-known the output starts at the first frame");
 }
 
 void add_start_option(CLI::App& cmd, double& start_seconds) {

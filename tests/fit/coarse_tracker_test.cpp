@@ -90,4 +90,42 @@ TEST(CoarseTracker, ShortInputsAreSolvedAtTheEnd) {
   EXPECT_EQ(tracker.identity().frames_used, 5);
 }
 
+// A known identity (--identity) is held as given. With the focal length
+// known too, nothing is left to solve over first frames: the first frame
+// gives the first fit. Otherwise the focal length is solved over the first
+// frames as usual, with the face held.
+TEST(CoarseTracker, AKnownIdentityIsHeldAndWithAKnownFocalStartsAtOnce) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions so;
+  so.frames = 32;
+  const SynthPerformance perf = make_performance(*model, so);
+  const SynthRenderer renderer(*model, perf);
+  CoarseFitOptions o;
+  o.init_frames = 30;
+  o.known_identity = perf.identity.head(o.identity_modes).cast<double>();
+  o.focal_guess = perf.camera.focal;
+  o.focal_known = true;
+  CoarseTracker at_once(*model, o, so.width, so.height);
+  const std::vector<CoarseFit> first = at_once.push(0, 0.0, renderer.landmarks(perf.frames[0]));
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_TRUE(first[0].valid);
+  EXPECT_EQ(at_once.identity().identity, *o.known_identity);
+  EXPECT_EQ(at_once.identity().frames_used, 1);
+  // The true face and lens leave only pose and expression: one frame's fit,
+  // with no frames before it, gives the pose to 1.3 degrees.
+  const double angle =
+      Eigen::AngleAxisd(first[0].pose.rotation_matrix().transpose() * perf.frames[0].pose.rotation_matrix()).angle();
+  EXPECT_LT(angle * 180 / M_PI, 2.0);
+
+  o.focal_known = false;
+  o.focal_guess = 0;  // the default guess, 1.0 x the wider side
+  CoarseTracker solved_focal(*model, o, so.width, so.height);
+  for (const SynthFrame& f : perf.frames) {
+    const auto fits = solved_focal.push(f.index, f.time, renderer.landmarks(f));
+    EXPECT_EQ(fits.empty(), f.index < 29) << f.index;  // the 30th frame starts the output
+  }
+  EXPECT_EQ(solved_focal.identity().identity, *o.known_identity);
+  EXPECT_NEAR(solved_focal.identity().focal / perf.camera.focal, 1.0, 0.10);  // issue 3's bar
+}
+
 }  // namespace facecap

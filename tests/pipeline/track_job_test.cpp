@@ -14,6 +14,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/pipeline/identity_file.hpp"
 #include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/track_each_face.hpp"
 #include "facecap/pipeline/transform_job.hpp"
@@ -316,6 +317,30 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
   EXPECT_THROW(run_track_each_face(*model, grey.string(), dir.path() / "none", o), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none"));
+}
+
+// --identity: a take captured with the identity of another take of the same
+// speaker holds it exactly, and says so; its fit stays good.
+TEST(TrackJob, AGivenIdentityIsHeldAndRecorded) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(take_a, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(take_b, "address_720p_b.mp4");
+  TempDir dir;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = 40;
+  run_track(*model, take_a.string(), dir.path() / "a", o);
+  o.capture.fit.known_identity = read_identity_weights(dir.path() / "a" / "identity.json");
+  const TrackSummary b = run_track(*model, take_b.string(), dir.path() / "b", o);
+  EXPECT_EQ(b.capture.lost, 0);
+  EXPECT_EQ(b.capture.identity.identity, *o.capture.fit.known_identity);
+  std::ifstream in(dir.path() / "b" / "identity.json");
+  const nlohmann::json id = nlohmann::json::parse(in);
+  EXPECT_EQ(id["identity_given"], true);
+  EXPECT_EQ(Eigen::Map<const Eigen::VectorXd>(id["identity_weights"].get<std::vector<double>>().data(), 50),
+            *o.capture.fit.known_identity);
+  for (const std::string& row : lines(dir.path() / "b" / "frames.jsonl"))
+    EXPECT_LT(nlohmann::json::parse(row)["landmark_error"].get<double>(), 0.04);
 }
 
 // --start: the frames keep the video's numbers and times, and the overlay's

@@ -32,7 +32,10 @@ std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::op
   if (initialized_) return {track({index, time, landmarks, std::move(iris_search), std::nullopt})};
   pending_.push_back({index, time, landmarks, std::move(iris_search), std::nullopt});
   if (landmarks) ++pending_faces_;
-  if (pending_faces_ < fitter_.options().init_frames) return {};
+  // A known identity and focal length need no frames to solve them from.
+  const CoarseFitOptions& o = fitter_.options();
+  const int needed = o.known_identity && o.focal_known ? 1 : o.init_frames;
+  if (pending_faces_ < needed) return {};
   return finish();
 }
 
@@ -65,7 +68,8 @@ void CoarseTracker::initialize() {
   }
 
   const int nf = fitter_.num_expressions();
-  Eigen::VectorXd identity = Eigen::VectorXd::Zero(fitter_.identity_modes());
+  const std::optional<Eigen::VectorXd>& known = fitter_.options().known_identity;
+  Eigen::VectorXd identity = known ? *known : Eigen::VectorXd::Zero(fitter_.identity_modes());
   double focal = fitter_.focal_guess();
   std::vector<FrameParameters> frames(observed.size(), FrameParameters(nf));
   // Each frame on its own with the mean face first, then everything jointly.
@@ -104,7 +108,7 @@ void CoarseTracker::initialize() {
   if (!kept.empty() && kept.size() < observed.size()) {
     solve = fitter_.fit_identity(kept, kept_frames, identity, focal, any_iris ? &kept_irises : nullptr);
   }
-  if (fitter_.options().unbiased_size) {
+  if (fitter_.options().unbiased_size && !known) {  // a known identity has its size
     const IdentitySizeCorrection size(model_, fitter_.identity_modes(), fitter_.landmark_vertices());
     identity_.size_factor = size.factor(identity, solve.effective_modes);
     identity = size.scale(identity, identity_.size_factor);

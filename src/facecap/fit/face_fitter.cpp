@@ -131,6 +131,7 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
   }
   IdentitySolverOptions o;
   o.focal_free = !options_.focal_known;
+  o.identity_free = !options_.known_identity;
   o.focal_guess = focal_guess();
   o.sigma_log_focal = options_.still ? options_.weights.sigma_log_focal_still : options_.weights.sigma_log_focal;
   o.max_iterations = 40;

@@ -1,5 +1,7 @@
 #include "facecap/fit/fit_options.hpp"
 
+#include <string>
+
 #include "facecap/core/error.hpp"
 
 namespace facecap {
@@ -34,6 +36,9 @@ void CoarseFitOptions::check() const {
   if (focal_guess < 0) throw Error("--focal must be positive");
   if (focal_known && focal_guess <= 0) throw Error("a known focal length needs --focal");
   if (!(lost_landmark_error > 0)) throw Error("fit option lost_landmark_error must be positive");
+  if (known_identity && (known_identity->size() != identity_modes || !known_identity->allFinite()))
+    throw Error("a known identity needs " + std::to_string(identity_modes) + " finite identity weights, not " +
+                std::to_string(known_identity->size()));
 }
 
 }  // namespace facecap

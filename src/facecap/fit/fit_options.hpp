@@ -17,6 +17,8 @@
 //    turning synthetic heads against 0.5 with 3). Relative to the landmark
 //    term these play the role of the paper's 100, 10 and 1.
 // Each value can be overridden; Check() rejects impossible ones by name.
+#include <Eigen/Core>
+#include <optional>
 #include <string>
 
 namespace facecap {
@@ -96,6 +98,12 @@ struct CoarseFitOptions {
   // --synthetic 90`, seeds 1-12): size 0.957-0.994 of the truth -> 0.980-1.018,
   // rigid vertex error 2.17 -> 1.30 mm on average.
   bool unbiased_size = true;
+  // The face's identity, known from an earlier capture of the same person
+  // (`--identity identity.json`): held as given (identity_modes values), so
+  // that takes of one actor share one face. The focal length is still solved
+  // over the first frames, unless focal_known, when the first frame starts the
+  // output.
+  std::optional<Eigen::VectorXd> known_identity;
 
   void check() const;
 };

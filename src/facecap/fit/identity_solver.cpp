@@ -167,6 +167,14 @@ IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<Frame
         schur.noalias() -= sys[i].b.transpose() * ainv_b[i];
         rhs.noalias() -= sys[i].b.transpose() * ainv_g[i];
       }
+      if (!o.identity_free) {
+        // Held: the identity rows decouple and their step is zero; what is
+        // left of the Schur complement is the focal length's, given the identity.
+        schur.topRows(ni).setZero();
+        schur.leftCols(ni).setZero();
+        schur.topLeftCorner(ni, ni).setIdentity();
+        rhs.head(ni).setZero();
+      }
       const Eigen::VectorXd dy = -schur.ldlt().solve(rhs);
       std::vector<FrameParameters> trial = frames;
       for (int i = 0; i < n; ++i) {

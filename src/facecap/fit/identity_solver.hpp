@@ -22,6 +22,9 @@ namespace facecap {
 struct IdentitySolverOptions {
   int max_iterations = 30;
   bool focal_free = true;
+  // false: the identity is given (CoarseFitOptions::known_identity) and held;
+  // the focal length and the frames move.
+  bool identity_free = true;
   double focal_guess = 1000.0;
   double sigma_log_focal = 0.5;
   // Called every few iterations to re-choose the jaw correspondences.

@@ -197,6 +197,8 @@ class FrameWriter {
     j["principal_point_px"] = {0.5 * info_.width, 0.5 * info_.height};
     j["image_size"] = {info_.width, info_.height};
     j["frames_used"] = id.frames_used;
+    // Held as given (--identity), not solved from this input.
+    j["identity_given"] = options_.capture.fit.known_identity.has_value();
     // The face's size, which landmarks hardly show (identity_size.hpp).
     j["size_correction"] = {{"factor", id.size_factor}, {"identity_modes_determined", id.effective_modes}};
     j["expression_names"] = model_.expression_names;
