@@ -114,6 +114,17 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
   r = run("track " + video.string() + " -o " + dir.path().string() + " --init-frames 0");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
+  // An --identity file that is missing, not an identity, or of another
+  // model's size is named in one line, and nothing is written.
+  std::ofstream(dir.path() / "short.json") << R"({"identity_weights": [0.1, 0.2]})";
+  for (const char* file : {"missing.json", "text.mp4", "short.json"}) {
+    r = run("track " + video.string() + " -o " + (dir.path() / "out").string() + " --identity " +
+            (dir.path() / file).string());
+    EXPECT_EQ(r.code, 1) << file << ": " << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find("identit"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frames.csv")) << file;
+  }
   // A start before 0 or not a number is named; one past the end, or into an
   // image, is a one-line error that writes nothing.
   for (const char* start : {"-1", "soon"}) {
