@@ -88,12 +88,13 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_identity_option(*cmd, a->options.capture.fit.known_identity);
+  CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_flag("--all-faces", a->all_faces,
                 "Track every face the first frame shows, each into DIR/face_<k> (k from 0, left to right) as --face "
                 "at its centre would, with DIR/faces.json listing them; one capture per face")
-      ->excludes(face);
+      ->excludes(face)
+      ->excludes(identity);  // one person's face for every face
   CLI::Option* stream =
       cmd->add_flag("--stream", a->stream,
                     "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "

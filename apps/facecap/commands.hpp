@@ -44,7 +44,7 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
                              const std::string& help = "");
 // --identity FILE: hold the identity of an earlier capture's identity.json
 // (CoarseFitOptions::known_identity), read when the option is parsed.
-void add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);
+CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
 // how the swap completes, tints, shades and filters the photo's texture
 // (SwapOptions), for `swap` and `eval swap` alike.

@@ -67,8 +67,8 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
       });
 }
 
-void add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {
-  cmd.add_option_function<std::string>(
+CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {
+  return cmd.add_option_function<std::string>(
       "--identity", [&identity](const std::string& path) { identity = read_identity_weights(path); },
       "Hold the face of an earlier capture's identity.json (facecap track) rather than solve it: takes of one "
       "person then share one face; with --focal F --focal-known the output starts at the first frame");
