@@ -119,6 +119,10 @@ void CoarseTracker::initialize() {
   identity_.focal = focal;
   eyeballs_ = eyeball_geometry(model_, identity);
   identity_.effective_modes = solve.effective_modes;
+  if (known) {  // not solved here: no posterior of this input's to report
+    identity_.effective_modes = 0;
+    identity_.covariance.resize(0, 0);
+  }
   identity_.frames_used = static_cast<int>(kept.empty() ? observed.size() : kept.size());
   initialized_ = true;
   identity_.solve_ms =
