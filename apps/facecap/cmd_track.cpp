@@ -91,7 +91,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_flag("--all-faces", a->all_faces,
-                "Track every face the first frame shows, each into DIR/face_<k> (k from 0, left to right) as --face "
+                "Track every face the first frame with a face shows (within 300 frames), each into DIR/face_<k> (k "
+                "from 0, left to right) as --face "
                 "at its centre would, with DIR/faces.json listing them; one capture per face")
       ->excludes(face)
       ->excludes(identity);  // one person's face for every face

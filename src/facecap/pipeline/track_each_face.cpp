@@ -13,19 +13,26 @@ namespace facecap {
 
 namespace fs = std::filesystem;
 
+namespace {
+constexpr int kScanFrames = 300;  // 10 s at 30 fps
+}  // namespace
+
 fs::path face_folder(const fs::path& output_dir, int k) { return output_dir / ("face_" + std::to_string(k)); }
 
 EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input, const fs::path& output_dir,
                                     const TrackOptions& options) {
   const double start = options.capture.start_seconds;
-  const ProbeReport probe = probe_input(input, start);
+  // The first frame with a face, in the first 10 s (a video may open on black).
+  const ProbeReport probe = probe_input(input, start, kScanFrames);
   if (probe.info.kind == InputKind::kCamera)
     throw Error("--all-faces needs a file: a camera cannot be read once per face (use --face to choose one)");
   if (probe.face_boxes.empty())
-    throw Error("no face in the first frame of " + input + ": --all-faces tracks the faces that frame shows");
+    throw Error("no face in the first " + std::to_string(kScanFrames) + " frames of " + input +
+                ": --all-faces tracks the faces the first frame with one shows");
   ensure_writable_dir(output_dir);
   EachFaceSummary summary;
   summary.faces = probe.face_boxes;
+  summary.face_frame = probe.face_frame;
   nlohmann::json list = nlohmann::json::array();
   const int n = static_cast<int>(summary.faces.size());
   for (int k = 0; k < n; ++k) {
@@ -37,7 +44,8 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
     summary.runs.push_back(run_track(model, input, face_folder(output_dir, k), one));
     list.push_back({{"face", k},
                     {"folder", face_folder(output_dir, k).filename().string()},
-                    {"first_frame_box", {{"x", box.x}, {"y", box.y}, {"width", box.width}, {"height", box.height}}},
+                    {"found_in_frame", probe.face_frame},
+                    {"found_box", {{"x", box.x}, {"y", box.y}, {"width", box.width}, {"height", box.height}}},
                     {"frames", summary.runs.back().capture.frames},
                     {"lost", summary.runs.back().capture.lost}});
   }

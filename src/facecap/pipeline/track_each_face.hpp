@@ -1,5 +1,6 @@
 #pragma once
-// `facecap track --all-faces`: every face the first frame shows, each
+// `facecap track --all-faces`: every face the first frame with a face shows
+// (of the first 300: a video may open on black or a title), each
 // captured into a folder of its own (DIR/face_<k>, k from 0, left to right),
 // as `track --face X,Y` at that face's centre would capture it, and
 // DIR/faces.json listing them. One capture per face: they share nothing but
@@ -15,12 +16,13 @@
 namespace facecap {
 
 struct EachFaceSummary {
-  std::vector<Box> faces;          // in the first frame, left to right
+  std::vector<Box> faces;          // in the first frame with a face, left to right
+  int face_frame = -1;             // that frame's index
   std::vector<TrackSummary> runs;  // one per face, in that order
 };
 
 // Throws facecap::Error for a camera (it cannot be read once per face) and
-// for a first frame with no face, before anything is written.
+// where the first 300 frames show no face, before anything is written.
 EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input,
                                     const std::filesystem::path& output_dir, const TrackOptions& options);
 
