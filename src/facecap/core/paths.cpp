@@ -1,5 +1,7 @@
 #include "facecap/core/paths.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <string>
 
@@ -44,6 +46,16 @@ std::optional<fs::path> data_file(const std::string& name) {
 bool running_under_ci() {
   const char* v = std::getenv("CI");
   return v != nullptr && (std::string(v) == "true" || std::string(v) == "1");
+}
+
+std::optional<std::string_view> numbered_name_digits(std::string_view name, std::string_view prefix,
+                                                     std::string_view suffix) {
+  if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) || !name.ends_with(suffix))
+    return std::nullopt;
+  const std::string_view digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (!std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c) != 0; }))
+    return std::nullopt;
+  return digits;
 }
 
 }  // namespace facecap

@@ -2,6 +2,8 @@
 // Where facecap looks for the face model, the test footage and its cache.
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <string_view>
 
 namespace facecap {
 
@@ -16,5 +18,10 @@ std::filesystem::path cache_dir();
 std::optional<std::filesystem::path> data_file(const std::string& name);
 // True when running under CI (CI=true): absent model or data is then an error.
 bool running_under_ci();
+// The digits of a file name `<prefix><digits><suffix>` (one digit or more,
+// nothing else between), or nullopt: how facecap recognises the numbered
+// outputs of an earlier run (`animation_shot2.glb`, `face_3`).
+std::optional<std::string_view> numbered_name_digits(std::string_view name, std::string_view prefix,
+                                                     std::string_view suffix);
 
 }  // namespace facecap

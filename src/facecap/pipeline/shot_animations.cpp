@@ -1,9 +1,9 @@
 #include "facecap/pipeline/shot_animations.hpp"
 
 #include <algorithm>
-#include <cctype>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/paths.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 
 namespace facecap {
@@ -55,10 +55,7 @@ void remove_other_shot_files(const fs::path& path, const std::vector<fs::path>& 
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     std::string name = entry.path().filename().string();
     if (name.ends_with(extension + ".json")) name.resize(name.size() - 5);  // a sidecar
-    if (!name.starts_with(prefix) || !name.ends_with(extension)) continue;
-    const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
-    if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); }))
-      continue;
+    if (!numbered_name_digits(name, prefix, extension)) continue;
     const bool ours =
         std::any_of(written.begin(), written.end(), [&](const fs::path& w) { return w.filename().string() == name; });
     if (!ours) stale.push_back(entry.path());

@@ -1,12 +1,13 @@
 #include "facecap/pipeline/track_each_face.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string_view>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/paths.hpp"
 #include "facecap/pipeline/probe.hpp"
 
 namespace facecap {
@@ -57,11 +58,10 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
   std::vector<fs::path> stale;
   for (const auto& entry : fs::directory_iterator(output_dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (!entry.is_directory() || !name.starts_with("face_") || !fs::exists(entry.path() / "frames.csv")) continue;
-    const std::string digits = name.substr(5);
-    if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); }))
-      continue;
-    if (std::stoi(digits) >= n) stale.push_back(entry.path());
+    const std::optional<std::string_view> digits = numbered_name_digits(name, "face_", "");
+    if (!digits || !entry.is_directory() || !fs::exists(entry.path() / "frames.csv")) continue;
+    // More digits than an int holds is past any face this run had.
+    if (digits->size() > 9 || std::stoi(std::string(*digits)) >= n) stale.push_back(entry.path());
   }
   for (const fs::path& p : stale) fs::remove_all(p, ec);
   return summary;
