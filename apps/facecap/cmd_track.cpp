@@ -11,8 +11,8 @@ namespace facecap::cli {
 namespace {
 
 // The closing lines of one capture on stderr: per-stage timings, shots, faces
-// in view (not where every face is tracked), unreadable frames, the refinement.
-void report_track(const TrackSummary& s, const std::string& input, bool refine, bool all_faces, bool identity_given) {
+// in view, unreadable frames, the refinement.
+void report_track(const TrackSummary& s, const std::string& input, bool refine, bool identity_given) {
   const StageTimings& t = s.capture.timings;
   const double n = std::max(1, t.frames);
   std::fprintf(stderr,
@@ -32,7 +32,7 @@ void report_track(const TrackSummary& s, const std::string& input, bool refine, 
                  "frames %s; identity.json \"shots\", frames.jsonl \"shot\")\n",
                  s.capture.cuts, starts.c_str());
   }
-  if (s.capture.most_faces > 1 && !all_faces) {
+  if (s.capture.most_faces > 1) {
     std::fprintf(stderr,
                  "facecap: up to %d faces in view; one is tracked per run (--face chooses which: largest, left, "
                  "right or X,Y)\n",
@@ -45,6 +45,36 @@ void report_track(const TrackSummary& s, const std::string& input, bool refine, 
     std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
                  s.refine_ms / std::max(1, s.refined_frames));
   }
+}
+
+// --all-faces: one line per face, then the shared pass's timings.
+void report_face(const FoundFace& face, const TrackSummary& s, const std::string& input) {
+  const StageTimings& t = s.capture.timings;
+  const double n = std::max(1, t.frames);
+  std::fprintf(stderr,
+               "face %d (from frame %d): %s | frames %d, lost %d | per frame: detect %.2f ms, landmarks %.2f ms, fit "
+               "%.2f ms, gaze %.2f ms | identity solve %.0f ms, focal %.1f px\n",
+               face.index, face.first_frame, s.output_dir.string().c_str(), s.capture.frames, s.capture.lost,
+               t.detect_ms / n, t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms,
+               s.capture.identity.focal);
+  if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty())
+    std::fprintf(stderr, "facecap: %s\n", note.c_str());
+  if (s.refined_frames > 0)
+    std::fprintf(stderr, "  refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
+                 s.refine_ms / s.refined_frames);
+}
+
+void report_all_faces(const AllFacesSummary& all) {
+  const StageTimings& t = all.timings;
+  const double n = std::max(1, t.frames);
+  std::fprintf(stderr,
+               "%zu face(s) in %d frames, one decoding pass: decode %.2f ms per frame (own thread), searches for "
+               "faces %.2f ms per frame | setup %.0f ms | %.1f fps for all faces\n",
+               all.faces.size(), t.frames, t.decode_ms / n, t.detect_ms / n, t.setup_ms, t.fps());
+  if (all.cuts > 0) std::fprintf(stderr, "facecap: %d shot cut(s); each face's identity is solved again\n", all.cuts);
+  if (all.uncaptured_faces > 0)
+    std::fprintf(stderr, "facecap: up to %d more face(s) at once were not captured (--max-faces %d)\n",
+                 all.uncaptured_faces, int(all.faces.size()));
 }
 
 // The files a capture wrote, one per line.
@@ -64,6 +94,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     std::string input, out, mesh_space = "model";
     bool stream = false, all_faces = false;
     TrackOptions options;
+    AllFacesOptions all;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file, image, folder of images, or cam:N")->required();
@@ -90,12 +121,21 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
-  cmd->add_flag("--all-faces", a->all_faces,
-                "Track every face the first frame with a face shows (within 300 frames), each into DIR/face_<k> (k "
-                "from 0, left to right) as --face "
-                "at its centre would, with DIR/faces.json listing them; one capture per face")
-      ->excludes(face)
-      ->excludes(identity);  // one person's face for every face
+  CLI::Option* all_faces =
+      cmd->add_flag("--all-faces", a->all_faces,
+                    "Track every face the input shows, each into DIR/face_<k> (k in the order found) from the frame "
+                    "it is first found in, with DIR/faces.json listing them; one decoding pass for all (a face "
+                    "entering later is found within --search-every frames)");
+  all_faces->excludes(face)->excludes(identity);  // one person's face for every face
+  cmd->add_option("--max-faces", a->all.max_faces, "--all-faces: capture at most this many faces")
+      ->check(CLI::Range(1, 64))
+      ->needs(all_faces)
+      ->capture_default_str();
+  cmd->add_option("--search-every", a->all.search_every,
+                  "--all-faces: search the whole frame for new faces every this many frames")
+      ->check(CLI::Range(1, 1000))
+      ->needs(all_faces)
+      ->capture_default_str();
   CLI::Option* stream =
       cmd->add_flag("--stream", a->stream,
                     "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "
@@ -122,18 +162,9 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       };
     }
     if (a->all_faces) {
-      const EachFaceSummary each = run_track_each_face(model, a->input, a->out, a->options);
-      int with_face = 0;
-      for (size_t k = 0; k < each.runs.size(); ++k) {
-        const TrackSummary& s = each.runs[k];
-        std::fprintf(stderr, "face %zu: %s\n", k, s.output_dir.string().c_str());
-        with_face += s.capture.identity.frames_used > 0;
-        if (s.capture.identity.frames_used > 0)
-          report_track(s, a->input, a->options.refine, true, a->options.capture.fit.known_identity.has_value());
-      }
-      if (with_face == 0)
-        throw Error("no face could be tracked in " + a->input + " (" + std::to_string(each.runs.size()) +
-                    " in its first frame)");
+      const EachFaceSummary each = run_track_each_face(model, a->input, a->out, a->options, a->all);
+      for (size_t k = 0; k < each.runs.size(); ++k) report_face(each.faces[k], each.runs[k], a->input);
+      report_all_faces(each.capture);
       for (const TrackSummary& s : each.runs) print_track_files(s, stdout);
       std::printf("%s\n", (std::filesystem::path(a->out) / "faces.json").string().c_str());
       return;
@@ -146,7 +177,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string() +
                   (note.empty() ? "" : "; " + note));
     }
-    report_track(s, a->input, a->options.refine, false, a->options.capture.fit.known_identity.has_value());
+    report_track(s, a->input, a->options.refine, a->options.capture.fit.known_identity.has_value());
     print_track_files(s, a->stream ? stderr : stdout);  // with --stream, stdout holds the rows
   });
 }

@@ -272,6 +272,9 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
 // --all-faces: two people side by side, after 8 black frames (a fade-in),
 // each captured into a folder of their own, left to right; an earlier run's
 // third face's folder goes.
+// --all-faces: two faces side by side after 8 black frames, the right one
+// sliding in 12 frames after the left, each captured into its own folder from
+// the frame it is found in, on one pass.
 TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
@@ -280,9 +283,9 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   const fs::path two = dir.path() / "two.mp4";
   const test::CommandResult made = test::run_command(
       "ffmpeg -nostdin -hide_banner -loglevel error -y -r 25 -i " + left.string() + " -r 25 -i " + right.string() +
-      " -filter_complex \"[0:v]trim=end_frame=36,scale=640:360,setsar=1[a];[1:v]trim=end_frame=36,scale=480:360,"
-      "pad=640:360:80:0,setsar=1[b];[a][b]hstack,tpad=start=8:color=black[v]\" -map \"[v]\" -an -c:v libx264 -preset "
-      "ultrafast -crf 16 " +
+      " -filter_complex \"[0:v]trim=end_frame=48,scale=640:360,pad=1280:360:0:0,setsar=1[a];[1:v]trim=end_frame=48,"
+      "scale=480:360,pad=640:360:80:0,setsar=1[b];[a][b]overlay=x='640+max(0\\,(20-n)*80)':y=0,tpad=start=8:color="
+      "black[v]\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " +
       two.string() + " 2>&1");
   ASSERT_EQ(made.code, 0) << made.out;
   const fs::path out = dir.path() / "out";
@@ -294,30 +297,46 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   const EachFaceSummary each = run_track_each_face(*model, two.string(), out, o);
   ASSERT_EQ(each.faces.size(), 2u);
   ASSERT_EQ(each.runs.size(), 2u);
-  EXPECT_EQ(each.face_frame, 8);  // the first frame with a face
-  EXPECT_LT(each.faces[0].center().x(), 640.0f);
-  EXPECT_GT(each.faces[1].center().x(), 640.0f);
+  EXPECT_EQ(each.capture.timings.frames, 56);
+  EXPECT_EQ(each.capture.cuts, 0);
+  EXPECT_EQ(each.faces[0].first_frame, 8);  // the first frame with a face
+  // The right face slides in over frames 20-28; the whole frame is searched
+  // every 8 (half of the face shows at 24).
+  const int entered = each.faces[1].first_frame;
+  EXPECT_TRUE(entered == 24 || entered == 32) << entered;
+  EXPECT_LT(each.faces[0].box.center().x(), 640.0f);
+  EXPECT_GT(each.faces[1].box.center().x(), 640.0f);
   for (int k = 0; k < 2; ++k) {
-    EXPECT_EQ(each.runs[k].capture.lost, 8) << k;  // the black ones
+    EXPECT_EQ(each.runs[k].capture.lost, 0) << k;
+    EXPECT_GT(each.runs[k].capture.identity.frames_used, 0) << k;
     const auto rows = lines(face_folder(out, k) / "frames.jsonl");
-    ASSERT_EQ(rows.size(), 44u) << k;
+    ASSERT_EQ(int(rows.size()), 56 - each.faces[k].first_frame) << k;
+    EXPECT_EQ(nlohmann::json::parse(rows.front())["frame"], each.faces[k].first_frame) << k;
     for (const std::string& row : rows) {
       const nlohmann::json frame = nlohmann::json::parse(row);
-      if (frame["status"] == "lost") continue;
+      ASSERT_NE(frame["status"], "lost") << k;
       float x = 0;
       for (const auto& p : frame["landmarks"]) x += p[0].get<float>() / 68;
       EXPECT_EQ(x > 640.0f, k == 1) << "face " << k << ": " << x;
     }
   }
+  // Two people, two identities.
+  EXPECT_GT((each.runs[0].capture.identity.identity - each.runs[1].capture.identity.identity).norm(), 1.0);
   std::ifstream list_in(out / "faces.json");
   const nlohmann::json list = nlohmann::json::parse(list_in);
   ASSERT_EQ(list["faces"].size(), 2u);
   EXPECT_EQ(list["faces"][1]["folder"], "face_1");
-  EXPECT_EQ(list["faces"][1]["found_in_frame"], 8);
+  EXPECT_EQ(list["faces"][1]["found_in_frame"], entered);
   EXPECT_FALSE(fs::exists(out / "face_2"));
   EXPECT_TRUE(fs::exists(out / "face_notes"));
 
-  // An input with no face is an error before anything is written.
+  // --max-faces 1: the second is not captured, and that is said.
+  const EachFaceSummary one = run_track_each_face(*model, two.string(), dir.path() / "one", o, {.max_faces = 1});
+  ASSERT_EQ(one.faces.size(), 1u);
+  EXPECT_EQ(one.capture.uncaptured_faces, 1);
+  EXPECT_EQ(one.runs[0].capture.frames, 48);
+
+  // An input with no face is an error, and nothing is written.
   const fs::path grey = dir.path() / "grey.png";
   cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
   EXPECT_THROW(run_track_each_face(*model, grey.string(), dir.path() / "none", o), Error);

@@ -110,6 +110,10 @@ void FaceTracker::start_shot() {
 std::optional<Box> FaceTracker::detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const {
   std::vector<FaceDetection> faces = detector.detect(grey);
   *faces_seen = static_cast<int>(faces.size());
+  return choose_among(std::move(faces));
+}
+
+std::optional<Box> FaceTracker::choose_among(std::vector<FaceDetection> faces) const {
   if (last_seen_ && frames_unseen_ < options_.follow_frames) {
     // Lost a moment ago: the face comes back where it was, or not at all.
     const Vec2f centre = last_seen_->center();
@@ -140,7 +144,7 @@ void FaceTracker::learn_box_relation(const Box& det, const Landmarks& lm) {
   box_relation_ = 0.7f * box_relation_ + 0.3f * measured;
 }
 
-TrackedFace FaceTracker::next(const cv::Mat& image) {
+TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_faces) {
   cv::Mat grey;
   if (image.channels() == 1) {
     grey = image;
@@ -211,15 +215,22 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
   }
 
   int faces_seen = 0;
-  auto t0 = std::chrono::steady_clock::now();
-  auto box = detect_face(detector_, grey, &faces_seen);
-  if (!box && options_.fine_search_every > 0 && failed_searches_ % options_.fine_search_every == 0) {
-    box = detect_face(fine_detector_, grey, &faces_seen);
-    out.fine_search = true;
+  std::optional<Box> box;
+  if (frame_faces) {
+    std::vector<FaceDetection> faces = frame_faces();
+    faces_seen = static_cast<int>(faces.size());
+    box = choose_among(std::move(faces));
+  } else {
+    auto t0 = std::chrono::steady_clock::now();
+    box = detect_face(detector_, grey, &faces_seen);
+    if (!box && options_.fine_search_every > 0 && failed_searches_ % options_.fine_search_every == 0) {
+      box = detect_face(fine_detector_, grey, &faces_seen);
+      out.fine_search = true;
+    }
+    out.detector_ms += ms_since(t0);
+    out.detector_ran = true;
+    out.full_detection = true;
   }
-  out.detector_ms += ms_since(t0);
-  out.detector_ran = true;
-  out.full_detection = true;
   out.faces_seen = faces_seen;
   if (!box) {
     ++failed_searches_;
@@ -228,7 +239,7 @@ TrackedFace FaceTracker::next(const cv::Mat& image) {
     return out;
   }
   failed_searches_ = 0;
-  t0 = std::chrono::steady_clock::now();
+  const auto t0 = std::chrono::steady_clock::now();
   const Landmarks lm = landmarks_.detect(grey, *box);
   out.landmarks_ms += ms_since(t0);
   learn_box_relation(*box, lm);

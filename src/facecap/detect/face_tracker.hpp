@@ -3,6 +3,7 @@
 // previous frame's landmarks, and the HOG detector searches the whole frame
 // (downscaled, and at twice that size where it finds nothing) only at the
 // start and after a loss, and checks each tracked face on a small crop.
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -88,10 +89,17 @@ struct TrackedFace {
 
 class FaceTracker {
  public:
+  // Where several trackers share a frame (track --all-faces), the faces its
+  // whole-frame search chooses from: found once for all of them, less those
+  // the others follow. Called only where this tracker searches.
+  using FrameFaces = std::function<std::vector<FaceDetection>()>;
+
   FaceTracker(const LandmarkDetector& landmarks, FaceTrackerOptions options = {});
 
-  // Landmarks for the next frame of the sequence (BGR or grey image).
-  TrackedFace next(const cv::Mat& image);
+  // Landmarks for the next frame of the sequence (BGR or grey image). With
+  // `frame_faces`, a search chooses among those (follow gate and pick as
+  // ever) and runs no detector of its own; the per-frame check still does.
+  TrackedFace next(const cv::Mat& image, const FrameFaces& frame_faces = {});
   // Forget the previous frame (the next call detects from scratch; how long
   // no face has been found, which paces the searches at twice the size, and
   // where the face was last seen are kept: the caller resets on every frame
@@ -101,8 +109,13 @@ class FaceTracker {
   // says nothing of this shot, so FaceTrackerOptions::pick chooses again.
   void start_shot();
 
+  // Frames since the face was last seen (0 while it is followed).
+  int frames_unseen() const { return frames_unseen_; }
+
  private:
   std::optional<Box> detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const;
+  // The face to take up of those a search found (the follow gate, then the pick).
+  std::optional<Box> choose_among(std::vector<FaceDetection> faces) const;
   Box box_from_landmarks(const Landmarks& lm) const;
   void learn_box_relation(const Box& detector_box, const Landmarks& lm);
 

@@ -1,6 +1,7 @@
 #include "facecap/pipeline/track_each_face.hpp"
 
 #include <cstdio>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
@@ -8,53 +9,61 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
-#include "facecap/pipeline/probe.hpp"
 
 namespace facecap {
 
 namespace fs = std::filesystem;
 
-namespace {
-constexpr int kScanFrames = 300;  // 10 s at 30 fps
-}  // namespace
-
 fs::path face_folder(const fs::path& output_dir, int k) { return output_dir / ("face_" + std::to_string(k)); }
 
 EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input, const fs::path& output_dir,
-                                    const TrackOptions& options) {
-  const double start = options.capture.start_seconds;
-  // The first frame with a face, in the first 10 s (a video may open on black).
-  const ProbeReport probe = probe_input(input, start, kScanFrames);
-  if (probe.info.kind == InputKind::kCamera)
-    throw Error("--all-faces needs a file: a camera cannot be read once per face (use --face to choose one)");
-  if (probe.face_boxes.empty())
-    throw Error("no face in the first " + std::to_string(kScanFrames) + " frames of " + input +
-                ": --all-faces tracks the faces the first frame with one shows");
+                                    const TrackOptions& options, const AllFacesOptions& all) {
+  auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
+  std::error_code ec;
+  const bool existed = fs::exists(output_dir, ec);
   ensure_writable_dir(output_dir);
+  std::vector<std::unique_ptr<TrackOutput>> outputs;
+  CaptureOptions capture = options.capture;
+  capture.keep_images = options.overlay || options.refine;
   EachFaceSummary summary;
-  summary.faces = probe.face_boxes;
-  summary.face_frame = probe.face_frame;
+  summary.capture =
+      run_capture_all_faces(model, *source, capture, all, [&](const FoundFace& face, const InputInfo& info) {
+        if (!options.capture.quiet)
+          std::fprintf(stderr, "\rfacecap: face %d found in frame %d at (%.0f, %.0f)\n", face.index, face.first_frame,
+                       face.box.center().x(), face.box.center().y());
+        outputs.push_back(
+            std::make_unique<TrackOutput>(model, info, input, face_folder(output_dir, face.index), options));
+        return outputs.back()->sink();
+      });
+  summary.faces = summary.capture.faces;
+  if (summary.faces.empty()) {
+    if (!existed) fs::remove(output_dir, ec);  // nothing was written in it
+    throw Error("no face found in the " + std::to_string(summary.capture.timings.frames) + " frame(s) of " + input);
+  }
   nlohmann::json list = nlohmann::json::array();
-  const int n = static_cast<int>(summary.faces.size());
-  for (int k = 0; k < n; ++k) {
-    const Box& box = summary.faces[k];
-    TrackOptions one = options;
-    one.capture.tracker.pick.rule = FacePick::Rule::kNearest;
-    one.capture.tracker.pick.point = box.center();
-    if (!options.capture.quiet) std::fprintf(stderr, "face %d of %d (left to right)\n", k + 1, n);
-    summary.runs.push_back(run_track(model, input, face_folder(output_dir, k), one));
-    list.push_back({{"face", k},
-                    {"folder", face_folder(output_dir, k).filename().string()},
-                    {"found_in_frame", probe.face_frame},
+  for (size_t k = 0; k < summary.faces.size(); ++k) {
+    const FoundFace& face = summary.faces[k];
+    summary.runs.push_back(outputs[k]->finish(summary.capture.captures[k]));
+    const Box& box = face.box;
+    list.push_back({{"face", face.index},
+                    {"folder", face_folder(output_dir, face.index).filename().string()},
+                    {"found_in_frame", face.first_frame},
+                    {"found_at_time", face.first_time},
+                    {"found_in_shot", face.shot},
                     {"found_box", {{"x", box.x}, {"y", box.y}, {"width", box.width}, {"height", box.height}}},
                     {"frames", summary.runs.back().capture.frames},
                     {"lost", summary.runs.back().capture.lost}});
   }
-  write_text_file(output_dir / "faces.json",
-                  nlohmann::json{{"input", input}, {"start_seconds", start}, {"faces", list}}.dump(2) + "\n");
+  write_text_file(output_dir / "faces.json", nlohmann::json{{"input", input},
+                                                            {"start_seconds", options.capture.start_seconds},
+                                                            {"frames", summary.capture.timings.frames},
+                                                            {"uncaptured_faces", summary.capture.uncaptured_faces},
+                                                            {"faces", list}}
+                                                     .dump(2) +
+                                                 "\n");
   // An earlier run's folders of faces this run did not have would read as
   // this run's (as stale meshes would): removed where they hold a capture.
-  std::error_code ec;
+  const int n = static_cast<int>(summary.faces.size());
   std::vector<fs::path> stale;
   for (const auto& entry : fs::directory_iterator(output_dir, ec)) {
     const std::string name = entry.path().filename().string();

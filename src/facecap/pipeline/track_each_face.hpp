@@ -1,30 +1,31 @@
 #pragma once
-// `facecap track --all-faces`: every face the first frame with a face shows
-// (of the first 300: a video may open on black or a title), each
-// captured into a folder of its own (DIR/face_<k>, k from 0, left to right),
-// as `track --face X,Y` at that face's centre would capture it, and
-// DIR/faces.json listing them. One capture per face: they share nothing but
-// the input, and each takes the time of a capture. Folders face_<k> of an
-// earlier run with more faces are removed.
+// `facecap track --all-faces`: every face the input shows, each captured into
+// a folder of its own (DIR/face_<k>, k in the order found, left to right
+// among faces found together) from the frame it is first found in, as
+// `track --start T --face X,Y` at that frame and face would capture it, and
+// DIR/faces.json listing them. One decoding pass for all (face_roster.hpp),
+// so a camera works too. Folders face_<k> of an earlier run with more faces
+// are removed.
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "facecap/detect/landmarks.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/track_job.hpp"
 
 namespace facecap {
 
 struct EachFaceSummary {
-  std::vector<Box> faces;          // in the first frame with a face, left to right
-  int face_frame = -1;             // that frame's index
+  std::vector<FoundFace> faces;    // in the order found
   std::vector<TrackSummary> runs;  // one per face, in that order
+  AllFacesSummary capture;         // the shared pass
 };
 
-// Throws facecap::Error for a camera (it cannot be read once per face) and
-// where the first 300 frames show no face, before anything is written.
+// Throws facecap::Error where no face is found in the whole input; nothing
+// is written then.
 EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input,
-                                    const std::filesystem::path& output_dir, const TrackOptions& options);
+                                    const std::filesystem::path& output_dir, const TrackOptions& options,
+                                    const AllFacesOptions& all = {});
 
 // The folder of face `k` (DIR/face_<k>).
 std::filesystem::path face_folder(const std::filesystem::path& output_dir, int k);

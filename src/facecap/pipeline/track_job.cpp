@@ -411,30 +411,21 @@ class FrameWriter {
 
 }  // namespace
 
-TrackSummary run_track(const FaceModel& model, const std::string& input, const fs::path& dir,
-                       const TrackOptions& options) {
-  auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
-  ensure_writable_dir(dir);
-  // Re-tracking an earlier run's overlay into its own folder would replace it.
-  for (const char* name : {kOverlayVideo, kShadedVideo, kHeatmapVideo, kAlbedoImage})
-    ensure_not_an_input(dir / name, {input});
-  const InputInfo info = source->info();
-  TrackSummary summary;
-  summary.output_dir = dir;
-  FrameWriter writer(model, info, input, dir, options);
-
-  CaptureOptions capture = options.capture;
-  capture.keep_images = options.overlay || options.refine;
-  std::unique_ptr<RefineStage> stage;
-  if (options.refine) {
-    stage = std::make_unique<RefineStage>(model, options.refine_options, [&](const RefinedFrame& r) {
-      if (options.on_frame) options.on_frame(r.frame);
-      writer.write(r.frame, r.refinement ? &*r.refinement : nullptr, r.coarse, r.camera);
-    });
-    writer.set_refiner(&stage->refiner());
-    stage->on_shot_end([&] { writer.end_shot(); });
+struct TrackOutput::Impl {
+  Impl(const FaceModel& model, const InputInfo& info, const std::string& input, const fs::path& dir,
+       const TrackOptions& options)
+      : model(model), info(info), input(input), options(options), writer(model, info, input, dir, options) {
+    if (options.refine) {
+      stage = std::make_unique<RefineStage>(model, options.refine_options, [this](const RefinedFrame& r) {
+        if (this->options.on_frame) this->options.on_frame(r.frame);
+        writer.write(r.frame, r.refinement ? &*r.refinement : nullptr, r.coarse, r.camera);
+      });
+      writer.set_refiner(&stage->refiner());
+      stage->on_shot_end([this] { writer.end_shot(); });
+    }
   }
-  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
+
+  void take(const CapturedFrame& f) {
     if (stage) {
       stage->push(f);  // refined on the stage's thread, concurrently with the next frames' tracking
       return;
@@ -448,18 +439,56 @@ TrackSummary run_track(const FaceModel& model, const std::string& input, const f
       cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
     }
     writer.write(f, nullptr, coarse, cam);
-  });
-  if (stage) {
-    stage->finish();
-    summary.refined_frames = stage->refined_frames();
-    summary.refine_ms = stage->refine_ms();
   }
-  if (summary.capture.frames == 0) throw Error("no frames could be read from " + input);
-  writer.finish(summary.capture);
-  summary.animation_files = writer.animation_files();
-  summary.meshes_written = writer.meshes_written();
-  summary.gaze_frames = writer.gaze_frames();
+
+  const FaceModel& model;
+  const InputInfo info;
+  const std::string input;
+  const TrackOptions options;
+  FrameWriter writer;
+  std::unique_ptr<RefineStage> stage;
+};
+
+TrackOutput::TrackOutput(const FaceModel& model, const InputInfo& info, const std::string& input, const fs::path& dir,
+                         const TrackOptions& options) {
+  ensure_writable_dir(dir);
+  // Re-tracking an earlier run's overlay into its own folder would replace it.
+  for (const char* name : {kOverlayVideo, kShadedVideo, kHeatmapVideo, kAlbedoImage})
+    ensure_not_an_input(dir / name, {input});
+  impl_ = std::make_unique<Impl>(model, info, input, dir, options);
+  output_dir_ = dir;
+}
+
+TrackOutput::~TrackOutput() = default;
+
+FrameSink TrackOutput::sink() {
+  return [this](const CapturedFrame& f) { impl_->take(f); };
+}
+
+TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
+  TrackSummary summary;
+  summary.output_dir = output_dir_;
+  summary.capture = capture;
+  if (impl_->stage) {
+    impl_->stage->finish();
+    summary.refined_frames = impl_->stage->refined_frames();
+    summary.refine_ms = impl_->stage->refine_ms();
+  }
+  if (summary.capture.frames == 0) throw Error("no frames could be read from " + impl_->input);
+  impl_->writer.finish(summary.capture);
+  summary.animation_files = impl_->writer.animation_files();
+  summary.meshes_written = impl_->writer.meshes_written();
+  summary.gaze_frames = impl_->writer.gaze_frames();
   return summary;
+}
+
+TrackSummary run_track(const FaceModel& model, const std::string& input, const fs::path& dir,
+                       const TrackOptions& options) {
+  auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
+  TrackOutput output(model, source->info(), input, dir, options);
+  CaptureOptions capture = options.capture;
+  capture.keep_images = options.overlay || options.refine;
+  return output.finish(run_capture(model, *source, capture, output.sink()));
 }
 
 }  // namespace facecap

@@ -21,6 +21,7 @@
 // Every file is written under a temporary name and renamed when complete.
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,5 +58,29 @@ struct TrackSummary {
 
 TrackSummary run_track(const FaceModel& model, const std::string& input, const std::filesystem::path& output_dir,
                        const TrackOptions& options);
+
+// The files of one capture in a folder, as run_track writes them, for a
+// capture driven elsewhere (track --all-faces: one per face). `info`: the
+// input as the capture sees it. Throws facecap::Error, before writing
+// anything, where the folder cannot be written or is one of the input's.
+class TrackOutput {
+ public:
+  TrackOutput(const FaceModel& model, const InputInfo& info, const std::string& input,
+              const std::filesystem::path& output_dir, const TrackOptions& options);
+  ~TrackOutput();
+  TrackOutput(const TrackOutput&) = delete;
+  TrackOutput& operator=(const TrackOutput&) = delete;
+
+  // Takes the capture's frames, in order (capture options: keep_images for
+  // --overlay and --refine).
+  FrameSink sink();
+  // Completes the files (renamed into place); throws where no frame came.
+  TrackSummary finish(const CaptureSummary& capture);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::filesystem::path output_dir_;
+};
 
 }  // namespace facecap

@@ -1,0 +1,173 @@
+#include "facecap/pipeline/face_roster.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "facecap/core/stopwatch.hpp"
+#include "facecap/pipeline/face_capture.hpp"
+
+namespace facecap {
+
+bool is_followed(const Box& detection, const std::vector<Box>& followed) {
+  return std::any_of(followed.begin(), followed.end(), [&](const Box& f) {
+    return (detection.center() - f.center()).norm() < 0.25f * (f.width + f.height);
+  });
+}
+
+std::vector<int> match_nearest(const std::vector<Vec2f>& points, const std::vector<FaceDetection>& faces) {
+  struct Pair {
+    float distance;
+    int point, face;
+  };
+  std::vector<Pair> pairs;
+  for (int p = 0; p < int(points.size()); ++p)
+    for (int f = 0; f < int(faces.size()); ++f) pairs.push_back({(faces[f].box.center() - points[p]).norm(), p, f});
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return a.distance != b.distance ? a.distance < b.distance
+                                    : (a.point != b.point ? a.point < b.point : a.face < b.face);
+  });
+  std::vector<int> match(points.size(), -1);
+  std::vector<bool> used(faces.size(), false);
+  for (const Pair& pair : pairs) {
+    if (match[pair.point] >= 0 || used[pair.face]) continue;
+    match[pair.point] = pair.face;
+    used[pair.face] = true;
+  }
+  return match;
+}
+
+namespace {
+
+struct Slot {
+  FoundFace face;
+  std::unique_ptr<FaceCapture> capture;
+  std::optional<Box> box;  // the landmarks' box in the last frame it was followed
+};
+
+// Merges a search at twice the size into the plain one's faces: its faces
+// that are not already there.
+void add_new_faces(std::vector<FaceDetection>& faces, const std::vector<FaceDetection>& more) {
+  std::vector<Box> have;
+  for (const FaceDetection& f : faces) have.push_back(f.box);
+  for (const FaceDetection& f : more)
+    if (!is_followed(f.box, have)) faces.push_back(f);
+}
+
+}  // namespace
+
+AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& source, CaptureOptions options,
+                                      const AllFacesOptions& all, const NewFaceSink& on_new_face) {
+  const auto start = std::chrono::steady_clock::now();
+  AllFacesSummary summary;
+  summary.input = source.info();
+  if (summary.input.kind == InputKind::kImage) {
+    options.fit.still = true;
+    options.fit.init_frames = 1;
+  }
+  // A capture searches every frame for a face it lost a moment ago (as one
+  // face's capture does), and otherwise only where the roster searches.
+  const int recent_frames = options.tracker.follow_frames;
+  const LandmarkDetector landmark_detector;
+  const FaceDetector detector(options.tracker.detector), fine_detector(twice_the_size(options.tracker.detector));
+  std::vector<Slot> slots;
+  StageTimings& t = summary.timings;
+  t.setup_ms = ms_since(start);
+  int searches = 0;
+  int shot = 0;
+
+  const FrameLoopResult loop = run_frame_loop(source, options, [&](const DecodedFrame& d, bool cut) {
+    shot += cut;
+    const bool search_frame = d.frame.index == summary.input.first_frame || cut ||
+                              (d.frame.index - summary.input.first_frame) % all.search_every == 0;
+    // This frame's faces, found once, where a capture or the roster first asks.
+    std::optional<std::vector<FaceDetection>> found;
+    auto frame_faces = [&]() -> const std::vector<FaceDetection>& {
+      if (found) return *found;
+      const auto t0 = std::chrono::steady_clock::now();
+      found.emplace();
+      if (!d.grey.empty()) {
+        *found = detector.detect(d.grey);
+        if (search_frame && (searches++ % all.fine_every == 0 || found->empty()))
+          add_new_faces(*found, fine_detector.detect(d.grey));
+      }
+      t.detect_ms += ms_since(t0);
+      return *found;
+    };
+    // After a cut, the new shot's faces go to the captures whose faces first
+    // appeared nearest them.
+    std::vector<int> assigned(slots.size(), -1);
+    if (cut && !slots.empty()) {
+      std::vector<Vec2f> homes;
+      for (const Slot& s : slots) homes.push_back(s.face.box.center());
+      assigned = match_nearest(homes, frame_faces());
+    }
+    // Where the others are: this frame's box for those already done, the
+    // last frame's for the rest.
+    auto others = [&](size_t k) {
+      std::vector<Box> boxes;
+      for (size_t j = 0; j < slots.size(); ++j)
+        if (j != k && slots[j].box) boxes.push_back(*slots[j].box);
+      return boxes;
+    };
+    for (size_t k = 0; k < slots.size(); ++k) {
+      Slot& slot = slots[k];
+      const FaceTracker::FrameFaces choices = [&, k]() -> std::vector<FaceDetection> {
+        if (cut)
+          return assigned[k] >= 0 ? std::vector<FaceDetection>{frame_faces()[assigned[k]]}
+                                  : std::vector<FaceDetection>{};
+        if (!search_frame && slot.capture->face_tracker().frames_unseen() >= recent_frames) return {};
+        std::vector<FaceDetection> faces = frame_faces();
+        const std::vector<Box> taken = others(k);
+        std::erase_if(faces, [&](const FaceDetection& f) { return is_followed(f.box, taken); });
+        return faces;
+      };
+      const TrackedFace& tracked = slot.capture->push(d, cut, choices);
+      slot.box.reset();
+      if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
+    }
+    if (!search_frame) return;
+    // Faces no capture follows start their own, left to right.
+    std::vector<FaceDetection> fresh = frame_faces();
+    std::vector<Box> followed = others(slots.size());
+    std::erase_if(fresh, [&](const FaceDetection& f) { return is_followed(f.box, followed); });
+    std::sort(fresh.begin(), fresh.end(),
+              [](const FaceDetection& a, const FaceDetection& b) { return a.box.center().x() < b.box.center().x(); });
+    int uncaptured = 0;
+    for (const FaceDetection& f : fresh) {
+      if (is_followed(f.box, followed)) continue;  // one started just now has it
+      if (int(slots.size()) >= all.max_faces) {
+        summary.uncaptured_faces = std::max(summary.uncaptured_faces, ++uncaptured);
+        continue;
+      }
+      Slot& slot = slots.emplace_back();
+      slot.face = {int(slots.size()) - 1, d.frame.index, d.frame.time, f.box, shot};
+      InputInfo info = summary.input;
+      info.first_frame = d.frame.index;
+      info.first_time = d.frame.time;
+      CaptureOptions own = options;
+      own.tracker.pick = {FacePick::Rule::kNearest, f.box.center()};
+      own.tracker.follow_frames = INT_MAX;  // never another face elsewhere: that one is a capture of its own
+      slot.capture =
+          std::make_unique<FaceCapture>(model, landmark_detector, own, info, on_new_face(slot.face, info), shot);
+      const TrackedFace& tracked = slot.capture->push(d, false, [&f] { return std::vector<FaceDetection>{f}; });
+      if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
+      followed.push_back(slot.box.value_or(f.box));
+    }
+  });
+  for (Slot& slot : slots) {
+    summary.faces.push_back(slot.face);
+    summary.captures.push_back(slot.capture->finish());
+  }
+  summary.cuts = loop.cuts;
+  summary.stopped_by_user = loop.stopped_by_user;
+  t.decode_ms = loop.decode_ms;
+  t.frames = loop.frames;
+  t.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace facecap

@@ -1,0 +1,63 @@
+#pragma once
+// Every face an input shows, each captured on its own (FaceCapture) from the
+// frame it is first found in, on one decoding pass (`track --all-faces`).
+//
+// The whole frame is searched for faces at the first frame, every
+// AllFacesOptions::search_every frames and at each shot cut; a face that no
+// capture follows there starts a capture of its own. The searches are shared:
+// a capture that lost its face chooses among their faces, less those the
+// others follow, and takes up only a face where its own was last seen, so
+// that it is never fitted with another person's identity. A face that comes
+// back elsewhere counts as a new one. After a shot cut, the faces of the new
+// shot go to the captures whose faces first appeared nearest them (each
+// shot's identity is solved afresh), and the rest start captures of their own.
+#include <functional>
+#include <vector>
+
+#include "facecap/pipeline/capture_session.hpp"
+
+namespace facecap {
+
+struct AllFacesOptions {
+  int search_every = 8;  // frames between whole-frame searches for new faces
+  int fine_every = 4;    // every this many searches, also at twice the size (faces down to half as small)
+  int max_faces = 8;     // faces past this many are not captured (AllFacesSummary::uncaptured_faces)
+};
+
+struct FoundFace {
+  int index = 0;        // in the order found (left to right among those found together)
+  int first_frame = 0;  // the input's frame it was first found in
+  double first_time = 0;
+  Box box;       // the detector's box there
+  int shot = 0;  // the input's shot there
+};
+
+// Called once per face as it is found: the sink that takes its frames, from
+// first_frame on. `info` is the input as that face's capture sees it (its
+// first frame and time are the face's).
+using NewFaceSink = std::function<FrameSink(const FoundFace& face, const InputInfo& info)>;
+
+struct AllFacesSummary {
+  std::vector<FoundFace> faces;
+  std::vector<CaptureSummary> captures;  // one per face, in that order
+  // The shared work: decoding, the whole-frame searches (detect_ms), setup
+  // and the run's wall time.
+  StageTimings timings;
+  int cuts = 0;
+  bool stopped_by_user = false;
+  int uncaptured_faces = 0;  // the most faces one search found past AllFacesOptions::max_faces
+  InputInfo input;
+};
+
+AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& source, CaptureOptions options,
+                                      const AllFacesOptions& all, const NewFaceSink& on_new_face);
+
+// Whether the face `detection` is one of `followed` (a face's landmark box):
+// its centre within half that face's size of the followed face's centre.
+bool is_followed(const Box& detection, const std::vector<Box>& followed);
+
+// Greedy matching of faces to points, nearest pairs first: for each point,
+// the index of its face in `faces`, or -1.
+std::vector<int> match_nearest(const std::vector<Vec2f>& points, const std::vector<FaceDetection>& faces);
+
+}  // namespace facecap
