@@ -343,6 +343,58 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   EXPECT_FALSE(fs::exists(dir.path() / "none"));
 }
 
+// --all-faces: a face covered for 8 frames comes back into its own folder
+// (no third one); after a cut to a shot with one face on the right, that face
+// goes to the capture that began on the right, with an identity of its own.
+TEST(TrackJob, AllFacesKeepsEachFaceInItsFolderThroughCoverAndCuts) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
+  FACECAP_REQUIRE_DATA(later, "address_720p_b.mp4");
+  TempDir dir;
+  const fs::path video = dir.path() / "cut.mp4";
+  const test::CommandResult made = test::run_command(
+      "ffmpeg -nostdin -hide_banner -loglevel error -y -r 25 -i " + left.string() + " -r 25 -i " + right.string() +
+      " -r 25 -i " + later.string() +
+      " -filter_complex \"[0:v]trim=end_frame=48,scale=640:360,setsar=1,drawbox=x=0:y=0:w=640:h=360:color=black:t="
+      "fill:enable='between(n,24,31)'[l];[1:v]trim=end_frame=48,scale=480:360,pad=640:360:80:0,setsar=1[r];[l][r]"
+      "hstack[A];[2:v]trim=end_frame=24,scale=640:360,pad=1280:360:640:0,setsar=1[B];[A][B]concat=n=2:v=1[v]\" "
+      "-map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " +
+      video.string() + " 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  TrackOptions o;
+  o.capture.quiet = true;
+  const EachFaceSummary each = run_track_each_face(*model, video.string(), dir.path() / "out", o);
+  ASSERT_EQ(each.faces.size(), 2u);
+  EXPECT_EQ(each.capture.cuts, 1);
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(each.faces[k].first_frame, 0) << k;
+  const auto rows = [&](int k) {
+    std::vector<nlohmann::json> out;
+    for (const std::string& line : lines(face_folder(dir.path() / "out", k) / "frames.jsonl"))
+      out.push_back(nlohmann::json::parse(line));
+    return out;
+  };
+  const std::vector<nlohmann::json> left_rows = rows(0), right_rows = rows(1);
+  ASSERT_EQ(left_rows.size(), 72u);
+  ASSERT_EQ(right_rows.size(), 72u);
+  for (int f = 0; f < 72; ++f) {
+    // The left face: lost while covered and after the cut, and only then.
+    const bool covered = f >= 24 && f < 32;
+    EXPECT_EQ(left_rows[f]["status"] == "lost", covered || f >= 48) << f;
+    // The right face: every frame, on the right, in both shots.
+    ASSERT_NE(right_rows[f]["status"], "lost") << f;
+    float x = 0;
+    for (const auto& p : right_rows[f]["landmarks"]) x += p[0].get<float>() / 68;
+    EXPECT_GT(x, 640.0f) << f;
+    EXPECT_EQ(right_rows[f]["shot"], f < 48 ? 0 : 1) << f;
+  }
+  // The right capture's two shots are two people.
+  const std::vector<CaptureSummary::Shot>& shots = each.runs[1].capture.shots;
+  ASSERT_EQ(shots.size(), 2u);
+  EXPECT_EQ(shots[1].first_frame, 48);
+  EXPECT_GT((shots[0].identity.identity - shots[1].identity.identity).norm(), 1.0);
+}
+
 // --identity: a take captured with the identity of another take of the same
 // speaker holds it exactly, and says so; its fit stays good.
 TEST(TrackJob, AGivenIdentityIsHeldAndRecorded) {

@@ -5,8 +5,10 @@
 #include <climits>
 #include <cstdio>
 #include <memory>
+#include <mutex>
 #include <optional>
 
+#include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/pipeline/face_capture.hpp"
 
@@ -46,6 +48,16 @@ struct Slot {
   FoundFace face;
   std::unique_ptr<FaceCapture> capture;
   std::optional<Box> box;  // the landmarks' box in the last frame it was followed
+  // The faces' captures run in parallel; their frames wait here and reach
+  // their sinks in order, on the loop's thread.
+  std::vector<CapturedFrame> pending;
+  FrameSink sink;
+  std::exception_ptr error;
+
+  void flush() {
+    for (const CapturedFrame& f : pending) sink(f);
+    pending.clear();
+  }
 };
 
 // Merges a search at twice the size into the plain one's faces: its faces
@@ -73,7 +85,7 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
   const int recent_frames = options.tracker.follow_frames;
   const LandmarkDetector landmark_detector;
   const FaceDetector detector(options.tracker.detector), fine_detector(twice_the_size(options.tracker.detector));
-  std::vector<Slot> slots;
+  std::vector<std::unique_ptr<Slot>> slots;
   StageTimings& t = summary.timings;
   t.setup_ms = ms_since(start);
   int searches = 0;
@@ -84,55 +96,76 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
     const bool search_frame = d.frame.index == summary.input.first_frame || cut ||
                               (d.frame.index - summary.input.first_frame) % all.search_every == 0;
     // This frame's faces, found once, where a capture or the roster first asks.
-    std::optional<std::vector<FaceDetection>> found;
+    std::vector<FaceDetection> found;
+    std::once_flag found_once;
     auto frame_faces = [&]() -> const std::vector<FaceDetection>& {
-      if (found) return *found;
-      const auto t0 = std::chrono::steady_clock::now();
-      found.emplace();
-      if (!d.grey.empty()) {
-        *found = detector.detect(d.grey);
-        if (search_frame && (searches++ % all.fine_every == 0 || found->empty()))
-          add_new_faces(*found, fine_detector.detect(d.grey));
-      }
-      t.detect_ms += ms_since(t0);
-      return *found;
+      std::call_once(found_once, [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        if (!d.grey.empty()) {
+          found = detector.detect(d.grey);
+          if (search_frame && (searches++ % all.fine_every == 0 || found.empty()))
+            add_new_faces(found, fine_detector.detect(d.grey));
+        }
+        t.detect_ms += ms_since(t0);
+      });
+      return found;
     };
     // After a cut, the new shot's faces go to the captures whose faces first
     // appeared nearest them.
     std::vector<int> assigned(slots.size(), -1);
     if (cut && !slots.empty()) {
       std::vector<Vec2f> homes;
-      for (const Slot& s : slots) homes.push_back(s.face.box.center());
+      for (const auto& s : slots) homes.push_back(s->face.box.center());
       assigned = match_nearest(homes, frame_faces());
     }
-    // Where the others are: this frame's box for those already done, the
-    // last frame's for the rest.
+    // Where the faces were in the last frame: a capture searching for its
+    // face takes none of the others'.
+    std::vector<std::optional<Box>> last_boxes;
+    for (const auto& s : slots) last_boxes.push_back(s->box);
     auto others = [&](size_t k) {
       std::vector<Box> boxes;
-      for (size_t j = 0; j < slots.size(); ++j)
-        if (j != k && slots[j].box) boxes.push_back(*slots[j].box);
+      for (size_t j = 0; j < last_boxes.size(); ++j)
+        if (j != k && last_boxes[j]) boxes.push_back(*last_boxes[j]);
       return boxes;
     };
-    for (size_t k = 0; k < slots.size(); ++k) {
-      Slot& slot = slots[k];
-      const FaceTracker::FrameFaces choices = [&, k]() -> std::vector<FaceDetection> {
-        if (cut)
-          return assigned[k] >= 0 ? std::vector<FaceDetection>{frame_faces()[assigned[k]]}
-                                  : std::vector<FaceDetection>{};
-        if (!search_frame && slot.capture->face_tracker().frames_unseen() >= recent_frames) return {};
-        std::vector<FaceDetection> faces = frame_faces();
-        const std::vector<Box> taken = others(k);
-        std::erase_if(faces, [&](const FaceDetection& f) { return is_followed(f.box, taken); });
-        return faces;
-      };
-      const TrackedFace& tracked = slot.capture->push(d, cut, choices);
-      slot.box.reset();
-      if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
+    // Each face's landmarks and fit, in parallel (one face's work does not
+    // depend on another's in this frame).
+    parallel_for(
+        int(slots.size()),
+        [&](int begin, int end) {
+          for (int k = begin; k < end; ++k) {
+            Slot& slot = *slots[k];
+            if (slot.error) continue;
+            const FaceTracker::FrameFaces choices = [&, k]() -> std::vector<FaceDetection> {
+              if (cut)
+                return assigned[k] >= 0 ? std::vector<FaceDetection>{frame_faces()[assigned[k]]}
+                                        : std::vector<FaceDetection>{};
+              if (!search_frame && slot.capture->face_tracker().frames_unseen() >= recent_frames) return {};
+              std::vector<FaceDetection> faces = frame_faces();
+              const std::vector<Box> taken = others(k);
+              std::erase_if(faces, [&](const FaceDetection& f) { return is_followed(f.box, taken); });
+              return faces;
+            };
+            try {
+              const TrackedFace& tracked = slot.capture->push(d, cut, choices);
+              slot.box.reset();
+              if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
+            } catch (...) {
+              slot.error = std::current_exception();
+            }
+          }
+        },
+        1);
+    for (const auto& slot : slots) {
+      if (slot->error) std::rethrow_exception(slot->error);
+      slot->flush();
     }
     if (!search_frame) return;
     // Faces no capture follows start their own, left to right.
     std::vector<FaceDetection> fresh = frame_faces();
-    std::vector<Box> followed = others(slots.size());
+    std::vector<Box> followed;
+    for (const auto& s : slots)
+      if (s->box) followed.push_back(*s->box);
     std::erase_if(fresh, [&](const FaceDetection& f) { return is_followed(f.box, followed); });
     std::sort(fresh.begin(), fresh.end(),
               [](const FaceDetection& a, const FaceDetection& b) { return a.box.center().x() < b.box.center().x(); });
@@ -143,7 +176,7 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
         summary.uncaptured_faces = std::max(summary.uncaptured_faces, ++uncaptured);
         continue;
       }
-      Slot& slot = slots.emplace_back();
+      Slot& slot = *slots.emplace_back(std::make_unique<Slot>());
       slot.face = {int(slots.size()) - 1, d.frame.index, d.frame.time, f.box, shot};
       InputInfo info = summary.input;
       info.first_frame = d.frame.index;
@@ -151,16 +184,19 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
       CaptureOptions own = options;
       own.tracker.pick = {FacePick::Rule::kNearest, f.box.center()};
       own.tracker.follow_frames = INT_MAX;  // never another face elsewhere: that one is a capture of its own
-      slot.capture =
-          std::make_unique<FaceCapture>(model, landmark_detector, own, info, on_new_face(slot.face, info), shot);
+      slot.sink = on_new_face(slot.face, info);
+      slot.capture = std::make_unique<FaceCapture>(
+          model, landmark_detector, own, info, [&slot](const CapturedFrame& f) { slot.pending.push_back(f); }, shot);
       const TrackedFace& tracked = slot.capture->push(d, false, [&f] { return std::vector<FaceDetection>{f}; });
       if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
+      slot.flush();
       followed.push_back(slot.box.value_or(f.box));
     }
   });
-  for (Slot& slot : slots) {
-    summary.faces.push_back(slot.face);
-    summary.captures.push_back(slot.capture->finish());
+  for (const auto& slot : slots) {
+    summary.faces.push_back(slot->face);
+    summary.captures.push_back(slot->capture->finish());
+    slot->flush();
   }
   summary.cuts = loop.cuts;
   summary.stopped_by_user = loop.stopped_by_user;
