@@ -545,6 +545,13 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
                                             (dir.path() / "point").string() + " --face " + at + " 2>&1 >/dev/null");
   ASSERT_EQ(point.code, 0) << point.out;
   EXPECT_LT(nose_x(dir.path() / "point"), left.cols) << "the face at " << at;
+  // --all-faces: both, each into its own folder, left to right.
+  const RunResult all = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                          (dir.path() / "all").string() + " --all-faces 2>&1 >/dev/null");
+  ASSERT_EQ(all.code, 0) << all.out;
+  EXPECT_LT(nose_x(dir.path() / "all" / "face_0"), left.cols);
+  EXPECT_GT(nose_x(dir.path() / "all" / "face_1"), left.cols);
+  EXPECT_NE(all.out.find("2 face(s) in 1 frames, one decoding pass"), std::string::npos) << all.out;
   const RunResult bad = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                           (dir.path() / "bad").string() + " --face middle 2>&1");
   EXPECT_EQ(bad.code, 2) << bad.out;

@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/interrupt.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/core/temp_files.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -33,6 +38,53 @@ TEST(AtomicFile, AbandonedWriteLeavesTheOldFileAndNoTemporary) {
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
+}
+
+// A second Ctrl-C quits at once, skipping the destructors: its handler
+// removes what is still registered, and only that.
+TEST(AtomicFile, QuittingAtOnceRemovesTheTemporariesOnly) {
+  TempDir dir;
+  const auto committed = dir.path() / "done.txt";
+  const auto loose = dir.path() / "loose.log";
+  std::ofstream(loose) << "a log that was let go";
+  AtomicFile open(dir.path() / "out.mp4");
+  std::ofstream(open.temp_path()) << "half-written";
+  std::optional<AtomicFile> done;
+  done.emplace(committed);
+  std::ofstream(done->temp_path()) << "complete";
+  done->commit();
+  std::optional<RegisteredTempFile> log;
+  log.emplace(loose);
+  log.reset();  // unregistered: no longer the handler's to remove
+  const auto kept = dir.path() / "kept.log";
+  std::ofstream(kept) << "registered";
+  RegisteredTempFile registered(kept);
+
+  remove_registered_temp_files();
+  EXPECT_FALSE(std::filesystem::exists(open.temp_path()));
+  EXPECT_FALSE(std::filesystem::exists(kept));
+  EXPECT_EQ(read_file(committed), "complete");
+  EXPECT_TRUE(std::filesystem::exists(loose));
+}
+
+// The whole path: Ctrl-C twice in a process writing a file exits at once
+// (130), and the temporary is gone.
+TEST(AtomicFileDeathTest, ASecondInterruptQuitsAtOnceAndLeavesNoTemporary) {
+  TempDir dir;
+  const auto path = dir.path() / "out.mp4";
+  EXPECT_EXIT(
+      {
+        install_interrupt_handler();
+        AtomicFile f(path);
+        std::ofstream(f.temp_path()) << "half-written";
+        std::raise(SIGINT);  // the job would stop cleanly at its next frame...
+        std::raise(SIGINT);  // ...but the user insists
+        std::_Exit(0);
+      },
+      testing::ExitedWithCode(130), "");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 0);
 }
 
 TEST(AtomicFile, UnwritableFolderIsAClearError) {

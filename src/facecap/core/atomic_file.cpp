@@ -43,6 +43,7 @@ AtomicFile::AtomicFile(fs::path final_path) : final_(std::move(final_path)) {
   // Keep the extension last so that tools choosing a format by name (ffmpeg, OpenCV) still do.
   const std::string tag = ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   temp_ = final_.parent_path() / (final_.stem().string() + tag + final_.extension().string());
+  registered_.emplace(temp_);
 }
 
 AtomicFile::~AtomicFile() {
@@ -58,6 +59,7 @@ void AtomicFile::commit() {
   fs::rename(temp_, final_, ec);
   if (ec) throw Error("cannot write " + final_.string() + ": " + ec.message());
   committed_ = true;
+  registered_.reset();
 }
 
 void write_binary_file(const fs::path& path, const void* data, size_t bytes) {

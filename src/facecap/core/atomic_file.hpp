@@ -7,8 +7,11 @@
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
+
+#include "facecap/core/temp_files.hpp"
 
 namespace facecap {
 
@@ -27,6 +30,7 @@ class AtomicFile {
  private:
   std::filesystem::path final_;
   std::filesystem::path temp_;
+  std::optional<RegisteredTempFile> registered_;  // until committed
   bool committed_ = false;
 };
 

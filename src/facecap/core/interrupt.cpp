@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/temp_files.hpp"
 
 namespace facecap {
 
@@ -14,7 +15,10 @@ volatile std::sig_atomic_t g_interrupted = 0;
 volatile std::sig_atomic_t g_ends_input = 0;
 
 extern "C" void on_signal(int) {
-  if (g_interrupted) std::_Exit(130);
+  if (g_interrupted) {
+    remove_registered_temp_files();  // the destructors that would remove them do not run
+    std::_Exit(130);
+  }
   g_interrupted = 1;
   static const char cleanup[] = "\nfacecap: interrupted, cleaning up (press Ctrl-C again to quit at once)\n";
   static const char stop[] =

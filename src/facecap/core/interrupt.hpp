@@ -2,7 +2,8 @@
 // Ctrl-C and SIGTERM stop long jobs cleanly: the first signal sets a flag that
 // the frame loops poll; they throw facecap::Error("interrupted"), so
 // destructors remove temporary outputs and nothing half-written remains. A
-// second signal exits at once.
+// second signal exits at once, removing the registered temporary files
+// (temp_files.hpp) first.
 namespace facecap {
 
 void install_interrupt_handler();

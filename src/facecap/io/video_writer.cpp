@@ -42,6 +42,7 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
   if (options_.fps <= 0) options_.fps = 30.0;
   log_path_ = file_.temp_path();
   log_path_ += ".log";
+  log_registered_.emplace(log_path_);
 
   std::vector<std::string> args{"ffmpeg",
                                 "-hide_banner",

@@ -72,6 +72,7 @@ class VideoWriter {
   VideoWriterOptions options_;
   AtomicFile file_;
   std::filesystem::path log_path_;
+  std::optional<RegisteredTempFile> log_registered_;  // ffmpeg's messages, removed once read
   int pipe_fd_ = -1;
   int pid_ = -1;
   int frames_ = 0;

@@ -19,8 +19,22 @@ fs::path face_folder(const fs::path& output_dir, int k) { return output_dir / ("
 EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input, const fs::path& output_dir,
                                     const TrackOptions& options, const AllFacesOptions& all) {
   auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
-  std::error_code ec;
-  const bool existed = fs::exists(output_dir, ec);
+  // A run that fails (no face, Ctrl-C) leaves no folder it made: the files
+  // in them are removed first, as the outputs go (declared after this).
+  struct FoldersMadeHere {
+    std::vector<fs::path> folders;  // the innermost last
+    bool keep = false;
+    void add(const fs::path& dir) {
+      std::error_code ec;
+      if (!fs::exists(dir, ec)) folders.push_back(dir);
+    }
+    ~FoldersMadeHere() {
+      std::error_code ec;
+      if (!keep)
+        for (auto it = folders.rbegin(); it != folders.rend(); ++it) fs::remove(*it, ec);  // only if empty
+    }
+  } made;
+  made.add(output_dir);
   ensure_writable_dir(output_dir);
   std::vector<std::unique_ptr<TrackOutput>> outputs;
   CaptureOptions capture = options.capture;
@@ -31,15 +45,14 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
         if (!options.capture.quiet)
           std::fprintf(stderr, "\rfacecap: face %d found in frame %d at (%.0f, %.0f)\n", face.index, face.first_frame,
                        face.box.center().x(), face.box.center().y());
+        made.add(face_folder(output_dir, face.index));
         outputs.push_back(
             std::make_unique<TrackOutput>(model, info, input, face_folder(output_dir, face.index), options));
         return outputs.back()->sink();
       });
   summary.faces = summary.capture.faces;
-  if (summary.faces.empty()) {
-    if (!existed) fs::remove(output_dir, ec);  // nothing was written in it
+  if (summary.faces.empty())
     throw Error("no face found in the " + std::to_string(summary.capture.timings.frames) + " frame(s) of " + input);
-  }
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < summary.faces.size(); ++k) {
     const FoundFace& face = summary.faces[k];
@@ -61,9 +74,11 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
                                                             {"faces", list}}
                                                      .dump(2) +
                                                  "\n");
+  made.keep = true;
   // An earlier run's folders of faces this run did not have would read as
   // this run's (as stale meshes would): removed where they hold a capture.
   const int n = static_cast<int>(summary.faces.size());
+  std::error_code ec;
   std::vector<fs::path> stale;
   for (const auto& entry : fs::directory_iterator(output_dir, ec)) {
     const std::string name = entry.path().filename().string();
