@@ -78,8 +78,9 @@ void report_all_faces(const AllFacesSummary& all) {
 }
 
 // The files a capture wrote, one per line.
-void print_track_files(const TrackSummary& s, FILE* out) {
+void print_track_files(const TrackSummary& s, FILE* out, bool livelink) {
   std::fprintf(out, "%s\n", (s.output_dir / "frames.csv").string().c_str());
+  if (livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
 }
 
@@ -111,6 +112,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "
                 "textured with the albedo). A video that cuts gets one per shot: DIR/animation_shot<N>.glb after the "
                 "first");
+  cmd->add_flag("--livelink", a->options.livelink,
+                "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
+                "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "
+                "Unreal's Live Link Face importer (MetaHuman) and ARKit rigs in Blender or Maya");
   cmd->add_flag("--refine", a->options.refine,
                 "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
   add_device_option(*cmd, a->options.refine_options.device);
@@ -165,7 +170,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       const EachFaceSummary each = run_track_each_face(model, a->input, a->out, a->options, a->all);
       for (size_t k = 0; k < each.runs.size(); ++k) report_face(each.faces[k], each.runs[k], a->input);
       report_all_faces(each.capture);
-      for (const TrackSummary& s : each.runs) print_track_files(s, stdout);
+      for (const TrackSummary& s : each.runs) print_track_files(s, stdout, a->options.livelink);
       std::printf("%s\n", (std::filesystem::path(a->out) / "faces.json").string().c_str());
       return;
     }
@@ -178,7 +183,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   (note.empty() ? "" : "; " + note));
     }
     report_track(s, a->input, a->options.refine, a->options.capture.fit.known_identity.has_value());
-    print_track_files(s, a->stream ? stderr : stdout);  // with --stream, stdout holds the rows
+    print_track_files(s, a->stream ? stderr : stdout, a->options.livelink);  // with --stream, stdout holds the rows
   });
 }
 

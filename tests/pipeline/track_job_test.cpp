@@ -60,6 +60,15 @@ double correlation(const std::vector<float>& a, const std::vector<float>& b) {
   return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
 }
 
+// A silent H.264 test clip of `inputs`, each read as 25 fps (frames kept, not
+// resampled), through the ffmpeg filter graph `graph` (its output is [v]).
+test::CommandResult compose_clip(const std::vector<fs::path>& inputs, const std::string& graph, const fs::path& out) {
+  std::string command = "ffmpeg -nostdin -hide_banner -loglevel error -y";
+  for (const fs::path& in : inputs) command += " -r 25 -i " + in.string();
+  return test::run_command(command + " -filter_complex \"" + graph +
+                           "\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " + out.string() + " 2>&1");
+}
+
 }  // namespace
 
 TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
@@ -126,18 +135,16 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   TempDir dir;
   // 40 frames of each, both read as 25 fps (-r before -i: frames kept, not resampled).
   const std::string scaled = "scale=960:720,pad=1280:720:160:0,setsar=1";
-  auto make = [&](const std::string& name, const std::string& inputs, const std::string& graph) {
+  auto make = [&](const std::string& name, const std::vector<fs::path>& inputs, const std::string& graph) {
     const fs::path out = dir.path() / name;
-    const test::CommandResult r =
-        test::run_command("ffmpeg -nostdin -hide_banner -loglevel error -y " + inputs + " -filter_complex \"" + graph +
-                          "\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " + out.string() + " 2>&1");
+    const test::CommandResult r = compose_clip(inputs, graph, out);
     EXPECT_EQ(r.code, 0) << r.out;
     return out;
   };
   const fs::path joined =
-      make("joined.mp4", "-r 25 -i " + first.string() + " -r 25 -i " + second.string(),
+      make("joined.mp4", {first, second},
            "[0:v]trim=end_frame=40,setsar=1[a];[1:v]trim=end_frame=40," + scaled + "[b];[a][b]concat=n=2:v=1:a=0[v]");
-  const fs::path alone = make("alone.mp4", "-r 25 -i " + second.string(), "[0:v]trim=end_frame=40," + scaled + "[v]");
+  const fs::path alone = make("alone.mp4", {second}, "[0:v]trim=end_frame=40," + scaled + "[v]");
   TrackOptions o;
   o.capture.quiet = true;
   auto identity_of = [](const fs::path& run_dir) {
@@ -281,12 +288,11 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
   TempDir dir;
   const fs::path two = dir.path() / "two.mp4";
-  const test::CommandResult made = test::run_command(
-      "ffmpeg -nostdin -hide_banner -loglevel error -y -r 25 -i " + left.string() + " -r 25 -i " + right.string() +
-      " -filter_complex \"[0:v]trim=end_frame=48,scale=640:360,pad=1280:360:0:0,setsar=1[a];[1:v]trim=end_frame=48,"
-      "scale=480:360,pad=640:360:80:0,setsar=1[b];[a][b]overlay=x='640+max(0\\,(20-n)*80)':y=0,tpad=start=8:color="
-      "black[v]\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " +
-      two.string() + " 2>&1");
+  const test::CommandResult made = compose_clip(
+      {left, right},
+      "[0:v]trim=end_frame=48,scale=640:360,pad=1280:360:0:0,setsar=1[a];[1:v]trim=end_frame=48,scale=480:360,pad=640:"
+      "360:80:0,setsar=1[b];[a][b]overlay=x='640+max(0\\,(20-n)*80)':y=0,tpad=start=8:color=black[v]",
+      two);
   ASSERT_EQ(made.code, 0) << made.out;
   const fs::path out = dir.path() / "out";
   fs::create_directories(out / "face_2");
@@ -353,14 +359,12 @@ TEST(TrackJob, AllFacesKeepsEachFaceInItsFolderThroughCoverAndCuts) {
   FACECAP_REQUIRE_DATA(later, "address_720p_b.mp4");
   TempDir dir;
   const fs::path video = dir.path() / "cut.mp4";
-  const test::CommandResult made = test::run_command(
-      "ffmpeg -nostdin -hide_banner -loglevel error -y -r 25 -i " + left.string() + " -r 25 -i " + right.string() +
-      " -r 25 -i " + later.string() +
-      " -filter_complex \"[0:v]trim=end_frame=48,scale=640:360,setsar=1,drawbox=x=0:y=0:w=640:h=360:color=black:t="
-      "fill:enable='between(n,24,31)'[l];[1:v]trim=end_frame=48,scale=480:360,pad=640:360:80:0,setsar=1[r];[l][r]"
-      "hstack[A];[2:v]trim=end_frame=24,scale=640:360,pad=1280:360:640:0,setsar=1[B];[A][B]concat=n=2:v=1[v]\" "
-      "-map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " +
-      video.string() + " 2>&1");
+  const test::CommandResult made = compose_clip(
+      {left, right, later},
+      "[0:v]trim=end_frame=48,scale=640:360,setsar=1,drawbox=x=0:y=0:w=640:h=360:color=black:t=fill:enable='between(n,"
+      "24,31)'[l];[1:v]trim=end_frame=48,scale=480:360,pad=640:360:80:0,setsar=1[r];[l][r]hstack[A];[2:v]trim=end_"
+      "frame=24,scale=640:360,pad=1280:360:640:0,setsar=1[B];[A][B]concat=n=2:v=1[v]",
+      video);
   ASSERT_EQ(made.code, 0) << made.out;
   TrackOptions o;
   o.capture.quiet = true;
@@ -393,6 +397,71 @@ TEST(TrackJob, AllFacesKeepsEachFaceInItsFolderThroughCoverAndCuts) {
   ASSERT_EQ(shots.size(), 2u);
   EXPECT_EQ(shots[1].first_frame, 48);
   EXPECT_GT((shots[0].identity.identity - shots[1].identity.identity).norm(), 1.0);
+}
+
+// --livelink: a Live Link Face take with a row per frame, its weights those
+// of frames.csv under ARKit's names, its head angles frames.csv's in radians;
+// a lost frame holds the last tracked one's values.
+TEST(TrackJob, WritesALiveLinkFaceTakeOfTheCapture) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const fs::path clip = dir.path() / "dark.mp4";
+  const test::CommandResult made = test::run_command(
+      "ffmpeg -nostdin -hide_banner -loglevel error -y -i " + video.string() +
+      " -vf \"trim=end_frame=40,drawbox=x=0:y=0:w=iw:h=ih:color=black:t=fill:enable='between(n,34,39)'\" -an -c:v "
+      "libx264 -preset ultrafast -crf 16 " +
+      clip.string() + " 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.livelink = true;
+  const TrackSummary s = run_track(*model, clip.string(), dir.path(), o);
+  ASSERT_EQ(s.capture.frames, 40);
+  const auto take = lines(dir.path() / "livelink_face.csv");
+  const auto csv = lines(dir.path() / "frames.csv");
+  ASSERT_EQ(take.size(), 41u);
+  ASSERT_EQ(csv.size(), 41u);
+  auto fields = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream in(line);
+    for (std::string f; std::getline(in, f, ',');) out.push_back(f);
+    return out;
+  };
+  const auto take_header = fields(take[0]), csv_header = fields(csv[0]);
+  ASSERT_EQ(take_header.size(), 63u);
+  auto column = [](const std::vector<std::string>& header, const std::string& name) {
+    return static_cast<size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  int lost = 0;
+  std::vector<std::string> last_tracked;
+  for (size_t row = 1; row < take.size(); ++row) {
+    const auto t = fields(take[row]), c = fields(csv[row]);
+    ASSERT_EQ(t.size(), 63u) << row;
+    if (c[2] == "lost") {
+      ++lost;
+      ASSERT_FALSE(last_tracked.empty());
+      // The last tracked frame's values, at this frame's time.
+      EXPECT_EQ(std::vector<std::string>(t.begin() + 1, t.end()),
+                std::vector<std::string>(last_tracked.begin() + 1, last_tracked.end()))
+          << row;
+      continue;
+    }
+    last_tracked = t;
+    for (const char* name : {"JawOpen", "EyeBlinkLeft", "MouthSmileRight"}) {
+      std::string ict = name;
+      ict[0] = char(std::tolower(ict[0]));
+      if (ict.ends_with("Left")) ict = ict.substr(0, ict.size() - 4) + "_L";
+      if (ict.ends_with("Right")) ict = ict.substr(0, ict.size() - 5) + "_R";
+      EXPECT_NEAR(std::stod(t[column(take_header, name)]), std::stod(c[column(csv_header, ict)]), 1e-5)
+          << name << " row " << row;
+    }
+    EXPECT_NEAR(std::stod(t[column(take_header, "HeadYaw")]),
+                std::stod(c[column(csv_header, "yaw_deg")]) * 3.14159265358979 / 180, 1e-5)
+        << row;
+  }
+  EXPECT_EQ(lost, 6);                                 // the black ones
+  EXPECT_EQ(fields(take[11])[0], "00:00:00:10.000");  // frame 10 of a 30 fps clip
 }
 
 // --identity: a take captured with the identity of another take of the same

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <unordered_set>
 
@@ -11,8 +12,10 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
 #include "facecap/io/gltf_writer.hpp"
+#include "facecap/io/livelink_csv.hpp"
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/video_writer.hpp"
+#include "facecap/model/eyeballs.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
@@ -29,6 +32,7 @@ namespace {
 
 // Files of the output folder that an input could be (a re-tracked overlay).
 constexpr const char* kOverlayVideo = "overlay.mp4";
+constexpr const char* kLiveLinkCsv = "livelink_face.csv";
 constexpr const char* kShadedVideo = "shaded.mp4";
 constexpr const char* kHeatmapVideo = "heatmap.mp4";
 constexpr const char* kAlbedoImage = "albedo.png";
@@ -93,6 +97,12 @@ class FrameWriter {
          "iris_left_y";
     o << ",shot\n";  // last, so that the columns before keep their places
     if (options.meshes) fs::create_directories(dir / "meshes");
+    if (options.livelink) {
+      livelink_.emplace(dir / kLiveLinkCsv);
+      livelink_format_.emplace(model.expression_names, info.fps);
+      livelink_->stream() << livelink_format_->header() << '\n';
+      livelink_weights_ = Eigen::VectorXf::Zero(model.num_expressions());
+    }
     if (options.gltf) {
       animations_.emplace(dir / "animation.glb", [this](const fs::path& file, const ShotKeys& shot) {
         const IdentityEstimate& id = shot.identity;
@@ -157,6 +167,7 @@ class FrameWriter {
     }
     write_gaze(f, o, row);
     o << ',' << f.shot << '\n';
+    if (livelink_) write_livelink(f);
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
@@ -240,6 +251,7 @@ class FrameWriter {
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     csv_.commit();
     jsonl_.commit();
+    if (livelink_) livelink_->commit();
     for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
       if (w) w->finish();
     if (options_.meshes) remove_earlier_meshes();
@@ -302,6 +314,19 @@ class FrameWriter {
   // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
   // the iris centres; empty fields and null where no iris was found. An eye
   // has a direction only where it has an iris.
+  void write_livelink(const CapturedFrame& f) {
+    if (f.status != TrackStatus::kLost) {
+      livelink_weights_ = f.fit.expression;
+      livelink_pose_.head_yaw_pitch_roll_deg = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
+      const GazeEstimate& g = f.fit.gaze;
+      // Eye 0 is the subject's right; an eye not seen looks where the other does.
+      const Vec2d both = g.valid() ? g.angles_deg() : Vec2d::Zero();
+      livelink_pose_.right_eye_deg = g.eyes[0] ? gaze_angles_deg(g.eyes[0]->direction) : both;
+      livelink_pose_.left_eye_deg = g.eyes[1] ? gaze_angles_deg(g.eyes[1]->direction) : both;
+    }
+    livelink_->stream() << livelink_format_->row(f.time, livelink_weights_, livelink_pose_) << '\n';
+  }
+
   void write_gaze(const CapturedFrame& f, std::ofstream& o, nlohmann::json& row) {
     const GazeEstimate& g = f.fit.gaze;
     nlohmann::json gaze = nullptr;
@@ -392,6 +417,12 @@ class FrameWriter {
   const TrackOptions& options_;
   StagedText csv_;
   StagedText jsonl_;
+  // --livelink: a row per frame; a lost frame holds the last tracked one's
+  // values (importers read rows as frames), the first ones the rest pose.
+  std::optional<StagedText> livelink_;
+  std::optional<LiveLinkCsv> livelink_format_;
+  Eigen::VectorXf livelink_weights_;
+  LiveLinkCsv::Pose livelink_pose_;
   std::unique_ptr<VideoWriter> overlay_, shaded_, heatmap_;
   int gaze_frames_ = 0;
   std::vector<Polygon> face_polygons_;

@@ -12,6 +12,9 @@
 //                      and weights keyed per frame, the fitted camera
 //                      (face_animation.hpp); with --refine its albedo texture.
 //                      A video that cuts: one per shot (shot_animations.hpp)
+//   DIR/livelink_face.csv (--livelink) the weights, head pose and gaze as a
+//                      Live Link Face take, for Unreal (MetaHuman) and
+//                      ARKit rigs (io/livelink_csv.hpp)
 // With --refine (shading-based refinement, §4.2-4.3) also:
 //   lighting columns l0..l8 per frame, DIR/albedo.png (ICT UV layout; one
 //   per shot, as the glTF),
@@ -38,6 +41,7 @@ struct TrackOptions {
   MeshSpace mesh_space = MeshSpace::kModel;
   bool overlay = false;
   bool gltf = false;
+  bool livelink = false;  // DIR/livelink_face.csv (io/livelink_csv.hpp)
   bool refine = false;
   RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
