@@ -7,6 +7,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/interrupt.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -84,6 +85,31 @@ TEST(CaptureSession, AVideoStoppedByCtrlCThrows) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   EXPECT_THROW(capture_pressing_ctrl_c(*model, video, InputKind::kVideo, 20, [](const CapturedFrame&) {}), Error);
+}
+
+// track --all-faces reads a camera once for every face: Ctrl-C ends it, and
+// each face's frames until then are delivered.
+TEST(CaptureSession, EveryFaceOfACameraStoppedByCtrlCIsDelivered) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const InterruptHandler handler;
+  PressedCtrlC source(open_input(video.string()), InputKind::kCamera, 45);
+  CaptureOptions options;
+  options.quiet = true;
+  int delivered = 0;
+  const AllFacesSummary s =
+      run_capture_all_faces(*model, source, options, {}, [&](const FoundFace& face, const InputInfo& info) {
+        EXPECT_EQ(face.first_frame, 0);
+        EXPECT_EQ(info.kind, InputKind::kCamera);
+        return [&](const CapturedFrame& f) { EXPECT_EQ(f.index, delivered++); };
+      });
+  EXPECT_FALSE(interrupted());
+  EXPECT_TRUE(s.stopped_by_user);
+  ASSERT_EQ(s.faces.size(), 1u);
+  EXPECT_EQ(delivered, s.captures[0].frames);
+  EXPECT_EQ(s.captures[0].frames, s.timings.frames);
+  EXPECT_GE(s.captures[0].frames, 39);
+  EXPECT_EQ(s.captures[0].lost, 0);
 }
 
 }  // namespace
