@@ -6,6 +6,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/transform_job.hpp"
@@ -44,20 +45,52 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
   struct Args {
     std::string input;
     CaptureOptions capture;
-    bool refine = false;
+    bool refine = false, all_faces = false;
     RefineOptions refine_options;
   };
   auto a = std::make_shared<Args>();
   track->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
+  CLI::Option* all_faces =
+      track->add_flag("--all-faces", a->all_faces,
+                      "Every face, on one decoding pass (as track --all-faces): the shared stages, then each face's");
   add_device_option(*track, a->refine_options.device);
   track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*track, a->capture.start_seconds);
-  track->add_flag("--refine", a->refine,
-                  "Also the shading refinement, on its own thread (lighting, albedo, each level's displacement solve)");
+  track
+      ->add_flag("--refine", a->refine,
+                 "Also the shading refinement, on its own thread (lighting, albedo, each level's displacement solve)")
+      ->excludes(all_faces);
   track->callback([a, &global] {
     const FaceModel model = load_model(global);
     auto source = open_input(a->input, a->capture.start_seconds);
     a->capture.quiet = true;
+    if (a->all_faces) {
+      const AllFacesSummary all =
+          run_capture_all_faces(model, *source, a->capture, {},
+                                [](const FoundFace&, const InputInfo&) { return [](const CapturedFrame&) {}; });
+      nlohmann::json j = timings_json(all.timings);
+      for (const char* per_face :
+           {"landmarks_ms_per_frame", "gaze_ms_per_frame", "fit_ms_per_frame", "identity_solve_ms"})
+        j.erase(per_face);
+      j["note"] =
+          "shared by the faces: decoding (own thread) and the whole-frame searches (detect); fps is for all faces";
+      nlohmann::json faces = nlohmann::json::array();
+      for (size_t k = 0; k < all.faces.size(); ++k) {
+        nlohmann::json f = timings_json(all.captures[k].timings);
+        for (const char* shared : {"setup_ms", "decode_ms_per_frame", "total_s", "fps", "fps_including_setup", "note"})
+          f.erase(shared);
+        f["first_frame"] = all.faces[k].first_frame;
+        f["lost_frames"] = all.captures[k].lost;
+        faces.push_back(f);
+      }
+      j["faces"] = faces;
+      j["input"] = a->input;
+      j["width"] = all.input.width;
+      j["height"] = all.input.height;
+      j["cores"] = std::thread::hardware_concurrency();
+      print_json(j);
+      return;
+    }
     a->capture.keep_images = a->refine;
     // Refinement timings, summed on the stage's thread.
     double lighting = 0, albedo = 0, pyramid = 0;
