@@ -62,6 +62,19 @@ void AtomicFile::commit() {
   registered_.reset();
 }
 
+fs::path StagedFiles::stage(const fs::path& final_path) {
+  files_.push_back(std::make_unique<AtomicFile>(final_path));
+  return files_.back()->temp_path();
+}
+
+void StagedFiles::commit() {
+  for (const std::unique_ptr<AtomicFile>& file : files_) {
+    std::error_code ec;
+    if (fs::exists(file->temp_path(), ec)) file->commit();
+  }
+  files_.clear();
+}
+
 void write_binary_file(const fs::path& path, const void* data, size_t bytes) {
   AtomicFile file(path);
   {

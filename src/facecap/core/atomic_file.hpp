@@ -7,9 +7,11 @@
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "facecap/core/temp_files.hpp"
 
@@ -32,6 +34,23 @@ class AtomicFile {
   std::filesystem::path temp_;
   std::optional<RegisteredTempFile> registered_;  // until committed
   bool committed_ = false;
+};
+
+// Files that appear together when a job completes: each is written under a
+// temporary name when it is ready (stage()), and all are renamed into place
+// by commit(). Until then, and if the job fails, none of them shows (the
+// destructor removes what was written), so a run that fails after a shot cut
+// leaves no later shot's file beside an earlier run's others.
+class StagedFiles {
+ public:
+  // Where to write `final_path`'s content now (any writer, even one that
+  // itself writes atomically): renamed to final_path by commit().
+  std::filesystem::path stage(const std::filesystem::path& final_path);
+  // Renames every staged file that was written; one that was not is skipped.
+  void commit();
+
+ private:
+  std::vector<std::unique_ptr<AtomicFile>> files_;
 };
 
 // Throws facecap::Error unless `dir` exists (or can be created) and is writable.

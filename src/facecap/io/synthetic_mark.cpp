@@ -22,7 +22,8 @@ std::map<std::string, std::string> synthetic_metadata(const SyntheticMark& mark)
 
 std::filesystem::path sidecar_path(const std::filesystem::path& media_path) { return media_path.string() + ".json"; }
 
-void write_synthetic_sidecar(const std::filesystem::path& media_path, const SyntheticMark& mark) {
+void write_synthetic_sidecar(const std::filesystem::path& media_path, const SyntheticMark& mark,
+                             const std::filesystem::path& to) {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   char stamp[32];
   std::strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
@@ -37,7 +38,7 @@ void write_synthetic_sidecar(const std::filesystem::path& media_path, const Synt
   j["created_utc"] = stamp;
   j["notice"] =
       "This media was generated or altered by software. It does not show a real recording of what it depicts.";
-  write_text_file(sidecar_path(media_path), j.dump(2) + "\n");
+  write_text_file(to.empty() ? sidecar_path(media_path) : to, j.dump(2) + "\n");
 }
 
 bool carries_synthetic_marks(const std::filesystem::path& media_path) {

@@ -21,8 +21,10 @@ struct SyntheticMark {
 // Tags for VideoWriterOptions::metadata.
 std::map<std::string, std::string> synthetic_metadata(const SyntheticMark& mark);
 
-// Writes `<media_path>.json` (atomically).
-void write_synthetic_sidecar(const std::filesystem::path& media_path, const SyntheticMark& mark);
+// Writes `<media_path>.json` (atomically), or, with `to`, writes it there
+// (a staged name: atomic_file.hpp's StagedFiles), still describing media_path.
+void write_synthetic_sidecar(const std::filesystem::path& media_path, const SyntheticMark& mark,
+                             const std::filesystem::path& to = {});
 
 // The sidecar path for an output file.
 std::filesystem::path sidecar_path(const std::filesystem::path& media_path);

@@ -31,12 +31,22 @@ void ShotAnimations::end_shot() {
   if (shot.keys.empty()) return;
   const fs::path file = shot_file(path_, shot.shot, written_.empty());
   for (const std::string& input : inputs_) ensure_not_an_input(file, {input});
-  write_(file, shot);
+  const fs::path write_to = staged_.stage(file);
+  const fs::path sidecar_to = staged_.stage(sidecar_path(file));
+  write_({file, write_to, sidecar_to}, shot);
   written_.push_back(file);
+  sidecars_to_.push_back(sidecar_to);
 }
 
 std::vector<fs::path> ShotAnimations::finish() {
   end_shot();
+  // A shot whose writer marks nothing keeps no sidecar an earlier run left.
+  std::vector<fs::path> unmarked;
+  std::error_code ec;
+  for (size_t k = 0; k < written_.size(); ++k)
+    if (!fs::exists(sidecars_to_[k], ec)) unmarked.push_back(sidecar_path(written_[k]));
+  staged_.commit();
+  for (const fs::path& p : unmarked) fs::remove(p, ec);
   remove_other_shot_files(path_, written_, /*remove_first_when_none=*/true);
   return written_;
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "facecap/core/atomic_file.hpp"
 #include "facecap/fit/coarse_tracker.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 
@@ -43,12 +44,20 @@ struct ShotKeys {
 void remove_other_shot_files(const std::filesystem::path& path, const std::vector<std::filesystem::path>& written,
                              bool remove_first_when_none);
 
+// Where one shot's file goes: written now under staged names, renamed to
+// `file` (and its sidecar) when the job finishes (ShotAnimations::finish).
+struct ShotOutput {
+  std::filesystem::path file;        // its name once the job completes
+  std::filesystem::path write_to;    // where to write the glTF now
+  std::filesystem::path sidecar_to;  // where to write its sidecar now, if the job marks its output
+};
+
 class ShotAnimations {
  public:
   // Writes one shot's file (write_glb, and a sidecar where the job marks
   // its output as synthetic). Runs when the shot ends, while the job still
   // holds what it learnt of the shot (its albedo, the swap's appearance).
-  using WriteShot = std::function<void(const std::filesystem::path& file, const ShotKeys& shot)>;
+  using WriteShot = std::function<void(const ShotOutput& out, const ShotKeys& shot)>;
 
   // `inputs`: files a shot's path must never replace (ensure_not_an_input).
   ShotAnimations(std::filesystem::path path, WriteShot write, std::vector<std::string> inputs = {});
@@ -62,10 +71,11 @@ class ShotAnimations {
   // refiner's albedo, RefineStage::on_shot_end) calls this at the cut.
   void end_shot();
 
-  // Ends the last shot, and removes what an earlier run left under these
-  // names that this run did not write (remove_other_shot_files; the first
-  // shot's file too when no shot had a face). Returns the files written,
-  // first shot first.
+  // Ends the last shot, puts every shot's file in place, and removes what
+  // an earlier run left under these names that this run did not write
+  // (remove_other_shot_files; the first shot's file too when no shot had a
+  // face). Returns the files written, first shot first. A job that fails
+  // before this shows none of them.
   std::vector<std::filesystem::path> finish();
 
  private:
@@ -74,6 +84,8 @@ class ShotAnimations {
   std::vector<std::string> inputs_;
   std::optional<ShotKeys> current_;
   std::vector<std::filesystem::path> written_;
+  std::vector<std::filesystem::path> sidecars_to_;  // each written shot's staged sidecar
+  StagedFiles staged_;
 };
 
 }  // namespace facecap

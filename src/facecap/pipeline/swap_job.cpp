@@ -164,14 +164,14 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   if (!options.gltf.empty()) {
     animations.emplace(
         options.gltf,
-        [&](const fs::path& file, const ShotKeys& shot) {
+        [&](const ShotOutput& out, const ShotKeys& shot) {
           GltfAnimatedMesh glb = swapped_animation(model, swapper, summary.source.face, shot.keys,
                                                    {shot.identity.focal, info.width, info.height}, mark);
           glb.animation_name = shot_animation_name(
               fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")",
               shot.shot);
-          write_glb(file, glb);
-          write_synthetic_sidecar(file, mark);
+          write_glb(out.write_to, glb);
+          write_synthetic_sidecar(out.file, mark, out.sidecar_to);
         },
         std::vector<std::string>{source_photo, target});
   }

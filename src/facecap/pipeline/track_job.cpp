@@ -104,12 +104,12 @@ class FrameWriter {
       livelink_weights_ = Eigen::VectorXf::Zero(model.num_expressions());
     }
     if (options.gltf) {
-      animations_.emplace(dir / "animation.glb", [this](const fs::path& file, const ShotKeys& shot) {
+      animations_.emplace(dir / "animation.glb", [this](const ShotOutput& out, const ShotKeys& shot) {
         const IdentityEstimate& id = shot.identity;
         GltfAnimatedMesh glb = face_animation(model_, id.identity, shot.keys, {id.focal, info_.width, info_.height});
         glb.primitives.front().base_colour_png = shot_albedo_png_;  // the face part
         glb.animation_name = shot_animation_name(fs::path(input_).stem().string(), shot.shot);
-        write_glb(file, glb);
+        write_glb(out.write_to, glb);
       });
     }
     if (options.overlay) {
@@ -190,7 +190,7 @@ class FrameWriter {
     if (refiner_ != nullptr) shot_albedo_png_ = face_albedo_png(model_, *refiner_);
     if (!shot_albedo_png_.empty()) {
       const fs::path file = shot_file(dir_ / kAlbedoImage, shot_, albedo_files_.empty());
-      write_binary_file(file, shot_albedo_png_.data(), shot_albedo_png_.size());
+      write_binary_file(staged_albedo_.stage(file), shot_albedo_png_.data(), shot_albedo_png_.size());
       albedo_files_.push_back(file);
     }
     if (animations_) animations_->end_shot();
@@ -248,6 +248,7 @@ class FrameWriter {
     // Like identity.json: no tracked frame, no face to animate (an earlier
     // run's animation.glb is removed, and so are its later shots' files).
     if (animations_) animation_files_ = animations_->finish();
+    staged_albedo_.commit();
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     csv_.commit();
     jsonl_.commit();
@@ -436,6 +437,7 @@ class FrameWriter {
   bool shot_has_face_ = false;
   std::vector<uint8_t> shot_albedo_png_;
   std::vector<fs::path> albedo_files_;
+  StagedFiles staged_albedo_;  // each shot's albedo.png, in place when the capture completes
   int meshes_ = 0;
   std::unordered_set<std::string> meshes_written_;  // their file names
 };

@@ -134,15 +134,15 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (!options.gltf.empty()) {
     animations.emplace(
         options.gltf,
-        [&](const fs::path& file, const ShotKeys& shot) {
+        [&](const ShotOutput& out, const ShotKeys& shot) {
           const IdentityEstimate& id = shot.identity;
           GltfAnimatedMesh glb = face_animation(model, id.identity, shot.keys, {id.focal, info.width, info.height});
           glb.primitives.front().base_colour_png = face_albedo_png(model, stage.refiner());  // the face part
           glb.animation_name =
               shot_animation_name(fs::path(input).stem().string() + " (" + options.description + ")", shot.shot);
           glb.asset_extras.merge(synthetic_metadata(mark));
-          write_glb(file, glb);
-          write_synthetic_sidecar(file, mark);
+          write_glb(out.write_to, glb);
+          write_synthetic_sidecar(out.file, mark, out.sidecar_to);
         },
         std::vector<std::string>{input});
   }
