@@ -8,21 +8,36 @@
 #include "test_support.hpp"
 
 namespace facecap {
+namespace {
+
+// A synthetic performance of `frames` frames and its renderer, whose
+// landmarks are the truth.
+struct SyntheticTake {
+  SyntheticTake(const FaceModel& model, int frames)
+      : options(with_frames(frames)), perf(make_performance(model, options)), renderer(model, perf) {}
+  static SynthOptions with_frames(int frames) {
+    SynthOptions o;
+    o.frames = frames;
+    return o;
+  }
+  const SynthOptions options;
+  const SynthPerformance perf;
+  const SynthRenderer renderer;
+};
+
+}  // namespace
 
 TEST(CoarseTracker, RejectsLandmarksNoFaceCanExplainAndRecovers) {
   FACECAP_REQUIRE_MODEL(model);
-  SynthOptions so;
-  so.frames = 40;
-  const SynthPerformance perf = make_performance(*model, so);
-  const SynthRenderer renderer(*model, perf);
+  const SyntheticTake take(*model, 40);
   CoarseFitOptions o;
   o.init_frames = 10;
-  CoarseTracker tracker(*model, o, so.width, so.height);
+  CoarseTracker tracker(*model, o, take.options.width, take.options.height);
   std::mt19937 rng(1);
   std::uniform_real_distribution<float> u(100, 400);
   std::vector<CoarseFit> fits;
-  for (const SynthFrame& f : perf.frames) {
-    std::optional<Landmarks> lm = renderer.landmarks(f);
+  for (const SynthFrame& f : take.perf.frames) {
+    std::optional<Landmarks> lm = take.renderer.landmarks(f);
     if (f.index == 20) {
       for (Vec2f& p : *lm) p = Vec2f(u(rng), u(rng));  // a detector failure: scattered points
     }
@@ -50,24 +65,21 @@ TEST(CoarseTracker, RejectsLandmarksNoFaceCanExplainAndRecovers) {
 // in every frame, so repeating frames must not move the identity.
 TEST(CoarseTracker, RepeatedFramesAddNoEvidenceAboutTheIdentity) {
   FACECAP_REQUIRE_MODEL(model);
-  SynthOptions so;
-  so.frames = 40;
-  const SynthPerformance perf = make_performance(*model, so);
-  const SynthRenderer renderer(*model, perf);
+  const SyntheticTake take(*model, 40);
   auto solve = [&](int copies) {
     CoarseFitOptions o;
-    o.init_frames = so.frames * copies;
-    CoarseTracker tracker(*model, o, so.width, so.height);
+    o.init_frames = take.options.frames * copies;
+    CoarseTracker tracker(*model, o, take.options.width, take.options.height);
     std::mt19937 rng(7);
     std::normal_distribution<float> noise(0.0f, 1.0f);
     int index = 0;
-    for (const SynthFrame& f : perf.frames) {
-      Landmarks lm = renderer.landmarks(f);
+    for (const SynthFrame& f : take.perf.frames) {
+      Landmarks lm = take.renderer.landmarks(f);
       for (Vec2f& p : lm) p += Vec2f(noise(rng), noise(rng));
       for (int c = 0; c < copies; ++c) tracker.push(index++, f.time, lm);
     }
     tracker.finish();
-    EXPECT_EQ(tracker.identity().frames_used, so.frames * copies);
+    EXPECT_EQ(tracker.identity().frames_used, take.options.frames * copies);
     return tracker.identity();
   };
   const IdentityEstimate once = solve(1), thrice = solve(3);
@@ -78,12 +90,10 @@ TEST(CoarseTracker, RepeatedFramesAddNoEvidenceAboutTheIdentity) {
 
 TEST(CoarseTracker, ShortInputsAreSolvedAtTheEnd) {
   FACECAP_REQUIRE_MODEL(model);
-  SynthOptions so;
-  so.frames = 5;
-  const SynthPerformance perf = make_performance(*model, so);
-  const SynthRenderer renderer(*model, perf);
-  CoarseTracker tracker(*model, CoarseFitOptions{}, so.width, so.height);  // wants 30 frames
-  for (const SynthFrame& f : perf.frames) EXPECT_TRUE(tracker.push(f.index, f.time, renderer.landmarks(f)).empty());
+  const SyntheticTake take(*model, 5);
+  CoarseTracker tracker(*model, CoarseFitOptions{}, take.options.width, take.options.height);  // wants 30 frames
+  for (const SynthFrame& f : take.perf.frames)
+    EXPECT_TRUE(tracker.push(f.index, f.time, take.renderer.landmarks(f)).empty());
   const std::vector<CoarseFit> fits = tracker.finish();
   ASSERT_EQ(fits.size(), 5u);
   for (const CoarseFit& fit : fits) EXPECT_TRUE(fit.valid);
@@ -96,17 +106,14 @@ TEST(CoarseTracker, ShortInputsAreSolvedAtTheEnd) {
 // frames as usual, with the face held.
 TEST(CoarseTracker, AKnownIdentityIsHeldAndWithAKnownFocalStartsAtOnce) {
   FACECAP_REQUIRE_MODEL(model);
-  SynthOptions so;
-  so.frames = 32;
-  const SynthPerformance perf = make_performance(*model, so);
-  const SynthRenderer renderer(*model, perf);
+  const SyntheticTake take(*model, 32);
   CoarseFitOptions o;
   o.init_frames = 30;
-  o.known_identity = perf.identity.head(o.identity_modes).cast<double>();
-  o.focal_guess = perf.camera.focal;
+  o.known_identity = take.perf.identity.head(o.identity_modes).cast<double>();
+  o.focal_guess = take.perf.camera.focal;
   o.focal_known = true;
-  CoarseTracker at_once(*model, o, so.width, so.height);
-  const std::vector<CoarseFit> first = at_once.push(0, 0.0, renderer.landmarks(perf.frames[0]));
+  CoarseTracker at_once(*model, o, take.options.width, take.options.height);
+  const std::vector<CoarseFit> first = at_once.push(0, 0.0, take.renderer.landmarks(take.perf.frames[0]));
   ASSERT_EQ(first.size(), 1u);
   EXPECT_TRUE(first[0].valid);
   EXPECT_EQ(at_once.identity().identity, *o.known_identity);
@@ -114,18 +121,19 @@ TEST(CoarseTracker, AKnownIdentityIsHeldAndWithAKnownFocalStartsAtOnce) {
   // The true face and lens leave only pose and expression: one frame's fit,
   // with no frames before it, gives the pose to 1.3 degrees.
   const double angle =
-      Eigen::AngleAxisd(first[0].pose.rotation_matrix().transpose() * perf.frames[0].pose.rotation_matrix()).angle();
+      Eigen::AngleAxisd(first[0].pose.rotation_matrix().transpose() * take.perf.frames[0].pose.rotation_matrix())
+          .angle();
   EXPECT_LT(angle * 180 / M_PI, 2.0);
 
   o.focal_known = false;
   o.focal_guess = 0;  // the default guess, 1.0 x the wider side
-  CoarseTracker solved_focal(*model, o, so.width, so.height);
-  for (const SynthFrame& f : perf.frames) {
-    const auto fits = solved_focal.push(f.index, f.time, renderer.landmarks(f));
+  CoarseTracker solved_focal(*model, o, take.options.width, take.options.height);
+  for (const SynthFrame& f : take.perf.frames) {
+    const auto fits = solved_focal.push(f.index, f.time, take.renderer.landmarks(f));
     EXPECT_EQ(fits.empty(), f.index < 29) << f.index;  // the 30th frame starts the output
   }
   EXPECT_EQ(solved_focal.identity().identity, *o.known_identity);
-  EXPECT_NEAR(solved_focal.identity().focal / perf.camera.focal, 1.0, 0.10);  // issue 3's bar
+  EXPECT_NEAR(solved_focal.identity().focal / take.perf.camera.focal, 1.0, 0.10);  // issue 3's bar
 }
 
 }  // namespace facecap
