@@ -2,20 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <sstream>
+#include "facecap/core/csv_line.hpp"
 
 namespace facecap {
-
-namespace {
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream in(line);
-  for (std::string field; std::getline(in, field, ',');) out.push_back(field);
-  return out;
-}
-
-}  // namespace
 
 TEST(LiveLinkCsv, TimecodesCountFramesWithinEachSecond) {
   EXPECT_EQ(LiveLinkCsv::timecode(0.0, 30), "00:00:00:00.000");
@@ -32,7 +21,7 @@ TEST(LiveLinkCsv, MapsTheModelsWeightsOntoArkitsColumns) {
   const std::vector<std::string> names = {"eyeBlink_L",    "eyeBlink_R",    "jawLeft",
                                           "browInnerUp_L", "browInnerUp_R", "mouthSmile_L"};
   const LiveLinkCsv csv(names, 30);
-  const std::vector<std::string> header = split(csv.header());
+  const std::vector<std::string> header = split_csv_line(csv.header());
   ASSERT_EQ(header.size(), 63u);
   EXPECT_EQ(header[0], "Timecode");
   EXPECT_EQ(header[1], "BlendShapeCount");
@@ -43,7 +32,7 @@ TEST(LiveLinkCsv, MapsTheModelsWeightsOntoArkitsColumns) {
   pose.head_yaw_pitch_roll_deg = {90, -45, 0};
   pose.left_eye_deg = {10, 0};
   pose.right_eye_deg = {-20, 5};
-  const std::vector<std::string> row = split(csv.row(2.0, w, pose));
+  const std::vector<std::string> row = split_csv_line(csv.row(2.0, w, pose));
   ASSERT_EQ(row.size(), header.size());
   EXPECT_EQ(row[1], "61");
   auto value = [&](const std::string& column) {

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
 #include "app/command.hpp"
+#include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
@@ -422,12 +422,7 @@ TEST(TrackJob, WritesALiveLinkFaceTakeOfTheCapture) {
   const auto csv = lines(dir.path() / "frames.csv");
   ASSERT_EQ(take.size(), 41u);
   ASSERT_EQ(csv.size(), 41u);
-  auto fields = [](const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream in(line);
-    for (std::string f; std::getline(in, f, ',');) out.push_back(f);
-    return out;
-  };
+  const auto fields = split_csv_line;
   const auto take_header = fields(take[0]), csv_header = fields(csv[0]);
   ASSERT_EQ(take_header.size(), 63u);
   auto column = [](const std::vector<std::string>& header, const std::string& name) {

@@ -7,19 +7,12 @@
 #include <unordered_map>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 
 namespace facecap {
 
 namespace {
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
 
 // Column index of each name in a header.
 std::vector<int> columns(const std::vector<std::string>& header, const std::vector<std::string>& names,
@@ -55,13 +48,13 @@ std::vector<Eigen::VectorXf> read_tracked_weights(const std::filesystem::path& c
   if (!in) throw Error("tracking file not found: " + csv.string());
   std::string line;
   if (!std::getline(in, line)) throw Error("empty tracking file: " + csv.string());
-  const std::vector<std::string> header = split(line);
+  const std::vector<std::string> header = split_csv_line(line);
   const std::vector<int> cols = columns(header, names, csv);
   const std::vector<int> status_col = columns(header, {"status"}, csv);
   const std::vector<int> time_col = columns(header, {"time"}, csv);
   std::vector<Eigen::VectorXf> out;
   for (int n = 2; std::getline(in, line); ++n) {
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = split_csv_line(line);
     if (cells.size() != header.size()) throw Error("malformed " + csv.string() + " line " + std::to_string(n));
     if (cells[status_col[0]] == "lost") continue;
     const double time = parse_weight(cells[time_col[0]], csv, n);
@@ -114,13 +107,13 @@ std::vector<LabeledWeights> read_dataset_csv(const std::filesystem::path& path, 
   if (!in) throw Error("training data not found: " + path.string());
   std::string line;
   if (!std::getline(in, line)) throw Error("empty training data: " + path.string());
-  const std::vector<std::string> header = split(line);
+  const std::vector<std::string> header = split_csv_line(line);
   const std::vector<int> cols = columns(header, names, path);
   const std::vector<int> label_col = columns(header, {"label"}, path);
   std::vector<LabeledWeights> out;
   for (int n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = split_csv_line(line);
     if (cells.size() != header.size()) throw Error("malformed " + path.string() + " line " + std::to_string(n));
     const auto label = parse_emotion(cells[label_col[0]]);
     if (!label)
