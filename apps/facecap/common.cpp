@@ -61,8 +61,8 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
         try {
           parse_face_pick(text);
           return std::string();
-        } catch (const Error&) {
-          return "must be largest, left, right or X,Y (pixels), not '" + text + "'";
+        } catch (const Error& e) {
+          return std::string(e.what());  // CLI11 puts the option's name before it
         }
       });
 }

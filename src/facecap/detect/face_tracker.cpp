@@ -48,7 +48,7 @@ FacePick parse_face_pick(std::string_view text) {
     pick.point = {x, y};
     return pick;
   }
-  throw Error("--face must be largest, left, right or X,Y (pixels), not '" + s + "'");
+  throw Error("must be largest, left, right or X,Y (pixels), not '" + s + "'");
 }
 
 std::string describe(const FacePick& pick) {

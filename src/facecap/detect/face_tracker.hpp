@@ -34,7 +34,8 @@ struct FacePick {
   Rule rule = Rule::kLargest;
   Vec2f point{0, 0};  // kNearest: pixels of the frame
 };
-// "largest", "left", "right" or "X,Y" (pixels); throws facecap::Error otherwise.
+// "largest", "left", "right" or "X,Y" (pixels); throws facecap::Error
+// otherwise, saying what the text must be (the caller names the option).
 FacePick parse_face_pick(std::string_view text);
 // For messages: "largest", "leftmost", "rightmost" or "one nearest (X, Y)".
 std::string describe(const FacePick& pick);
