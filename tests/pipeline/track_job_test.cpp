@@ -342,6 +342,20 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   EXPECT_EQ(one.capture.uncaptured_faces, 1);
   EXPECT_EQ(one.runs[0].capture.frames, 48);
 
+  // --max-frames counts the input's frames: each face sees those left from
+  // where it was found, and so does its overlay.
+  TrackOptions some = o;
+  some.capture.max_frames = 40;
+  some.overlay = true;
+  const EachFaceSummary first40 = run_track_each_face(*model, two.string(), dir.path() / "first40", some);
+  ASSERT_EQ(first40.runs.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const int frames = 40 - first40.faces[k].first_frame;
+    EXPECT_EQ(first40.runs[k].capture.frames, frames) << k;
+    EXPECT_EQ(open_input((face_folder(dir.path() / "first40", k) / "overlay.mp4").string())->info().frames, frames)
+        << k;
+  }
+
   // An input with no face is an error, and nothing is written.
   const fs::path grey = dir.path() / "grey.png";
   cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));

@@ -1,5 +1,6 @@
 #include "facecap/pipeline/track_each_face.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -46,8 +47,13 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
           std::fprintf(stderr, "\rfacecap: face %d found in frame %d at (%.0f, %.0f)\n", face.index, face.first_frame,
                        face.box.center().x(), face.box.center().y());
         made.add(face_folder(output_dir, face.index));
-        outputs.push_back(
-            std::make_unique<TrackOutput>(model, info, input, face_folder(output_dir, face.index), options));
+        // The face's capture starts where it was found: of --max-frames, it
+        // sees what is left (its overlay's sound ends with its last frame).
+        TrackOptions own = options;
+        if (own.capture.max_frames > 0)
+          own.capture.max_frames =
+              std::max(1, own.capture.max_frames - (face.first_frame - source->info().first_frame));
+        outputs.push_back(std::make_unique<TrackOutput>(model, info, input, face_folder(output_dir, face.index), own));
         return outputs.back()->sink();
       });
   summary.faces = summary.capture.faces;

@@ -447,7 +447,8 @@ class FrameWriter {
 struct TrackOutput::Impl {
   Impl(const FaceModel& model, const InputInfo& info, const std::string& input, const fs::path& dir,
        const TrackOptions& options)
-      : model(model), info(info), input(input), options(options), writer(model, info, input, dir, options) {
+      // The writer keeps a reference to the options: this copy's, which lives as long.
+      : model(model), info(info), input(input), options(options), writer(model, info, input, dir, this->options) {
     if (options.refine) {
       stage = std::make_unique<RefineStage>(model, options.refine_options, [this](const RefinedFrame& r) {
         if (this->options.on_frame) this->options.on_frame(r.frame);
