@@ -172,6 +172,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       report_all_faces(each.capture);
       for (const TrackSummary& s : each.runs) print_track_files(s, stdout, a->options.livelink);
       std::printf("%s\n", (std::filesystem::path(a->out) / "faces.json").string().c_str());
+      std::printf("%s\n", (std::filesystem::path(a->out) / "faces.png").string().c_str());
       return;
     }
     const TrackSummary s = run_track(model, a->input, a->out, a->options);

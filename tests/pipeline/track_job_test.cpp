@@ -333,6 +333,16 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   ASSERT_EQ(list["faces"].size(), 2u);
   EXPECT_EQ(list["faces"][1]["folder"], "face_1");
   EXPECT_EQ(list["faces"][1]["found_in_frame"], entered);
+  // faces.png shows who is who: each face where it was found.
+  const cv::Mat sheet = cv::imread((out / "faces.png").string());
+  ASSERT_EQ(sheet.cols, 2 * FoundFace::kThumbnailSize);
+  for (int k = 0; k < 2; ++k) {
+    const cv::Mat tile = sheet(cv::Rect(k * FoundFace::kThumbnailSize, 0, FoundFace::kThumbnailSize / 2,
+                                        FoundFace::kThumbnailSize));  // its left half: the right face's is cut off
+    EXPECT_GT(cv::mean(tile)[1], 40.0) << k;
+    const cv::Rect tile_rect(k * FoundFace::kThumbnailSize, 0, FoundFace::kThumbnailSize, FoundFace::kThumbnailSize);
+    EXPECT_EQ(cv::norm(sheet(tile_rect), each.faces[k].thumbnail, cv::NORM_INF), 0.0) << k;  // lossless
+  }
   EXPECT_FALSE(fs::exists(out / "face_2"));
   EXPECT_TRUE(fs::exists(out / "face_notes"));
 

@@ -8,6 +8,8 @@
 #include <mutex>
 #include <optional>
 
+#include <opencv2/imgproc.hpp>
+
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/pipeline/face_capture.hpp"
@@ -59,6 +61,28 @@ struct Slot {
     pending.clear();
   }
 };
+
+// The face of `box` in `image`: a square 1.6 times the box, clipped to the
+// image, scaled to FoundFace::kThumbnailSize (black where the input gave no image).
+cv::Mat face_thumbnail(const cv::Mat& image, const Box& box) {
+  const int size = FoundFace::kThumbnailSize;
+  cv::Mat thumbnail(size, size, CV_8UC3, cv::Scalar::all(0));
+  if (image.empty()) return thumbnail;
+  const float side = 1.6f * std::max(box.width, box.height);
+  const cv::Rect want(cvRound(box.center().x() - side / 2), cvRound(box.center().y() - side / 2), cvRound(side),
+                      cvRound(side));
+  const cv::Rect have = want & cv::Rect(0, 0, image.cols, image.rows);
+  if (have.area() <= 0) return thumbnail;
+  // Where the clipped part lands in the square, at the square's scale.
+  const double scale = double(size) / want.width;
+  const cv::Rect at(cvRound((have.x - want.x) * scale), cvRound((have.y - want.y) * scale),
+                    std::max(1, cvRound(have.width * scale)), std::max(1, cvRound(have.height * scale)));
+  const cv::Rect inside = at & cv::Rect(0, 0, size, size);
+  cv::Mat scaled;
+  cv::resize(image(have), scaled, at.size(), 0, 0, cv::INTER_AREA);
+  scaled(cv::Rect(0, 0, inside.width, inside.height)).copyTo(thumbnail(inside));
+  return thumbnail;
+}
 
 // Merges a search at twice the size into the plain one's faces: its faces
 // that are not already there.
@@ -177,7 +201,8 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
         continue;
       }
       Slot& slot = *slots.emplace_back(std::make_unique<Slot>());
-      slot.face = {int(slots.size()) - 1, d.frame.index, d.frame.time, f.box, shot};
+      slot.face = {
+          int(slots.size()) - 1, d.frame.index, d.frame.time, f.box, shot, face_thumbnail(d.frame.image, f.box)};
       InputInfo info = summary.input;
       info.first_frame = d.frame.index;
       info.first_time = d.frame.time;

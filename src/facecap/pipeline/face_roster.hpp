@@ -14,6 +14,8 @@
 #include <functional>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "facecap/pipeline/capture_session.hpp"
 
 namespace facecap {
@@ -28,8 +30,10 @@ struct FoundFace {
   int index = 0;        // in the order found (left to right among those found together)
   int first_frame = 0;  // the input's frame it was first found in
   double first_time = 0;
-  Box box;       // the detector's box there
-  int shot = 0;  // the input's shot there
+  Box box;            // the detector's box there
+  int shot = 0;       // the input's shot there
+  cv::Mat thumbnail;  // the face there, 1.6 times its box, kThumbnailSize pixels square (BGR)
+  static constexpr int kThumbnailSize = 128;
 };
 
 // Called once per face as it is found: the sink that takes its frames, from

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string_view>
 
@@ -16,6 +18,20 @@ namespace facecap {
 namespace fs = std::filesystem;
 
 fs::path face_folder(const fs::path& output_dir, int k) { return output_dir / ("face_" + std::to_string(k)); }
+
+cv::Mat faces_contact_sheet(const std::vector<FoundFace>& faces) {
+  const int tile = FoundFace::kThumbnailSize, label = 20, columns = std::min<int>(8, std::max<size_t>(1, faces.size()));
+  const int rows = (static_cast<int>(faces.size()) + columns - 1) / columns;
+  cv::Mat sheet(std::max(1, rows) * (tile + label), columns * tile, CV_8UC3, cv::Scalar::all(255));
+  for (size_t k = 0; k < faces.size(); ++k) {
+    const int x = static_cast<int>(k) % columns * tile, y = static_cast<int>(k) / columns * (tile + label);
+    if (!faces[k].thumbnail.empty()) faces[k].thumbnail.copyTo(sheet(cv::Rect(x, y, tile, tile)));
+    const std::string text = "face_" + std::to_string(faces[k].index) + " @" + std::to_string(faces[k].first_frame);
+    cv::putText(sheet, text, cv::Point(x + 4, y + tile + 14), cv::FONT_HERSHEY_SIMPLEX, 0.42, cv::Scalar(0, 0, 0), 1,
+                cv::LINE_AA);
+  }
+  return sheet;
+}
 
 EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& input, const fs::path& output_dir,
                                     const TrackOptions& options, const AllFacesOptions& all) {
@@ -73,6 +89,9 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
                     {"frames", summary.runs.back().capture.frames},
                     {"lost", summary.runs.back().capture.lost}});
   }
+  std::vector<uint8_t> sheet;
+  if (!cv::imencode(".png", faces_contact_sheet(summary.faces), sheet)) throw Error("cannot encode faces.png");
+  write_binary_file(output_dir / "faces.png", sheet.data(), sheet.size());
   write_text_file(output_dir / "faces.json", nlohmann::json{{"input", input},
                                                             {"start_seconds", options.capture.start_seconds},
                                                             {"frames", summary.capture.timings.frames},
