@@ -4,8 +4,10 @@
 
 #include <csignal>
 
+#include "app/command.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/interrupt.hpp"
+#include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "test_support.hpp"
@@ -85,6 +87,57 @@ TEST(CaptureSession, AVideoStoppedByCtrlCThrows) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   EXPECT_THROW(capture_pressing_ctrl_c(*model, video, InputKind::kVideo, 20, [](const CapturedFrame&) {}), Error);
+}
+
+// A pipelined capture (a frame's landmarks found while the frame before is
+// fitted) gives exactly what one frame after the other gives, also where the
+// fits reject the landmarks and the frame tracked meanwhile is taken back: a
+// grey board over the face from frame 35, on for three frames and off for
+// three, on which the landmarks land (and where the face comes back right
+// after a rejection, tracking on from the rejected landmarks would differ).
+TEST(CaptureSession, APipelinedCaptureIsTheSameAsOneFrameAfterTheOther) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  const std::filesystem::path clip = dir.path() / "board.mp4";
+  const test::CommandResult made =
+      test::run_command("ffmpeg -nostdin -hide_banner -loglevel error -y -i " + video.string() +
+                        " -vf "
+                        "\"trim=end_frame=60,drawbox=x=350:y=0:w=600:h=720:color=gray:t=fill:enable='gte(n,35)*lt(mod("
+                        "n\\,6)\\,3)'\" -an -c:v "
+                        "libx264 -preset ultrafast -crf 16 " +
+                        clip.string() + " 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  auto capture = [&](bool pipelined) {
+    auto source = open_input(clip.string());
+    CaptureOptions options;
+    options.quiet = true;
+    options.pipelined = pipelined;
+    std::vector<CapturedFrame> frames;
+    const CaptureSummary s =
+        run_capture(*model, *source, options, [&](const CapturedFrame& f) { frames.push_back(f); });
+    return std::make_pair(frames, s.rejected);
+  };
+  const auto [serial, serial_rejected] = capture(false);
+  const auto [pipelined, pipelined_rejected] = capture(true);
+  // Landmarks on the board, which the fit turned down: each time, the frame
+  // tracked meanwhile was taken back.
+  EXPECT_GT(serial_rejected, 5);
+  EXPECT_EQ(pipelined_rejected, serial_rejected);
+  ASSERT_EQ(serial.size(), 60u);
+  ASSERT_EQ(pipelined.size(), serial.size());
+  for (size_t k = 0; k < serial.size(); ++k) {
+    const CapturedFrame &a = serial[k], &b = pipelined[k];
+    EXPECT_EQ(a.index, b.index);
+    EXPECT_EQ(a.status, b.status) << k;
+    EXPECT_EQ(a.fit.valid, b.fit.valid) << k;
+    EXPECT_EQ(a.fit.pose.rotation, b.fit.pose.rotation) << k;
+    EXPECT_EQ(a.fit.pose.translation, b.fit.pose.translation) << k;
+    EXPECT_EQ(a.fit.expression, b.fit.expression) << k;
+    ASSERT_EQ(a.fit.observed.size(), b.fit.observed.size()) << k;
+    for (size_t p = 0; p < a.fit.observed.size(); ++p) EXPECT_EQ(a.fit.observed[p], b.fit.observed[p]) << k;
+  }
+  EXPECT_EQ(serial[20].status, TrackStatus::kTracked);
 }
 
 // track --all-faces reads a camera once for every face: Ctrl-C ends it, and

@@ -113,6 +113,27 @@ class FaceTracker {
   // Frames since the face was last seen (0 while it is followed).
   int frames_unseen() const { return frames_unseen_; }
 
+  // What the tracker remembers from one frame to the next: restoring it
+  // takes back the frames since (FaceCapture tracks a frame while the fit of
+  // the one before runs, and takes it back where that fit says reset()).
+  struct Memory {
+    std::optional<Landmarks> previous;
+    std::optional<Box> last_seen;
+    int frames_unseen = 0, frames_since_check = 0, failed_searches = 0;
+    Eigen::Vector4f box_relation;
+  };
+  Memory memory() const {
+    return {previous_, last_seen_, frames_unseen_, frames_since_check_, failed_searches_, box_relation_};
+  }
+  void restore(const Memory& m) {
+    previous_ = m.previous;
+    last_seen_ = m.last_seen;
+    frames_unseen_ = m.frames_unseen;
+    frames_since_check_ = m.frames_since_check;
+    failed_searches_ = m.failed_searches;
+    box_relation_ = m.box_relation;
+  }
+
  private:
   std::optional<Box> detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const;
   // The face to take up of those a search found (the follow gate, then the pick).

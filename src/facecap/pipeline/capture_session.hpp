@@ -32,6 +32,9 @@ struct CaptureOptions {
   bool shot_cuts = true;
   ShotCutOptions shot_cut;
   bool quiet = false;  // no progress bar
+  // Find a frame's landmarks while the frame before is fitted, on another
+  // thread (face_capture.hpp); the same result either way.
+  bool pipelined = true;
 };
 
 struct CapturedFrame {
@@ -65,6 +68,7 @@ struct CaptureSummary {
   int frames = 0;
   int lost = 0;
   int redetected = 0;
+  int rejected = 0;  // frames whose landmarks the fit turned down (the tracker then detects afresh)
   int most_faces = 0;       // the most faces the detector found in one frame (--face chooses which is tracked)
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons

@@ -63,24 +63,16 @@ void FaceCapture::end_shot() {
   if (tracker_.initialized()) summary_.shots.push_back({shot_, shot_start_, tracker_.identity()});
 }
 
-const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const FaceTracker::FrameFaces& frame_faces) {
+FaceCapture::FitJob FaceCapture::track(const DecodedFrame& d, const FaceTracker::FrameFaces& frame_faces) {
   const Frame& frame = d.frame;
   StageTimings& t = summary_.timings;
-  if (cut) {
-    end_shot();
-    tracker_.start_shot();
-    face_tracker_.start_shot();  // the last shot's box says nothing of this one
-    ++shot_;
-    shot_start_ = frame.index;
-    ++summary_.cuts;
-  }
   last_ = TrackedFace{};
   if (!d.grey.empty()) last_ = face_tracker_.next(d.grey, frame_faces);
   t.detect_ms += last_.detector_ms;
   t.landmarks_ms += last_.landmarks_ms;
 
-  std::optional<Landmarks> landmarks;
-  if (last_.status != TrackStatus::kLost) landmarks = last_.landmarks;
+  FitJob job{frame.index, frame.time, std::nullopt, {}};
+  if (last_.status != TrackStatus::kLost) job.landmarks = last_.landmarks;
   // A frame the input could not give is kept as a black one of the input's
   // size, so that output videos keep every frame in its place.
   cv::Mat kept;
@@ -89,30 +81,69 @@ const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const Face
                                : frame.image;
   }
   waiting_[frame.index] = {last_.status, last_.faces_seen, kept, frame.error, shot_};
-  IrisSearch iris_search;
-  if (landmarks && options_.gaze) {
+  if (job.landmarks && options_.gaze) {
     // Timed where the tracker calls it (maybe later, after the identity solve).
-    iris_search = [search = facecap::iris_search(d.grey, *landmarks),
-                   &t](const std::array<IrisExpectation, 2>& expected) {
+    job.iris_search = [search = facecap::iris_search(d.grey, *job.landmarks),
+                       &t](const std::array<IrisExpectation, 2>& expected) {
       const auto t0 = std::chrono::steady_clock::now();
       IrisPair irises = search(expected);
       t.iris_ms += ms_since(t0);
       return irises;
     };
   }
-  const std::vector<CoarseFit> fits =
-      timed([&] { return tracker_.push(frame.index, frame.time, landmarks, std::move(iris_search)); });
+  return job;
+}
+
+FaceCapture::FitResult FaceCapture::fit(FitJob job) {
+  FitResult result;
+  result.fits = timed([&] { return tracker_.push(job.index, job.time, job.landmarks, std::move(job.iris_search)); });
   // A fit that rejects the landmarks means the box tracker followed
   // something that is not the face: detect afresh on the next frame.
-  for (const CoarseFit& fit : fits) {
-    if (!fit.valid && fit.index == frame.index) face_tracker_.reset();
+  for (const CoarseFit& fit : result.fits) result.rejected |= !fit.valid && fit.index == job.index;
+  summary_.rejected += result.rejected;
+  return result;
+}
+
+bool FaceCapture::finish_pending_fit() {
+  if (!pending_.valid()) return false;
+  const FitResult result = pending_.get();
+  deliver(result.fits);
+  return result.rejected;
+}
+
+const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const FaceTracker::FrameFaces& frame_faces) {
+  if (cut) {
+    if (finish_pending_fit()) face_tracker_.reset();  // as ever, though start_shot() resets it anyway
+    end_shot();
+    tracker_.start_shot();
+    face_tracker_.start_shot();  // the last shot's box says nothing of this one
+    ++shot_;
+    shot_start_ = d.frame.index;
+    ++summary_.cuts;
   }
-  deliver(fits);
-  ++t.frames;
+  ++summary_.timings.frames;
+  if (!options_.pipelined) {
+    const FitResult result = fit(track(d, frame_faces));
+    if (result.rejected) face_tracker_.reset();
+    deliver(result.fits);
+    return last_;
+  }
+  // This frame's landmarks while the last frame's fit runs; where that fit
+  // rejects its frame, the tracker should have been reset before this one:
+  // this frame is taken back and tracked again from there.
+  const FaceTracker::Memory before = face_tracker_.memory();
+  FitJob job = track(d, frame_faces);
+  if (finish_pending_fit()) {
+    face_tracker_.restore(before);
+    face_tracker_.reset();
+    job = track(d, frame_faces);
+  }
+  pending_ = std::async(std::launch::async, [this, job = std::move(job)]() mutable { return fit(std::move(job)); });
   return last_;
 }
 
 CaptureSummary FaceCapture::finish() {
+  if (finish_pending_fit()) face_tracker_.reset();
   end_shot();
   summary_.timings.fit_ms -= summary_.timings.iris_ms;  // the tracker runs the iris searches
   summary_.identity = summary_.shots.empty() ? tracker_.identity() : summary_.shots.front().identity;

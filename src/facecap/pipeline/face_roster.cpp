@@ -209,6 +209,7 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
       CaptureOptions own = options;
       own.tracker.pick = {FacePick::Rule::kNearest, f.box.center()};
       own.tracker.follow_frames = INT_MAX;  // never another face elsewhere: that one is a capture of its own
+      own.pipelined = false;  // the faces run in parallel with each other instead
       slot.sink = on_new_face(slot.face, info);
       slot.capture = std::make_unique<FaceCapture>(
           model, landmark_detector, own, info, [&slot](const CapturedFrame& f) { slot.pending.push_back(f); }, shot);
