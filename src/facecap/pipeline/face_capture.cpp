@@ -123,6 +123,7 @@ const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const Face
   }
   ++summary_.timings.frames;
   if (!options_.pipelined) {
+    if (finish_pending_fit()) face_tracker_.reset();  // pipelined until this frame
     const FitResult result = fit(track(d, frame_faces));
     if (result.rejected) face_tracker_.reset();
     deliver(result.fits);

@@ -34,6 +34,9 @@ class FaceCapture {
   CaptureSummary finish();
 
   const FaceTracker& face_tracker() const { return face_tracker_; }
+  // Turns the pipelining (CaptureOptions::pipelined) on or off from the next
+  // frame on: track --all-faces pipelines a face while it is the only one.
+  void set_pipelined(bool pipelined) { options_.pipelined = pipelined; }
 
  private:
   struct Waiting {

@@ -153,7 +153,8 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
       return boxes;
     };
     // Each face's landmarks and fit, in parallel (one face's work does not
-    // depend on another's in this frame).
+    // depend on another's in this frame); a face alone is pipelined instead.
+    for (const auto& s : slots) s->capture->set_pipelined(options.pipelined && slots.size() == 1);
     parallel_for(
         int(slots.size()),
         [&](int begin, int end) {
@@ -209,10 +210,10 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
       CaptureOptions own = options;
       own.tracker.pick = {FacePick::Rule::kNearest, f.box.center()};
       own.tracker.follow_frames = INT_MAX;  // never another face elsewhere: that one is a capture of its own
-      own.pipelined = false;  // the faces run in parallel with each other instead
       slot.sink = on_new_face(slot.face, info);
       slot.capture = std::make_unique<FaceCapture>(
           model, landmark_detector, own, info, [&slot](const CapturedFrame& f) { slot.pending.push_back(f); }, shot);
+      slot.capture->set_pipelined(false);  // its first frame is tracked with the others' done
       const TrackedFace& tracked = slot.capture->push(d, false, [&f] { return std::vector<FaceDetection>{f}; });
       if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
       slot.flush();
