@@ -138,6 +138,30 @@ TEST(CaptureSession, APipelinedCaptureIsTheSameAsOneFrameAfterTheOther) {
     for (size_t p = 0; p < a.fit.observed.size(); ++p) EXPECT_EQ(a.fit.observed[p], b.fit.observed[p]) << k;
   }
   EXPECT_EQ(serial[20].status, TrackStatus::kTracked);
+
+  // track --all-faces pipelines a face while it is the only one: the same again.
+  auto capture_all = [&](bool pipelined) {
+    auto source = open_input(clip.string());
+    CaptureOptions options;
+    options.quiet = true;
+    options.pipelined = pipelined;
+    std::vector<CapturedFrame> frames;
+    const AllFacesSummary s = run_capture_all_faces(
+        *model, *source, options, {},
+        [&](const FoundFace&, const InputInfo&) { return [&](const CapturedFrame& f) { frames.push_back(f); }; });
+    EXPECT_EQ(s.faces.size(), 1u);
+    return std::make_pair(frames, s.captures.empty() ? 0 : s.captures[0].rejected);
+  };
+  const auto [all_serial, all_serial_rejected] = capture_all(false);
+  const auto [all_pipelined, all_pipelined_rejected] = capture_all(true);
+  EXPECT_GT(all_serial_rejected, 5);
+  EXPECT_EQ(all_pipelined_rejected, all_serial_rejected);
+  ASSERT_EQ(all_pipelined.size(), all_serial.size());
+  for (size_t k = 0; k < all_serial.size(); ++k) {
+    EXPECT_EQ(all_serial[k].status, all_pipelined[k].status) << k;
+    EXPECT_EQ(all_serial[k].fit.pose.rotation, all_pipelined[k].fit.pose.rotation) << k;
+    EXPECT_EQ(all_serial[k].fit.expression, all_pipelined[k].fit.expression) << k;
+  }
 }
 
 // track --all-faces reads a camera once for every face: Ctrl-C ends it, and
