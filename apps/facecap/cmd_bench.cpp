@@ -29,7 +29,9 @@ nlohmann::json timings_json(const StageTimings& t) {
           {"total_s", t.total_s},
           {"fps", t.fps()},
           {"fps_including_setup", t.total_s > 0 ? t.frames / t.total_s : 0.0},
-          {"note", "decode runs on its own thread, concurrently with detection, landmarks and fit"}};
+          {"note",
+           "decode runs on its own thread, concurrently with detection, landmarks and fit; the fit (and gaze) of a "
+           "frame runs beside the next frame's detection and landmarks"}};
 }
 
 }  // namespace

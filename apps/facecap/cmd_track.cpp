@@ -16,11 +16,12 @@ void report_track(const TrackSummary& s, const std::string& input, bool refine, 
   const StageTimings& t = s.capture.timings;
   const double n = std::max(1, t.frames);
   std::fprintf(stderr,
-               "frames %d, lost %d, redetected %d | per frame: decode %.2f ms (own thread), detect %.2f ms, "
-               "landmarks %.2f ms, fit %.2f ms, gaze %.2f ms | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
+               "frames %d, lost %d (%d turned down by the fit), redetected %d | per frame: decode %.2f ms (own "
+               "thread), detect %.2f ms, landmarks %.2f ms, fit %.2f ms and gaze %.2f ms (beside the next frame's "
+               "detection and landmarks) | identity solve %.0f ms, setup %.0f ms | %.1f fps\n"
                "%s (%.1f px) from %d frame(s); gaze in %d frames\n",
-               s.capture.frames, s.capture.lost, s.capture.redetected, t.decode_ms / n, t.detect_ms / n,
-               t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
+               s.capture.frames, s.capture.lost, s.capture.rejected, s.capture.redetected, t.decode_ms / n,
+               t.detect_ms / n, t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms, t.setup_ms, t.fps(),
                identity_given ? "identity given; focal" : "identity and focal", s.capture.identity.focal,
                s.capture.identity.frames_used, s.gaze_frames);
   if (s.capture.cuts > 0) {
