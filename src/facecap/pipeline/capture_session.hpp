@@ -68,7 +68,7 @@ struct CaptureSummary {
   int frames = 0;
   int lost = 0;
   int redetected = 0;
-  int rejected = 0;  // frames whose landmarks the fit turned down (the tracker then detects afresh)
+  int rejected = 0;         // frames whose landmarks the fit turned down (the tracker then detects afresh)
   int most_faces = 0;       // the most faces the detector found in one frame (--face chooses which is tracked)
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons

@@ -107,13 +107,14 @@ FaceCapture::FitResult FaceCapture::fit(FitJob job) {
 bool FaceCapture::finish_pending_fit() {
   if (!pending_.valid()) return false;
   const FitResult result = pending_.get();
+  if (result.rejected) face_tracker_.reset();
   deliver(result.fits);
   return result.rejected;
 }
 
 const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const FaceTracker::FrameFaces& frame_faces) {
   if (cut) {
-    if (finish_pending_fit()) face_tracker_.reset();  // as ever, though start_shot() resets it anyway
+    finish_pending_fit();
     end_shot();
     tracker_.start_shot();
     face_tracker_.start_shot();  // the last shot's box says nothing of this one
@@ -123,7 +124,7 @@ const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const Face
   }
   ++summary_.timings.frames;
   if (!options_.pipelined) {
-    if (finish_pending_fit()) face_tracker_.reset();  // pipelined until this frame
+    finish_pending_fit();  // pipelined until this frame
     const FitResult result = fit(track(d, frame_faces));
     if (result.rejected) face_tracker_.reset();
     deliver(result.fits);
@@ -135,7 +136,7 @@ const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const Face
   const FaceTracker::Memory before = face_tracker_.memory();
   FitJob job = track(d, frame_faces);
   if (finish_pending_fit()) {
-    face_tracker_.restore(before);
+    face_tracker_.restore(before);  // as it was before this frame, then reset
     face_tracker_.reset();
     job = track(d, frame_faces);
   }
@@ -144,7 +145,7 @@ const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const Face
 }
 
 CaptureSummary FaceCapture::finish() {
-  if (finish_pending_fit()) face_tracker_.reset();
+  finish_pending_fit();
   end_shot();
   summary_.timings.fit_ms -= summary_.timings.iris_ms;  // the tracker runs the iris searches
   summary_.identity = summary_.shots.empty() ? tracker_.identity() : summary_.shots.front().identity;

@@ -59,7 +59,8 @@ class FaceCapture {
   };
   FitJob track(const DecodedFrame& decoded, const FaceTracker::FrameFaces& frame_faces);
   FitResult fit(FitJob job);
-  // Waits for the fit in flight, if any, and delivers it; true where it rejected its frame.
+  // Waits for the fit in flight, if any, and delivers it; where it rejected
+  // its frame, resets the face tracker and returns true.
   bool finish_pending_fit();
   void deliver(const std::vector<CoarseFit>& fits);
   std::vector<CoarseFit> timed(const std::function<std::vector<CoarseFit>()>& call);

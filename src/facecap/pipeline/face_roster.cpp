@@ -160,7 +160,6 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
         [&](int begin, int end) {
           for (int k = begin; k < end; ++k) {
             Slot& slot = *slots[k];
-            if (slot.error) continue;
             const FaceTracker::FrameFaces choices = [&, k]() -> std::vector<FaceDetection> {
               if (cut)
                 return assigned[k] >= 0 ? std::vector<FaceDetection>{frame_faces()[assigned[k]]}
