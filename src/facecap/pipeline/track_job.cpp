@@ -312,9 +312,8 @@ class FrameWriter {
     }
   }
 
-  // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
-  // the iris centres; empty fields and null where no iris was found. An eye
-  // has a direction only where it has an iris.
+  // --livelink: the frame's weights, head angles and each eye's gaze as a
+  // Live Link Face row (io/livelink_csv.hpp).
   void write_livelink(const CapturedFrame& f) {
     if (f.status != TrackStatus::kLost) {
       livelink_weights_ = f.fit.expression;
@@ -328,6 +327,9 @@ class FrameWriter {
     livelink_->stream() << livelink_format_->row(f.time, livelink_weights_, livelink_pose_) << '\n';
   }
 
+  // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
+  // the iris centres; empty fields and null where no iris was found. An eye
+  // has a direction only where it has an iris.
   void write_gaze(const CapturedFrame& f, std::ofstream& o, nlohmann::json& row) {
     const GazeEstimate& g = f.fit.gaze;
     nlohmann::json gaze = nullptr;
@@ -415,7 +417,7 @@ class FrameWriter {
   InputInfo info_;
   std::string input_;
   fs::path dir_;
-  const TrackOptions& options_;
+  const TrackOptions options_;  // a copy: a capture may outlive the options it was given
   StagedText csv_;
   StagedText jsonl_;
   // --livelink: a row per frame; a lost frame holds the last tracked one's
@@ -447,8 +449,7 @@ class FrameWriter {
 struct TrackOutput::Impl {
   Impl(const FaceModel& model, const InputInfo& info, const std::string& input, const fs::path& dir,
        const TrackOptions& options)
-      // The writer keeps a reference to the options: this copy's, which lives as long.
-      : model(model), info(info), input(input), options(options), writer(model, info, input, dir, this->options) {
+      : model(model), info(info), input(input), options(options), writer(model, info, input, dir, options) {
     if (options.refine) {
       stage = std::make_unique<RefineStage>(model, options.refine_options, [this](const RefinedFrame& r) {
         if (this->options.on_frame) this->options.on_frame(r.frame);
