@@ -10,6 +10,15 @@ namespace facecap::cli {
 
 namespace {
 
+// A capture's frames that could not be read, and its refinement's timing.
+void report_unread_and_refined(const TrackSummary& s, const std::string& input, bool refine, const char* indent) {
+  if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty())
+    std::fprintf(stderr, "facecap: %s\n", note.c_str());
+  if (refine)
+    std::fprintf(stderr, "%srefinement: %d frames, %.1f ms per frame on its own thread\n", indent, s.refined_frames,
+                 s.refine_ms / std::max(1, s.refined_frames));
+}
+
 // The closing lines of one capture on stderr: per-stage timings, shots, faces
 // in view, unreadable frames, the refinement.
 void report_track(const TrackSummary& s, const std::string& input, bool refine, bool identity_given) {
@@ -39,17 +48,11 @@ void report_track(const TrackSummary& s, const std::string& input, bool refine, 
                  "right or X,Y)\n",
                  s.capture.most_faces);
   }
-  if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty()) {
-    std::fprintf(stderr, "facecap: %s\n", note.c_str());
-  }
-  if (refine) {
-    std::fprintf(stderr, "refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
-                 s.refine_ms / std::max(1, s.refined_frames));
-  }
+  report_unread_and_refined(s, input, refine, "");
 }
 
 // --all-faces: one line per face, then the shared pass's timings.
-void report_face(const FoundFace& face, const TrackSummary& s, const std::string& input) {
+void report_face(const FoundFace& face, const TrackSummary& s, const std::string& input, bool refine) {
   const StageTimings& t = s.capture.timings;
   const double n = std::max(1, t.frames);
   std::fprintf(stderr,
@@ -58,11 +61,7 @@ void report_face(const FoundFace& face, const TrackSummary& s, const std::string
                face.index, face.first_frame, s.output_dir.string().c_str(), s.capture.frames, s.capture.lost,
                t.detect_ms / n, t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms,
                s.capture.identity.focal);
-  if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty())
-    std::fprintf(stderr, "facecap: %s\n", note.c_str());
-  if (s.refined_frames > 0)
-    std::fprintf(stderr, "  refinement: %d frames, %.1f ms per frame on its own thread\n", s.refined_frames,
-                 s.refine_ms / s.refined_frames);
+  report_unread_and_refined(s, input, refine, "  ");
 }
 
 void report_all_faces(const AllFacesSummary& all) {
@@ -169,7 +168,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     }
     if (a->all_faces) {
       const EachFaceSummary each = run_track_each_face(model, a->input, a->out, a->options, a->all);
-      for (size_t k = 0; k < each.runs.size(); ++k) report_face(each.faces[k], each.runs[k], a->input);
+      for (size_t k = 0; k < each.runs.size(); ++k)
+        report_face(each.faces[k], each.runs[k], a->input, a->options.refine);
       report_all_faces(each.capture);
       for (const TrackSummary& s : each.runs) print_track_files(s, stdout, a->options.livelink);
       std::printf("%s\n", (std::filesystem::path(a->out) / "faces.json").string().c_str());

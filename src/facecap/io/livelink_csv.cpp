@@ -23,10 +23,6 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
   return it == names.end() ? -1 : static_cast<int>(it - names.begin());
 }
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() > suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 const std::vector<std::string>& LiveLinkCsv::arkit_names() {
@@ -91,8 +87,8 @@ LiveLinkCsv::LiveLinkCsv(const std::vector<std::string>& expression_names, doubl
     const std::string name = camel(arkit);
     if (const int k = index_of(expression_names, name); k >= 0) {
       from.push_back(k);
-    } else if (ends_with(name, "Left") || ends_with(name, "Right")) {
-      const bool left = ends_with(name, "Left");
+    } else if (name.ends_with("Left") || name.ends_with("Right")) {
+      const bool left = name.ends_with("Left");
       const std::string base = name.substr(0, name.size() - (left ? 4 : 5));
       if (const int k = index_of(expression_names, base + (left ? "_L" : "_R")); k >= 0) from.push_back(k);
     } else {
