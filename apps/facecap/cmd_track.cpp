@@ -126,21 +126,12 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
-  CLI::Option* all_faces =
-      cmd->add_flag("--all-faces", a->all_faces,
-                    "Track every face the input shows, each into DIR/face_<k> (k in the order found) from the frame "
-                    "it is first found in, with DIR/faces.json listing them; one decoding pass for all (a face "
-                    "entering later is found within --search-every frames)");
+  CLI::Option* all_faces = add_all_faces_options(
+      *cmd, a->all_faces, a->all,
+      "Track every face the input shows, each into DIR/face_<k> (k in the order found) from the frame it is first "
+      "found in, with DIR/faces.json listing them; one decoding pass for all (a face entering later is found within "
+      "--search-every frames)");
   all_faces->excludes(face)->excludes(identity);  // one person's face for every face
-  cmd->add_option("--max-faces", a->all.max_faces, "--all-faces: capture at most this many faces")
-      ->check(CLI::Range(1, 64))
-      ->needs(all_faces)
-      ->capture_default_str();
-  cmd->add_option("--search-every", a->all.search_every,
-                  "--all-faces: search the whole frame for new faces every this many frames")
-      ->check(CLI::Range(1, 1000))
-      ->needs(all_faces)
-      ->capture_default_str();
   CLI::Option* stream =
       cmd->add_flag("--stream", a->stream,
                     "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "

@@ -1,10 +1,24 @@
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 
 namespace facecap::cli {
+
+namespace {
+
+void report_transform(const TransformTimings& t, const std::string& output) {
+  const double n = std::max(1, t.frames);
+  std::fprintf(stderr,
+               "per frame: mapping+smoothing+QP %.2f ms, lighting %.2f ms, re-render+composite %.2f ms\nwrote %s and "
+               "%s.json (synthetic-media marks)\n",
+               t.mapping_ms / n, t.lighting_ms / n, t.render_ms / n, output.c_str(), output.c_str());
+}
+
+}  // namespace
 
 void register_transform(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand("transform",
@@ -14,7 +28,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     std::string input, output, to = "happiness", from = "neutral", method = "cyclegan", schedule, plot, gltf, models;
     double intensity = 1.0;
     int window = 1;
+    bool all_faces = false;
     TransformJobOptions options;
+    AllFacesOptions all;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file, image folder or cam:N")->required();
@@ -30,18 +46,25 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       ->check(CLI::IsMember({"cyclegan", "linear"}))
       ->capture_default_str();
   cmd->add_option("--window", a->window, "Smoothing window half-width k (2k + 1 frames)")->capture_default_str();
-  cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
-  cmd->add_option("--gltf", a->gltf,
-                  "Also write the transformed performance as an animated glTF (.glb, as track --gltf; marked as "
-                  "synthetic, with a sidecar .json). An input that cuts gets one per shot: OUT_shot<N>.glb after "
-                  "the first");
+  CLI::Option* plot =
+      cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
+  CLI::Option* gltf =
+      cmd->add_option("--gltf", a->gltf,
+                      "Also write the transformed performance as an animated glTF (.glb, as track --gltf; marked as "
+                      "synthetic, with a sidecar .json). An input that cuts gets one per shot: OUT_shot<N>.glb after "
+                      "the first");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_identity_option(*cmd, a->options.capture.fit.known_identity);
-  add_face_option(*cmd, a->options.capture.tracker.pick);
+  CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
+  CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
+  CLI::Option* all_faces = add_all_faces_options(
+      *cmd, a->all_faces, a->all,
+      "Transform every face the input shows into the one output, each from the frame it is first found in (a face "
+      "entering later is found within --search-every frames), each with its own identity, lighting and smoothing");
+  all_faces->excludes(face)->excludes(identity)->excludes(plot)->excludes(gltf);  // each is one face's
   cmd->callback([a, &global] {
     const auto to = parse_emotion(a->to), from = parse_emotion(a->from);
     if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
@@ -60,13 +83,23 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     o.description = a->schedule.empty() ? a->from + " to " + a->to : "schedule " + a->schedule;
     o.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
+    if (a->all_faces) {
+      const AllFacesTransformSummary s = run_transform_all_faces(model, a->input, a->output, o, a->all);
+      for (size_t k = 0; k < s.frames.size(); ++k) {
+        const int transformed = int(
+            std::count_if(s.frames[k].begin(), s.frames[k].end(), [](const TransformedFrame& f) { return f.valid; }));
+        std::fprintf(stderr, "face %zu (from frame %d): frames %zu, transformed %d, lost %d\n", k,
+                     s.capture.faces[k].first_frame, s.frames[k].size(), transformed, s.capture.captures[k].lost);
+      }
+      report_transform(s.timings, a->output);
+      if (s.capture.uncaptured_faces > 0)
+        std::fprintf(stderr, "facecap: up to %d more face(s) at once were left as they are (--max-faces %d)\n",
+                     s.capture.uncaptured_faces, int(s.frames.size()));
+      return;
+    }
     const TransformSummary s = run_transform(model, a->input, a->output, o);
-    const double n = std::max(1, s.timings.frames);
-    std::fprintf(stderr,
-                 "frames %d, lost %d | per frame: mapping+smoothing+QP %.2f ms, lighting %.2f ms, re-render+composite "
-                 "%.2f ms\nwrote %s and %s.json (synthetic-media marks)\n",
-                 s.capture.frames, s.capture.lost, s.timings.mapping_ms / n, s.timings.lighting_ms / n,
-                 s.timings.render_ms / n, a->output.c_str(), a->output.c_str());
+    std::fprintf(stderr, "frames %d, lost %d\n", s.capture.frames, s.capture.lost);
+    report_transform(s.timings, a->output);
     if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
     for (const std::filesystem::path& file : s.animation_files)

@@ -14,7 +14,8 @@
 
 namespace facecap {
 struct FacePick;
-}
+struct AllFacesOptions;
+}  // namespace facecap
 
 namespace facecap::cli {
 
@@ -42,6 +43,9 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
 // (swap's --source-face).
 CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name = "--face",
                              const std::string& help = "");
+// --all-faces (help: what it does for this command), with --max-faces and
+// --search-every (AllFacesOptions), which need it. Returns the flag.
+CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptions& all, const std::string& help);
 // --identity FILE: hold the identity of an earlier capture's identity.json
 // (CoarseFitOptions::known_identity), read when the option is parsed.
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);

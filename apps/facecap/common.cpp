@@ -8,6 +8,7 @@
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_tracker.hpp"
 #include "facecap/model/model_cache.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 
 namespace facecap::cli {
@@ -65,6 +66,20 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
           return std::string(e.what());  // CLI11 puts the option's name before it
         }
       });
+}
+
+CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptions& all, const std::string& help) {
+  CLI::Option* flag = cmd.add_flag("--all-faces", all_faces, help);
+  cmd.add_option("--max-faces", all.max_faces, "--all-faces: capture at most this many faces")
+      ->check(CLI::Range(1, 64))
+      ->needs(flag)
+      ->capture_default_str();
+  cmd.add_option("--search-every", all.search_every,
+                 "--all-faces: search the whole frame for new faces every this many frames")
+      ->check(CLI::Range(1, 1000))
+      ->needs(flag)
+      ->capture_default_str();
+  return flag;
 }
 
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {

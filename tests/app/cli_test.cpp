@@ -91,7 +91,9 @@ TEST(Cli, BadOptionValuesAreNamed) {
         "--source-face up",
         "track in.mp4 -o x --all-faces --max-faces 0", "track in.mp4 -o x --max-faces 3",
         "track in.mp4 -o x --all-faces --search-every 0", "track in.mp4 -o x --all-faces --face left",
-        "track in.mp4 -o x --all-faces --stream", "bench track in.mp4 --all-faces --refine"})
+        "track in.mp4 -o x --all-faces --stream", "bench track in.mp4 --all-faces --refine",
+        "transform in.mp4 -o x.mp4 --all-faces --face left", "transform in.mp4 -o x.mp4 --all-faces --plot p.png",
+        "transform in.mp4 -o x.mp4 --all-faces --gltf x.glb", "transform in.mp4 -o x.mp4 --max-faces 2"})
     EXPECT_EQ(run(args).code, 2) << args;
   const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
   EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help
@@ -556,6 +558,18 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   EXPECT_LT(nose_x(dir.path() / "all" / "face_0"), left.cols);
   EXPECT_GT(nose_x(dir.path() / "all" / "face_1"), left.cols);
   EXPECT_NE(all.out.find("2 face(s) in 1 frames, one decoding pass"), std::string::npos) << all.out;
+  // transform --all-faces: both smile in the one marked image.
+  const fs::path smiles = dir.path() / "smiles.png";
+  const RunResult happy = test::run_command(std::string(FACECAP_BINARY) + " transform " + image.string() + " -o " +
+                                            smiles.string() + " --to happiness --all-faces 2>&1");
+  ASSERT_EQ(happy.code, 0) << happy.out;
+  EXPECT_NE(happy.out.find("face 1 (from frame 0): frames 1, transformed 1, lost 0"), std::string::npos) << happy.out;
+  const cv::Mat changed = cv::imread(smiles.string());
+  ASSERT_EQ(changed.size(), both.size());
+  EXPECT_TRUE(fs::exists(smiles.string() + ".json"));
+  const cv::Rect left_part(0, 0, left.cols, left.rows), right_part(left.cols, 0, right.cols, right.rows);
+  EXPECT_GT(cv::norm(changed(left_part), both(left_part), cv::NORM_INF), 40.0);
+  EXPECT_GT(cv::norm(changed(right_part), both(right_part), cv::NORM_INF), 40.0);
   const RunResult bad = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                           (dir.path() / "bad").string() + " --face middle 2>&1");
   EXPECT_EQ(bad.code, 2) << bad.out;

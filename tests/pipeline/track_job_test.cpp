@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -67,6 +69,17 @@ test::CommandResult compose_clip(const std::vector<fs::path>& inputs, const std:
   for (const fs::path& in : inputs) command += " -r 25 -i " + in.string();
   return test::run_command(command + " -filter_complex \"" + graph +
                            "\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " + out.string() + " 2>&1");
+}
+
+// Two people side by side (1280x360, 56 frames) after 8 black frames (a
+// fade-in): `left` on the left from frame 8, `right` sliding in from the
+// right edge over frames 20-28.
+test::CommandResult two_people_clip(const fs::path& left, const fs::path& right, const fs::path& out) {
+  return compose_clip(
+      {left, right},
+      "[0:v]trim=end_frame=48,scale=640:360,pad=1280:360:0:0,setsar=1[a];[1:v]trim=end_frame=48,scale=480:360,pad=640:"
+      "360:80:0,setsar=1[b];[a][b]overlay=x='640+max(0\\,(20-n)*80)':y=0,tpad=start=8:color=black[v]",
+      out);
 }
 
 }  // namespace
@@ -288,11 +301,7 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
   TempDir dir;
   const fs::path two = dir.path() / "two.mp4";
-  const test::CommandResult made = compose_clip(
-      {left, right},
-      "[0:v]trim=end_frame=48,scale=640:360,pad=1280:360:0:0,setsar=1[a];[1:v]trim=end_frame=48,scale=480:360,pad=640:"
-      "360:80:0,setsar=1[b];[a][b]overlay=x='640+max(0\\,(20-n)*80)':y=0,tpad=start=8:color=black[v]",
-      two);
+  const test::CommandResult made = two_people_clip(left, right, two);
   ASSERT_EQ(made.code, 0) << made.out;
   const fs::path out = dir.path() / "out";
   fs::create_directories(out / "face_2");
@@ -371,6 +380,93 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
   EXPECT_THROW(run_track_each_face(*model, grey.string(), dir.path() / "none", o), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none"));
+}
+
+// transform --all-faces: both people transformed in one output, each as a
+// run of its own transforms them (--start where the face was found, --face
+// there), frame for frame; what no face covers is the input's.
+TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
+  TempDir dir;
+  const fs::path two = dir.path() / "two.mp4";
+  const test::CommandResult made = two_people_clip(left, right, two);
+  ASSERT_EQ(made.code, 0) << made.out;
+  std::vector<cv::Mat> input;
+  {
+    auto source = open_input(two.string());
+    Frame f;
+    while (source->read(f)) input.push_back(f.image.clone());
+  }
+  ASSERT_EQ(input.size(), 56u);
+
+  TransformJobOptions o;
+  o.capture.quiet = true;
+  o.description = "test";
+  std::map<int, cv::Mat> both;
+  o.on_frame = [&](int index, const cv::Mat& image) {
+    EXPECT_TRUE(both.empty() || index == both.rbegin()->first + 1) << index;  // in order, each once
+    both[index] = image.clone();
+  };
+  const fs::path out = dir.path() / "both.mp4";
+  const AllFacesTransformSummary s = run_transform_all_faces(*model, two.string(), out, o);
+  ASSERT_EQ(s.frames.size(), 2u);
+  ASSERT_EQ(both.size(), 56u);
+  EXPECT_EQ(s.timings.frames, 56);
+  EXPECT_EQ(open_input(out.string())->info().frames, 56);
+  std::ifstream sidecar(out.string() + ".json");
+  EXPECT_EQ(nlohmann::json::parse(sidecar)["parameters"]["faces"], "2");
+  const int entered = s.capture.faces[1].first_frame;
+  EXPECT_TRUE(entered == 24 || entered == 32) << entered;
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(int(s.frames[k].size()), 56 - s.capture.faces[k].first_frame) << k;
+    EXPECT_TRUE(std::all_of(s.frames[k].begin(), s.frames[k].end(), [](const TransformedFrame& f) { return f.valid; }))
+        << k;
+  }
+
+  // Each face alone, from where it was found.
+  auto alone = [&](int k) {
+    TransformJobOptions one = o;
+    std::map<int, cv::Mat> frames;
+    one.on_frame = [&](int index, const cv::Mat& image) { frames[index] = image.clone(); };
+    one.capture.start_seconds = s.capture.faces[k].first_time;
+    one.capture.tracker.pick = {FacePick::Rule::kNearest, s.capture.faces[k].box.center()};
+    const TransformSummary r =
+        run_transform(*model, two.string(), dir.path() / ("face" + std::to_string(k) + ".mp4"), one);
+    EXPECT_EQ(r.frames.size(), s.frames[k].size()) << k;
+    return frames;
+  };
+  const cv::Rect left_half(0, 0, 640, 360), right_half(640, 0, 640, 360);
+  const std::map<int, cv::Mat> left_alone = alone(0), right_alone = alone(1);
+  for (int i = 0; i < 56; ++i) {
+    const cv::Mat& b = both.at(i);
+    if (i < 8) {
+      EXPECT_EQ(cv::norm(b, input[i], cv::NORM_INF), 0.0) << i;  // no face: the input's frame
+      continue;
+    }
+    EXPECT_EQ(cv::norm(b(left_half), left_alone.at(i)(left_half), cv::NORM_INF), 0.0) << i;
+    EXPECT_GT(cv::norm(b(left_half), input[i](left_half), cv::NORM_L1), 0.0) << i;  // transformed
+    if (i < entered) {
+      EXPECT_EQ(cv::norm(b(right_half), input[i](right_half), cv::NORM_INF), 0.0) << i;
+    } else {
+      EXPECT_EQ(cv::norm(b(right_half), right_alone.at(i)(right_half), cv::NORM_INF), 0.0) << i;
+      EXPECT_GT(cv::norm(b(right_half), input[i](right_half), cv::NORM_L1), 0.0) << i;
+    }
+  }
+
+  // A glTF or a plot is one face's: asked for with every face, it is an
+  // error before any work.
+  TransformJobOptions with_plot = o;
+  with_plot.plot = dir.path() / "plot.png";
+  EXPECT_THROW(run_transform_all_faces(*model, two.string(), dir.path() / "plot.mp4", with_plot), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "plot.mp4"));
+  // No face anywhere: an error, and nothing is written.
+  const fs::path grey = dir.path() / "grey.png";
+  cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  o.on_frame = nullptr;
+  EXPECT_THROW(run_transform_all_faces(*model, grey.string(), dir.path() / "none.png", o), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "none.png"));
 }
 
 // --all-faces: a face covered for 8 frames comes back into its own folder

@@ -13,6 +13,10 @@ namespace facecap {
 
 namespace fs = std::filesystem;
 
+cv::Mat image_or_black(const Frame& frame, const InputInfo& info) {
+  return frame.image.empty() ? cv::Mat(info.height, info.width, CV_8UC3, cv::Scalar::all(0)) : frame.image;
+}
+
 const char* to_string(InputKind kind) {
   switch (kind) {
     case InputKind::kVideo:

@@ -62,6 +62,10 @@ class FrameSource {
   virtual void seek(double seconds);
 };
 
+// The frame's image, or for a frame the input could not give a black one of
+// the input's size, so that output videos keep every frame in its place.
+cv::Mat image_or_black(const Frame& frame, const InputInfo& info);
+
 // Opens an input, reading from `start_seconds` on (FrameSource::seek).
 std::unique_ptr<FrameSource> open_input(const std::string& spec, double start_seconds = 0);
 

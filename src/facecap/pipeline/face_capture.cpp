@@ -73,13 +73,8 @@ FaceCapture::FitJob FaceCapture::track(const DecodedFrame& d, const FaceTracker:
 
   FitJob job{frame.index, frame.time, std::nullopt, {}};
   if (last_.status != TrackStatus::kLost) job.landmarks = last_.landmarks;
-  // A frame the input could not give is kept as a black one of the input's
-  // size, so that output videos keep every frame in its place.
   cv::Mat kept;
-  if (options_.keep_images) {
-    kept = frame.image.empty() ? cv::Mat(summary_.input.height, summary_.input.width, CV_8UC3, cv::Scalar::all(0))
-                               : frame.image;
-  }
+  if (options_.keep_images) kept = image_or_black(frame, summary_.input);
   waiting_[frame.index] = {last_.status, last_.faces_seen, kept, frame.error, shot_};
   if (job.landmarks && options_.gaze) {
     // Timed where the tracker calls it (maybe later, after the identity solve).

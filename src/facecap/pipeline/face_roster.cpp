@@ -96,7 +96,8 @@ void add_new_faces(std::vector<FaceDetection>& faces, const std::vector<FaceDete
 }  // namespace
 
 AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& source, CaptureOptions options,
-                                      const AllFacesOptions& all, const NewFaceSink& on_new_face) {
+                                      const AllFacesOptions& all, const NewFaceSink& on_new_face,
+                                      const FrameFacesHook& on_frame) {
   const auto start = std::chrono::steady_clock::now();
   AllFacesSummary summary;
   summary.input = source.info();
@@ -114,6 +115,41 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
   t.setup_ms = ms_since(start);
   int searches = 0;
   int shot = 0;
+
+  // Faces no capture follows start their own, left to right.
+  auto start_new_faces = [&](const DecodedFrame& d, std::vector<FaceDetection> fresh) {
+    std::vector<Box> followed;
+    for (const auto& s : slots)
+      if (s->box) followed.push_back(*s->box);
+    std::erase_if(fresh, [&](const FaceDetection& f) { return is_followed(f.box, followed); });
+    std::sort(fresh.begin(), fresh.end(),
+              [](const FaceDetection& a, const FaceDetection& b) { return a.box.center().x() < b.box.center().x(); });
+    int uncaptured = 0;
+    for (const FaceDetection& f : fresh) {
+      if (is_followed(f.box, followed)) continue;  // one started just now has it
+      if (int(slots.size()) >= all.max_faces) {
+        summary.uncaptured_faces = std::max(summary.uncaptured_faces, ++uncaptured);
+        continue;
+      }
+      Slot& slot = *slots.emplace_back(std::make_unique<Slot>());
+      slot.face = {
+          int(slots.size()) - 1, d.frame.index, d.frame.time, f.box, shot, face_thumbnail(d.frame.image, f.box)};
+      InputInfo info = summary.input;
+      info.first_frame = d.frame.index;
+      info.first_time = d.frame.time;
+      CaptureOptions own = options;
+      own.tracker.pick = {FacePick::Rule::kNearest, f.box.center()};
+      own.tracker.follow_frames = INT_MAX;  // never another face elsewhere: that one is a capture of its own
+      slot.sink = on_new_face(slot.face, info);
+      slot.capture = std::make_unique<FaceCapture>(
+          model, landmark_detector, own, info, [&slot](const CapturedFrame& f) { slot.pending.push_back(f); }, shot);
+      slot.capture->set_pipelined(false);  // its first frame is tracked with the others' done
+      const TrackedFace& tracked = slot.capture->push(d, false, [&f] { return std::vector<FaceDetection>{f}; });
+      if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
+      slot.flush();
+      followed.push_back(slot.box.value_or(f.box));
+    }
+  };
 
   const FrameLoopResult loop = run_frame_loop(source, options, [&](const DecodedFrame& d, bool cut) {
     shot += cut;
@@ -184,40 +220,8 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
       if (slot->error) std::rethrow_exception(slot->error);
       slot->flush();
     }
-    if (!search_frame) return;
-    // Faces no capture follows start their own, left to right.
-    std::vector<FaceDetection> fresh = frame_faces();
-    std::vector<Box> followed;
-    for (const auto& s : slots)
-      if (s->box) followed.push_back(*s->box);
-    std::erase_if(fresh, [&](const FaceDetection& f) { return is_followed(f.box, followed); });
-    std::sort(fresh.begin(), fresh.end(),
-              [](const FaceDetection& a, const FaceDetection& b) { return a.box.center().x() < b.box.center().x(); });
-    int uncaptured = 0;
-    for (const FaceDetection& f : fresh) {
-      if (is_followed(f.box, followed)) continue;  // one started just now has it
-      if (int(slots.size()) >= all.max_faces) {
-        summary.uncaptured_faces = std::max(summary.uncaptured_faces, ++uncaptured);
-        continue;
-      }
-      Slot& slot = *slots.emplace_back(std::make_unique<Slot>());
-      slot.face = {
-          int(slots.size()) - 1, d.frame.index, d.frame.time, f.box, shot, face_thumbnail(d.frame.image, f.box)};
-      InputInfo info = summary.input;
-      info.first_frame = d.frame.index;
-      info.first_time = d.frame.time;
-      CaptureOptions own = options;
-      own.tracker.pick = {FacePick::Rule::kNearest, f.box.center()};
-      own.tracker.follow_frames = INT_MAX;  // never another face elsewhere: that one is a capture of its own
-      slot.sink = on_new_face(slot.face, info);
-      slot.capture = std::make_unique<FaceCapture>(
-          model, landmark_detector, own, info, [&slot](const CapturedFrame& f) { slot.pending.push_back(f); }, shot);
-      slot.capture->set_pipelined(false);  // its first frame is tracked with the others' done
-      const TrackedFace& tracked = slot.capture->push(d, false, [&f] { return std::vector<FaceDetection>{f}; });
-      if (tracked.status != TrackStatus::kLost) slot.box = bounding_box(tracked.landmarks);
-      slot.flush();
-      followed.push_back(slot.box.value_or(f.box));
-    }
+    if (search_frame) start_new_faces(d, frame_faces());
+    if (on_frame) on_frame(d, int(slots.size()));
   });
   for (const auto& slot : slots) {
     summary.faces.push_back(slot->face);

@@ -17,6 +17,7 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/frame_loop.hpp"
 
 namespace facecap {
 
@@ -53,8 +54,14 @@ struct AllFacesSummary {
   InputInfo input;
 };
 
+// Called once per frame, in order, after the frame went to its faces'
+// captures (those found in it included): `faces`, the captures there are,
+// each of which delivers this frame to its sink (now or once its fit is final).
+using FrameFacesHook = std::function<void(const DecodedFrame& frame, int faces)>;
+
 AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& source, CaptureOptions options,
-                                      const AllFacesOptions& all, const NewFaceSink& on_new_face);
+                                      const AllFacesOptions& all, const NewFaceSink& on_new_face,
+                                      const FrameFacesHook& on_frame = {});
 
 // Whether the face `detection` is one of `followed` (a face's landmark box):
 // its centre within half that face's size of the followed face's centre.

@@ -7,8 +7,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_layer.hpp"
-#include "facecap/compose/face_reshading.hpp"
-#include "facecap/compose/mouth_warp.hpp"
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
@@ -17,8 +15,9 @@
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/pipeline/face_animation.hpp"
+#include "facecap/pipeline/face_transform_stream.hpp"
+#include "facecap/pipeline/layered_frames.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
-#include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
 
 namespace facecap {
@@ -27,36 +26,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A tracked frame waiting for its transformed weights (k frames of delay).
-struct Pending {
-  CapturedFrame frame;
-  Positions coarse;  // camera-space face region, source expression
-  ShCoeffs lighting;
-};
-
-}  // namespace
-
-TransformSummary run_transform(const FaceModel& model, const std::string& input, const fs::path& output,
-                               const TransformJobOptions& options) {
-  auto source = open_input(input, options.capture.start_seconds);
-  const InputInfo info = source->info();
-  ensure_writable_file(fs::absolute(output));  // a folder, say, is named as such
-  check_edit_output(output, info.kind);        // a video, or an image for a photo
-  const ExpressionMapper mapper(options.models_dir);
+// The checks before any work: a missing expression model, an output that
+// is not writable or would replace the input (a folder, say, is named as
+// such), an unwritable glTF or plot path.
+void check_transform_job(const std::string& input, const InputInfo& info, const fs::path& output,
+                         const TransformJobOptions& options, const ExpressionMapper& mapper) {
+  ensure_writable_file(fs::absolute(output));
+  check_edit_output(output, info.kind);  // a video, or an image for a photo
   for (const ScheduleKey& k : options.transform.schedule.keys()) {
-    if (k.target != Emotion::kNeutral) mapper.pair(k.target);  // fail before any work on a missing model
+    if (k.target != Emotion::kNeutral) mapper.pair(k.target);
   }
   if (options.transform.from != Emotion::kNeutral) mapper.pair(options.transform.from);
-
-  // An output that would replace the input, or an unwritable glTF path,
-  // fails before the work, as an unwritable video path does.
   ensure_not_an_input(output, {input});
   if (!options.gltf.empty()) {
     ensure_writable_file(fs::absolute(options.gltf));
     ensure_not_an_input(options.gltf, {input});
   }
   if (!options.plot.empty()) ensure_not_an_input(options.plot, {input});
+}
 
+SyntheticMark transform_mark(const std::string& input, const InputInfo& info, const TransformJobOptions& options) {
   SyntheticMark mark;
   mark.kind = "expression-transform";
   mark.description = "The facial expression was changed by facecap (" + options.description +
@@ -65,70 +54,46 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   mark.parameters = {{"description", options.description},
                      {"method", options.transform.method == MappingMethod::kLinear ? "linear" : "cyclegan"},
                      {"start_seconds", std::to_string(start_time(info))}};
+  return mark;
+}
+
+VideoWriterOptions marked_output(const InputInfo& info, const TransformJobOptions& options, const SyntheticMark& mark) {
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
-  EditOutput writer(output, info.kind, vo);
+  return vo;
+}
 
-  ExpressionTransformer transformer(mapper, lip_basis(model), options.transform);
-  const TriangleMesh face = model.region_mesh(regions::kFace);
-  const std::vector<Triangle> skin = masked_triangles(face.triangles, face_skin_mask());
-  std::vector<int> inner_lips;
-  for (int i = 60; i < 68; ++i) inner_lips.push_back(model.landmarks.vertices[i]);
+}  // namespace
+
+TransformSummary run_transform(const FaceModel& model, const std::string& input, const fs::path& output,
+                               const TransformJobOptions& options) {
+  auto source = open_input(input, options.capture.start_seconds);
+  const InputInfo info = source->info();
+  const ExpressionMapper mapper(options.models_dir);
+  check_transform_job(input, info, output, options, mapper);
+  const SyntheticMark mark = transform_mark(input, info, options);
+  EditOutput writer(output, info.kind, marked_output(info, options, mark));
 
   TransformSummary summary;
-  std::map<int, Pending> pending;
   std::optional<ShotAnimations> animations;  // --gltf, one file per shot
-  auto emit = [&](const std::vector<TransformedFrame>& done) {
-    for (const TransformedFrame& t : done) {
-      auto it = pending.find(t.index);
-      if (it == pending.end()) continue;
-      const Pending& p = it->second;
-      cv::Mat out = p.frame.image;
-      if (t.valid) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const PinholeCamera cam = PinholeCamera::centered(p.frame.fit.focal, info.width, info.height);
-        const Positions changed = to_camera(
-            model.evaluate(p.frame.identity.identity.cast<float>(), t.weights, regions::kFace), p.frame.fit.pose);
-        FaceLayer layer = reshade_face(p.frame.image, p.coarse, changed, skin, p.lighting, cam);
-        warp_mouth(p.frame.image, project_vertices(p.coarse, inner_lips, cam),
-                   project_vertices(changed, inner_lips, cam), layer);
-        out = p.frame.image.clone();
-        composite_layer(out, layer);
-        summary.timings.render_ms += ms_since(t0);
-      }
-      writer.write(out, output_time(info, p.frame.index, p.frame.time));
-      if (t.valid && animations)
-        append_animation_key(animations->keys(p.frame.shot, p.frame.identity), has_timeline(info), t.index, t.time,
-                             p.frame.fit.pose, t.weights, key_gaze(p.frame.fit.gaze));
-      summary.frames.push_back(t);
-      pending.erase(it);
-    }
-  };
-
-  // The lighting (only: the source frame carries the fine detail), the
-  // mapping and the re-render run on the refinement stage's thread,
-  // concurrently with the next frames' capture (§4.4.1's pipelining); frames
-  // reach it and leave it in order, so the results are those of one thread.
-  RefineStage stage(model, lighting_only_refinement(), [&](const RefinedFrame& r) {
-    const CapturedFrame& f = r.frame;
-    Pending p;
-    p.frame = f;
-    std::optional<Eigen::VectorXf> weights;
-    if (r.refinement) {
-      p.coarse = r.coarse;
-      p.lighting = r.refinement->lighting;
-      weights = f.fit.expression;
-    }
-    pending.emplace(f.index, std::move(p));
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto done = transformer.push(f.index, f.time, weights);
-    summary.timings.mapping_ms += ms_since(t0);
-    emit(done);
-  });
-  // At a cut the smoothing window stops (it does not reach across), and the
-  // shot's glTF is written while the refiner still holds its albedo.
-  stage.on_shot_end([&] {
-    emit(transformer.finish());
+  FaceTransformStream stream(
+      model, mapper, options.transform, info.width, info.height, [&](const TransformedFaceFrame& t) {
+        cv::Mat out = t.frame.image;
+        if (t.layer) {
+          const auto t0 = std::chrono::steady_clock::now();
+          out = t.frame.image.clone();
+          composite_layer(out, *t.layer);
+          summary.timings.render_ms += ms_since(t0);
+        }
+        writer.write(out, output_time(info, t.frame.index, t.frame.time));
+        if (options.on_frame) options.on_frame(t.frame.index, out);
+        if (t.weights.valid && animations)
+          append_animation_key(animations->keys(t.frame.shot, t.frame.identity), has_timeline(info), t.weights.index,
+                               t.weights.time, t.frame.fit.pose, t.weights.weights, key_gaze(t.frame.fit.gaze));
+        summary.frames.push_back(t.weights);
+      });
+  // At a cut the shot's glTF is written while the refiner still holds its albedo.
+  stream.on_shot_end([&] {
     if (animations) animations->end_shot();
   });
   if (!options.gltf.empty()) {
@@ -137,7 +102,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
         [&](const ShotOutput& out, const ShotKeys& shot) {
           const IdentityEstimate& id = shot.identity;
           GltfAnimatedMesh glb = face_animation(model, id.identity, shot.keys, {id.focal, info.width, info.height});
-          glb.primitives.front().base_colour_png = face_albedo_png(model, stage.refiner());  // the face part
+          glb.primitives.front().base_colour_png = face_albedo_png(model, stream.refiner());  // the face part
           glb.animation_name =
               shot_animation_name(fs::path(input).stem().string() + " (" + options.description + ")", shot.shot);
           glb.asset_extras.merge(synthetic_metadata(mark));
@@ -148,19 +113,86 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   }
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
-  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stage.push(f); });
-  stage.finish();
-  summary.timings.lighting_ms = stage.refine_ms();
-  emit(transformer.finish());
+  summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stream.push(f); });
+  stream.finish();
+  const TransformTimings t = stream.timings();
+  summary.timings.mapping_ms = t.mapping_ms;
+  summary.timings.lighting_ms = t.lighting_ms;
+  summary.timings.render_ms += t.render_ms;
   summary.timings.frames = static_cast<int>(summary.frames.size());
   if (summary.frames.empty()) throw Error("no frames could be read from " + input);
   // A copy of the input marked as transformed would be neither: nothing is written.
-  if (std::none_of(summary.frames.begin(), summary.frames.end(), [](const TransformedFrame& t) { return t.valid; }))
+  if (std::none_of(summary.frames.begin(), summary.frames.end(), [](const TransformedFrame& f) { return f.valid; }))
     throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
   write_synthetic_sidecar(output, mark);
   if (animations) summary.animation_files = animations->finish();
   if (!options.plot.empty()) write_weight_plot(options.plot, summary.frames, model.expression_names);
+  return summary;
+}
+
+AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const std::string& input,
+                                                 const fs::path& output, const TransformJobOptions& options,
+                                                 const AllFacesOptions& all) {
+  if (!options.gltf.empty() || !options.plot.empty())
+    throw Error("--gltf and --plot are for one face: they cannot be used with --all-faces");
+  auto source = open_input(input, options.capture.start_seconds);
+  const InputInfo info = source->info();
+  const ExpressionMapper mapper(options.models_dir);
+  check_transform_job(input, info, output, options, mapper);
+  SyntheticMark mark = transform_mark(input, info, options);
+  mark.parameters["faces"] = "all";
+  EditOutput writer(output, info.kind, marked_output(info, options, mark));
+
+  AllFacesTransformSummary summary;
+  LayeredFrames frames([&](const cv::Mat& image, int index, double time) {
+    writer.write(image, output_time(info, index, time));
+    if (options.on_frame) options.on_frame(index, image);
+  });
+  // One stream per face, each on its thread; the frames go to the output
+  // once every face in them is re-rendered. Declared after `frames`, so that
+  // their threads end before it goes.
+  struct Face {
+    std::unique_ptr<FaceTransformStream> stream;
+    std::vector<TransformedFrame> frames;
+  };
+  std::vector<std::unique_ptr<Face>> faces;
+  CaptureOptions capture = options.capture;
+  capture.keep_images = true;
+  summary.capture = run_capture_all_faces(
+      model, *source, capture, all,
+      [&](const FoundFace& found, const InputInfo&) -> FrameSink {
+        Face& face = *faces.emplace_back(std::make_unique<Face>());
+        face.stream =
+            std::make_unique<FaceTransformStream>(model, mapper, options.transform, info.width, info.height,
+                                                  [&frames, &face, k = found.index](const TransformedFaceFrame& t) {
+                                                    face.frames.push_back(t.weights);
+                                                    frames.add_layer(t.frame.index, k, t.layer);
+                                                  });
+        return [&face](const CapturedFrame& f) { face.stream->push(f); };
+      },
+      [&](const DecodedFrame& d, int faces_in_frame) {
+        frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces_in_frame);
+      });
+  for (const auto& face : faces) {
+    face->stream->finish();
+    const TransformTimings t = face->stream->timings();
+    summary.timings.mapping_ms += t.mapping_ms;
+    summary.timings.lighting_ms += t.lighting_ms;
+    summary.timings.render_ms += t.render_ms;
+    summary.frames.push_back(std::move(face->frames));
+  }
+  frames.finish();
+  summary.timings.render_ms += frames.composite_ms();
+  summary.timings.frames = frames.written();
+  if (frames.written() == 0) throw Error("no frames could be read from " + input);
+  const bool any = std::any_of(summary.frames.begin(), summary.frames.end(), [](const auto& face) {
+    return std::any_of(face.begin(), face.end(), [](const TransformedFrame& f) { return f.valid; });
+  });
+  if (!any) throw Error("no face found in any frame of " + input + ": nothing to transform");
+  writer.finish();
+  mark.parameters["faces"] = std::to_string(summary.frames.size());
+  write_synthetic_sidecar(output, mark);
   return summary;
 }
 

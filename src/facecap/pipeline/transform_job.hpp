@@ -7,11 +7,14 @@
 // with a Laplacian pyramid (compose/). The output carries the input's audio
 // and the synthetic-media marks.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "facecap/expr/expression_transform.hpp"
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/face_roster.hpp"
+#include "facecap/pipeline/face_transform_stream.hpp"
 #include "facecap/refine/refiner.hpp"
 
 namespace facecap {
@@ -26,13 +29,8 @@ struct TransformJobOptions {
   // the input cuts (shot_animations.hpp).
   std::filesystem::path gltf;
   std::string description;  // for the synthetic mark, e.g. "neutral to happiness"
-};
-
-struct TransformTimings {
-  double mapping_ms = 0;  // mapping, smoothing and lip QP
-  double lighting_ms = 0;
-  double render_ms = 0;  // re-shading, mouth warp and blending
-  int frames = 0;
+  // Each output frame as it is written (before encoding), in order: for evals and tests.
+  std::function<void(int index, const cv::Mat& image)> on_frame;
 };
 
 struct TransformSummary {
@@ -44,6 +42,20 @@ struct TransformSummary {
 
 TransformSummary run_transform(const FaceModel& model, const std::string& input, const std::filesystem::path& output,
                                const TransformJobOptions& options);
+
+struct AllFacesTransformSummary {
+  AllFacesSummary capture;                            // the faces, each one's capture, the shared pass
+  std::vector<std::vector<TransformedFrame>> frames;  // per face, from the frame it was found in
+  TransformTimings timings;                           // summed over the faces; frames: the output's
+};
+
+// `transform --all-faces`: every face the input shows (face_roster.hpp), each
+// transformed as run_transform transforms one, their layers composited over
+// the same frames into one output. TransformJobOptions::gltf and plot are for
+// one face (an error here); capture.tracker.pick is not used.
+AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const std::string& input,
+                                                 const std::filesystem::path& output,
+                                                 const TransformJobOptions& options, const AllFacesOptions& all = {});
 
 // The PNG of the paper's Fig. 5.8: tracked, mapped, lip-corrected and
 // smoothed curves of the weights the transformation changed most.

@@ -1,0 +1,83 @@
+#pragma once
+// One face's expression transformation through an input, frame by frame
+// (chapter 5): the frame's lighting on a refinement stage of its own (only
+// the lighting: the source frame carries the fine detail), the weights
+// mapped, smoothed and lip-corrected (ExpressionTransformer, k frames of
+// delay), and the face re-rendered with them as a layer over the frame: the
+// skin re-shaded under the frame's lighting, the source mouth interior warped
+// to the new lips. run_transform drives one stream; transform --all-faces
+// one per face, their layers composited over the same frames.
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "facecap/compose/face_layer.hpp"
+#include "facecap/expr/expression_transform.hpp"
+#include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/refine_stage.hpp"
+
+namespace facecap {
+
+struct TransformedFaceFrame {
+  const CapturedFrame& frame;        // the source frame, with its image
+  const TransformedFrame& weights;   // valid where the face was transformed
+  const FaceLayer* layer = nullptr;  // the re-rendered face, to composite over the frame (null where not valid)
+};
+
+struct TransformTimings {
+  double mapping_ms = 0;  // mapping, smoothing and lip QP
+  double lighting_ms = 0;
+  double render_ms = 0;  // re-shading, mouth warp and blending
+  int frames = 0;
+};
+
+class FaceTransformStream {
+ public:
+  // Called on the stream's own thread, frames in order, each once.
+  using Output = std::function<void(const TransformedFaceFrame&)>;
+  // `width` x `height`: the input's frames. The mapper is shared (it is thread-safe).
+  FaceTransformStream(const FaceModel& model, const ExpressionMapper& mapper, const TransformOptions& options,
+                      int width, int height, Output output);
+  ~FaceTransformStream();
+  FaceTransformStream(const FaceTransformStream&) = delete;
+  FaceTransformStream& operator=(const FaceTransformStream&) = delete;
+
+  // Runs on the stream's thread at a shot cut, after the shot's last frame
+  // left and while the refiner still holds the shot's albedo. Set it before
+  // the first push().
+  void on_shot_end(std::function<void()> hook) { shot_end_ = std::move(hook); }
+
+  // One tracked frame, with its image (CaptureOptions::keep_images); blocks
+  // while the stream's queue is full. Rethrows a failure of the stream.
+  void push(const CapturedFrame& frame);
+  // The frames still waiting leave; rethrows a failure of the stream.
+  void finish();
+
+  const Refiner& refiner() const;
+  // After finish(): the stream's stages, summed (frames: those that left).
+  TransformTimings timings() const;
+
+ private:
+  // A tracked frame waiting for its transformed weights.
+  struct Pending {
+    CapturedFrame frame;
+    Positions coarse;  // camera-space face region, source expression
+    ShCoeffs lighting;
+  };
+  void take(const RefinedFrame& refined);
+  void emit(const std::vector<TransformedFrame>& done);
+
+  const FaceModel& model_;
+  int width_, height_;
+  Output output_;
+  ExpressionTransformer transformer_;
+  std::vector<Triangle> skin_;  // the face region's skin triangles, re-shaded
+  std::vector<int> inner_lips_;
+  std::map<int, Pending> pending_;
+  std::function<void()> shot_end_;
+  TransformTimings timings_;
+  std::unique_ptr<RefineStage> stage_;  // last: its thread ends before what it uses goes
+};
+
+}  // namespace facecap

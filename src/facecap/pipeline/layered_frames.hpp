@@ -1,0 +1,54 @@
+#pragma once
+// An input's frames with several faces' layers composited over them, handed
+// on in frame order once every face the frame waits for has given its layer
+// or said it has none (`transform --all-faces`: each face's stream runs on a
+// thread of its own, with a delay of its own). A face's layer may come before
+// or after its frame.
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/compose/face_layer.hpp"
+
+namespace facecap {
+
+class LayeredFrames {
+ public:
+  // Called in frame order, each frame once, under the object's lock (on
+  // whichever thread completed the frame).
+  using Write = std::function<void(const cv::Mat& image, int index, double time)>;
+  explicit LayeredFrames(Write write) : write_(std::move(write)) {}
+
+  // Frame `index` (frames come in increasing order), waiting for `faces`
+  // faces' word; one waiting for none is handed on at once.
+  void add_frame(int index, double time, const cv::Mat& image, int faces);
+  // Face `face`'s word on frame `index`: its layer, or none (null).
+  void add_layer(int index, int face, const FaceLayer* layer);
+  // Throws facecap::Error where a frame is still waiting (a face that never
+  // gave its word on it).
+  void finish();
+
+  int written() const;
+  double composite_ms() const;  // compositing, summed
+
+ private:
+  struct Entry {
+    std::optional<cv::Mat> image;  // once the frame itself came
+    double time = 0;
+    int faces = 0;                    // the faces it waits for
+    int heard = 0;                    // the faces whose word came
+    std::map<int, FaceLayer> layers;  // by face, composited in that order
+  };
+  void write_ready();  // with mutex_ held
+
+  Write write_;
+  mutable std::mutex mutex_;
+  std::map<int, Entry> entries_;
+  int written_ = 0;
+  double composite_ms_ = 0;
+};
+
+}  // namespace facecap
