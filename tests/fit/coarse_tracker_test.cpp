@@ -100,6 +100,34 @@ TEST(CoarseTracker, ShortInputsAreSolvedAtTheEnd) {
   EXPECT_EQ(tracker.identity().frames_used, 5);
 }
 
+// A face seen in a few frames and then gone holds the frames after it only
+// for init_patience frames: then the identity is solved from what there is
+// and the frames go (a still lost one at once), not at the input's end.
+TEST(CoarseTracker, AFaceSeenBrieflyHoldsLaterFramesOnlySoLong) {
+  FACECAP_REQUIRE_MODEL(model);
+  const SyntheticTake take(*model, 4);
+  CoarseFitOptions o;
+  o.init_patience = 20;
+  CoarseTracker tracker(*model, o, take.options.width, take.options.height);  // wants 30 frames with a face
+  for (const SynthFrame& f : take.perf.frames)
+    EXPECT_TRUE(tracker.push(f.index, f.time, take.renderer.landmarks(f)).empty());
+  for (int i = 4; i < 23; ++i) EXPECT_TRUE(tracker.push(i, i / 30.0, std::nullopt).empty()) << i;
+  const std::vector<CoarseFit> fits = tracker.push(23, 23 / 30.0, std::nullopt);  // the 20th without a face
+  ASSERT_EQ(fits.size(), 24u);
+  for (const CoarseFit& fit : fits) EXPECT_EQ(fit.valid, fit.index < 4) << fit.index;
+  EXPECT_TRUE(tracker.initialized());
+  EXPECT_EQ(tracker.identity().frames_used, 4);
+  const std::vector<CoarseFit> next = tracker.push(24, 24 / 30.0, std::nullopt);
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_FALSE(next[0].valid);
+
+  // With no face at all the frames go as lost, and the solve waits for one.
+  CoarseTracker empty(*model, o, take.options.width, take.options.height);
+  for (int i = 0; i < 19; ++i) EXPECT_TRUE(empty.push(i, i / 30.0, std::nullopt).empty()) << i;
+  EXPECT_EQ(empty.push(19, 19 / 30.0, std::nullopt).size(), 20u);
+  EXPECT_FALSE(empty.initialized());
+}
+
 // A known identity (--identity) is held as given. With the focal length
 // known too, nothing is left to solve over first frames: the first frame
 // gives the first fit. Otherwise the focal length is solved over the first

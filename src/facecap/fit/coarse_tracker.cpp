@@ -35,7 +35,8 @@ std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::op
   // A known identity and focal length need no frames to solve them from.
   const CoarseFitOptions& o = fitter_.options();
   const int needed = o.known_identity && o.focal_known ? 1 : o.init_frames;
-  if (pending_faces_ < needed) return {};
+  const int faceless = int(pending_.size()) - pending_faces_;
+  if (pending_faces_ < needed && faceless < o.init_patience) return {};
   return finish();
 }
 

@@ -55,7 +55,8 @@ class CoarseTracker {
   // Next frame (landmarks, or nullopt when no face was found). With an iris
   // search, the frame's irises are found at its starting pose's depth, their
   // gaze guides the eyeLook weights (face_fitter.hpp: GazeCue), and the fit
-  // reports both.
+  // reports both. Until the identity is solved (init_frames frames with a
+  // face, or init_patience without one) the frames wait and come out together.
   std::vector<CoarseFit> push(int index, double time, const std::optional<Landmarks>& landmarks,
                               IrisSearch iris_search = {});
   // End of input: fits still waiting for the identity solve.

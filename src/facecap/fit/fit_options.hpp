@@ -86,6 +86,11 @@ struct CoarseFitOptions {
   FitWeights weights;
   int identity_modes = 50;           // leading ICT identity modes fitted (DESIGN.md)
   int init_frames = 30;              // frames for the joint identity + focal solve
+  // Frames without a face the solve waits through for its init_frames: past
+  // this many it solves from the faces it has (or, with none, lets the frames
+  // go as lost), so that a face seen briefly does not hold every later frame,
+  // and an edit every later image, until the input ends.
+  int init_patience = 150;
   int bcd_iterations = 2;            // per frame: pose, expression, joint, this many rounds
   int max_solver_iterations = 20;    // Levenberg-Marquardt iterations per block solve
   double focal_guess = 0.0;          // pixels; 0 = 1.0 x the larger image side
