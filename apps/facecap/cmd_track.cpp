@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/io/udp_sender.hpp"
 #include "facecap/pipeline/track_each_face.hpp"
 #include "facecap/pipeline/track_job.hpp"
 
@@ -10,13 +11,20 @@ namespace facecap::cli {
 
 namespace {
 
-// A capture's frames that could not be read, and its refinement's timing.
-void report_unread_and_refined(const TrackSummary& s, const std::string& input, bool refine, const char* indent) {
+// The closing notes of one capture: frames that could not be read, the
+// refinement's timing, the Live Link stream.
+void report_notes(const TrackSummary& s, const std::string& input, bool refine, const char* indent) {
   if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty())
     std::fprintf(stderr, "facecap: %s\n", note.c_str());
   if (refine)
     std::fprintf(stderr, "%srefinement: %d frames, %.1f ms per frame on its own thread\n", indent, s.refined_frames,
                  s.refine_ms / std::max(1, s.refined_frames));
+  if (!s.livelink_address.empty()) {
+    std::fprintf(stderr, "%sLive Link: %d frame(s) sent to %s\n", indent, s.livelink_sent, s.livelink_address.c_str());
+    if (!s.livelink_error.empty())
+      std::fprintf(stderr, "facecap: %d frame(s) could not be sent to %s (%s)\n", s.capture.frames - s.livelink_sent,
+                   s.livelink_address.c_str(), s.livelink_error.c_str());
+  }
 }
 
 // The closing lines of one capture on stderr: per-stage timings, shots, faces
@@ -48,7 +56,7 @@ void report_track(const TrackSummary& s, const std::string& input, bool refine, 
                  "right or X,Y)\n",
                  s.capture.most_faces);
   }
-  report_unread_and_refined(s, input, refine, "");
+  report_notes(s, input, refine, "");
 }
 
 // --all-faces: one line per face, then the shared pass's timings.
@@ -61,7 +69,7 @@ void report_face(const FoundFace& face, const TrackSummary& s, const std::string
                face.index, face.first_frame, s.output_dir.string().c_str(), s.capture.frames, s.capture.lost,
                t.detect_ms / n, t.landmarks_ms / n, t.fit_ms / n, t.iris_ms / n, t.identity_ms,
                s.capture.identity.focal);
-  report_unread_and_refined(s, input, refine, "  ");
+  report_notes(s, input, refine, "  ");
 }
 
 void report_all_faces(const AllFacesSummary& all) {
@@ -92,7 +100,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       "Capture head pose, focal length, identity and 53 expression weights per frame: DIR/frames.csv, "
       "DIR/frames.jsonl, DIR/identity.json, and optionally meshes, an animated glTF and an overlay video");
   struct Args {
-    std::string input, out, mesh_space = "model";
+    std::string input, out, mesh_space = "model", subject = "facecap";
     bool stream = false, all_faces = false;
     TrackOptions options;
     AllFacesOptions all;
@@ -116,6 +124,26 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "
                 "Unreal's Live Link Face importer (MetaHuman) and ARKit rigs in Blender or Maya");
+  cmd->add_option_function<std::string>(
+         "--livelink-udp",
+         [a](const std::string& text) {
+           a->options.livelink_stream.emplace();
+           a->options.livelink_stream->target = parse_network_target(text, 11111, "--livelink-udp");
+         },
+         "Also send each frame's Live Link Face values (as --livelink) to HOST[:PORT] (default port 11111) as the "
+         "iPhone app's UDP stream does, as it is captured: Unreal's Live Link (a MetaHuman) follows a camera live; a "
+         "file's frames go at its own pace. With --all-faces, each face is a subject of its own (NAME_face<k>)")
+      ->check([](const std::string& text) {
+        try {
+          parse_network_target(text, 11111, "");  // CLI11 names the option
+          return std::string();
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+      });
+  cmd->add_option("--livelink-subject", a->subject, "--livelink-udp: the Live Link subject name")
+      ->needs("--livelink-udp")
+      ->capture_default_str();
   cmd->add_flag("--refine", a->options.refine,
                 "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
   add_device_option(*cmd, a->options.refine_options.device);
@@ -144,6 +172,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
     a->options.capture.fit.check();
     a->options.capture.quiet = global.quiet;
+    if (a->options.livelink_stream) {
+      if (a->subject.empty()) throw Error("--livelink-subject must not be empty");
+      a->options.livelink_stream->subject = a->subject;
+    }
     const FaceModel model = load_model(global);
     if (a->stream) {
       // A reader that goes away (`| head`) ends the stream, not the capture.

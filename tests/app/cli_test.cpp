@@ -93,7 +93,9 @@ TEST(Cli, BadOptionValuesAreNamed) {
         "track in.mp4 -o x --all-faces --search-every 0", "track in.mp4 -o x --all-faces --face left",
         "track in.mp4 -o x --all-faces --stream", "bench track in.mp4 --all-faces --refine",
         "transform in.mp4 -o x.mp4 --all-faces --face left", "transform in.mp4 -o x.mp4 --all-faces --plot p.png",
-        "transform in.mp4 -o x.mp4 --all-faces --gltf x.glb", "transform in.mp4 -o x.mp4 --max-faces 2"})
+        "transform in.mp4 -o x.mp4 --all-faces --gltf x.glb", "transform in.mp4 -o x.mp4 --max-faces 2",
+        "track in.mp4 -o x --livelink-udp host:0", "track in.mp4 -o x --livelink-udp :11111",
+        "track in.mp4 -o x --livelink-subject me"})
     EXPECT_EQ(run(args).code, 2) << args;
   const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
   EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help
@@ -145,6 +147,12 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
     EXPECT_EQ(lines(r.out), 1) << r.out;
     EXPECT_NE(r.out.find("cannot start"), std::string::npos) << r.out;
   }
+  // A Live Link host that cannot be found is named, before any work.
+  r = run("track " + video.string() + " -o " + (dir.path() / "out").string() +
+          " --livelink-udp no-such-host.invalid:11111");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("no-such-host.invalid"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frames.csv"));
 }
 

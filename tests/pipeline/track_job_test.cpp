@@ -16,11 +16,13 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/io/livelink_face.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 #include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/track_each_face.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 #include "io/glb_reader.hpp"
+#include "io/livelink_receiver.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -536,8 +538,16 @@ TEST(TrackJob, WritesALiveLinkFaceTakeOfTheCapture) {
   TrackOptions o;
   o.capture.quiet = true;
   o.livelink = true;
+  // --livelink-udp: the same values, live, one datagram a frame.
+  const test::UdpReceiver receiver;
+  o.livelink_stream.emplace();
+  o.livelink_stream->target = {"127.0.0.1", receiver.port()};
+  o.livelink_stream->subject = "actor";
+  o.livelink_stream->paced = false;
   const TrackSummary s = run_track(*model, clip.string(), dir.path(), o);
   ASSERT_EQ(s.capture.frames, 40);
+  EXPECT_EQ(s.livelink_sent, 40);
+  EXPECT_EQ(s.livelink_error, "");
   const auto take = lines(dir.path() / "livelink_face.csv");
   const auto csv = lines(dir.path() / "frames.csv");
   ASSERT_EQ(take.size(), 41u);
@@ -576,7 +586,24 @@ TEST(TrackJob, WritesALiveLinkFaceTakeOfTheCapture) {
         << row;
   }
   EXPECT_EQ(lost, 6);                                 // the black ones
-  EXPECT_EQ(fields(take[11])[0], "00:00:00:10.000");  // frame 10 of a 30 fps clip
+  EXPECT_EQ(fields(take[11])[0], "00:00:00:10.000");  // frame 10 of a 25 fps clip
+
+  // Each datagram holds its frame's row of the take, by name (the stream
+  // orders a few apart from the take).
+  for (size_t row = 1; row < take.size(); ++row) {
+    const auto got = receiver.receive();
+    ASSERT_TRUE(got) << "datagram " << row;
+    const test::LiveLinkDatagram d = test::decode_livelink(*got);
+    EXPECT_EQ(d.version, 6);
+    EXPECT_EQ(d.subject, "actor");
+    EXPECT_EQ(d.rate_numerator, 25);  // the clip's rate
+    ASSERT_EQ(d.values.size(), 61u);
+    const auto t = fields(take[row]);
+    for (size_t k = 2; k < take_header.size(); ++k)
+      EXPECT_NEAR(d.values[LiveLinkFace::index_of(take_header[k])], std::stod(t[k]), 1e-6)
+          << take_header[k] << " row " << row;
+  }
+  EXPECT_FALSE(receiver.receive(100));
 }
 
 // --identity: a take captured with the identity of another take of the same

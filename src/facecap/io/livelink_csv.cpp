@@ -1,31 +1,14 @@
 #include "facecap/io/livelink_csv.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 
+#include "facecap/core/error.hpp"
+
 namespace facecap {
 
-namespace {
-
-constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
-
-// The model's name of an ARKit shape: "EyeBlinkLeft" -> "eyeBlink_L"
-// (sided), "JawLeft" -> "jawLeft" (a shape of its own, tried first).
-std::string camel(std::string name) {
-  name[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[0])));
-  return name;
-}
-
-int index_of(const std::vector<std::string>& names, const std::string& name) {
-  const auto it = std::find(names.begin(), names.end(), name);
-  return it == names.end() ? -1 : static_cast<int>(it - names.begin());
-}
-
-}  // namespace
-
-const std::vector<std::string>& LiveLinkCsv::arkit_names() {
+const std::vector<std::string>& LiveLinkCsv::columns() {
   static const std::vector<std::string> names = {"EyeBlinkLeft",
                                                  "EyeLookDownLeft",
                                                  "EyeLookInLeft",
@@ -77,33 +60,30 @@ const std::vector<std::string>& LiveLinkCsv::arkit_names() {
                                                  "CheekSquintRight",
                                                  "NoseSneerLeft",
                                                  "NoseSneerRight",
-                                                 "TongueOut"};
+                                                 "TongueOut",
+                                                 "HeadYaw",
+                                                 "HeadPitch",
+                                                 "HeadRoll",
+                                                 "LeftEyeYaw",
+                                                 "LeftEyePitch",
+                                                 "LeftEyeRoll",
+                                                 "RightEyeYaw",
+                                                 "RightEyePitch",
+                                                 "RightEyeRoll"};
   return names;
 }
 
-LiveLinkCsv::LiveLinkCsv(const std::vector<std::string>& expression_names, double fps) : fps_(fps > 0 ? fps : 30.0) {
-  for (const std::string& arkit : arkit_names()) {
-    std::vector<int> from;
-    const std::string name = camel(arkit);
-    if (const int k = index_of(expression_names, name); k >= 0) {
-      from.push_back(k);
-    } else if (name.ends_with("Left") || name.ends_with("Right")) {
-      const bool left = name.ends_with("Left");
-      const std::string base = name.substr(0, name.size() - (left ? 4 : 5));
-      if (const int k = index_of(expression_names, base + (left ? "_L" : "_R")); k >= 0) from.push_back(k);
-    } else {
-      // One ARKit shape that the model has in halves.
-      for (const char* side : {"_L", "_R"})
-        if (const int k = index_of(expression_names, name + side); k >= 0) from.push_back(k);
-    }
-    sources_.push_back(std::move(from));
+LiveLinkCsv::LiveLinkCsv(double fps) : fps_(fps > 0 ? fps : 30.0) {
+  for (const std::string& column : columns()) {
+    const int k = LiveLinkFace::index_of(column);
+    if (k < 0) throw Error("internal: Live Link column " + column + " has no value");
+    order_.push_back(k);
   }
 }
 
 std::string LiveLinkCsv::header() const {
   std::string h = "Timecode,BlendShapeCount";
-  for (const std::string& name : arkit_names()) h += "," + name;
-  h += ",HeadYaw,HeadPitch,HeadRoll,LeftEyeYaw,LeftEyePitch,LeftEyeRoll,RightEyeYaw,RightEyePitch,RightEyeRoll";
+  for (const std::string& name : columns()) h += "," + name;
   return h;
 }
 
@@ -119,25 +99,13 @@ std::string LiveLinkCsv::timecode(double seconds, double fps) {
   return buf;
 }
 
-std::string LiveLinkCsv::row(double seconds, const Eigen::VectorXf& weights, const Pose& pose) const {
+std::string LiveLinkCsv::row(double seconds, const LiveLinkFace::Values& values) const {
   std::string r = timecode(seconds, fps_) + ",61";
   char buf[32];
-  auto add = [&](double v) {
-    std::snprintf(buf, sizeof(buf), ",%.7g", std::isfinite(v) ? v : 0.0);
+  for (const int k : order_) {
+    std::snprintf(buf, sizeof(buf), ",%.7g", double(values[k]));
     r += buf;
-  };
-  for (const std::vector<int>& from : sources_) {
-    double sum = 0;
-    for (const int k : from) sum += k < weights.size() ? weights[k] : 0.0f;
-    add(from.empty() ? 0.0 : sum / double(from.size()));
   }
-  for (int k = 0; k < 3; ++k) add(pose.head_yaw_pitch_roll_deg[k] * kRadiansPerDegree);
-  add(pose.left_eye_deg.x() * kRadiansPerDegree);
-  add(pose.left_eye_deg.y() * kRadiansPerDegree);
-  add(0.0);
-  add(pose.right_eye_deg.x() * kRadiansPerDegree);
-  add(pose.right_eye_deg.y() * kRadiansPerDegree);
-  add(0.0);
   return r;
 }
 

@@ -53,6 +53,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
   } made;
   made.add(output_dir);
   ensure_writable_dir(output_dir);
+  if (options.livelink_stream) UdpSender{options.livelink_stream->target};  // an unknown host fails before the work
   std::vector<std::unique_ptr<TrackOutput>> outputs;
   CaptureOptions capture = options.capture;
   capture.keep_images = options.overlay || options.refine;
@@ -66,6 +67,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
         // The face's capture starts where it was found: of --max-frames, it
         // sees what is left (its overlay's sound ends with its last frame).
         TrackOptions own = options;
+        if (own.livelink_stream) own.livelink_stream->subject += "_face" + std::to_string(face.index);
         if (own.capture.max_frames > 0)
           own.capture.max_frames =
               std::max(1, own.capture.max_frames - (face.first_frame - source->info().first_frame));

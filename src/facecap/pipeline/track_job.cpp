@@ -17,6 +17,7 @@
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/pipeline/face_animation.hpp"
+#include "facecap/pipeline/livelink_streamer.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
@@ -97,12 +98,18 @@ class FrameWriter {
          "iris_left_y";
     o << ",shot\n";  // last, so that the columns before keep their places
     if (options.meshes) fs::create_directories(dir / "meshes");
+    if (options.livelink || options.livelink_stream) {
+      livelink_face_.emplace(model.expression_names);
+      livelink_values_ = livelink_face_->values(Eigen::VectorXf::Zero(model.num_expressions()), {});
+    }
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
-      livelink_format_.emplace(model.expression_names, info.fps);
-      livelink_->stream() << livelink_format_->header() << '\n';
-      livelink_weights_ = Eigen::VectorXf::Zero(model.num_expressions());
+      livelink_csv_.emplace(info.fps);
+      livelink_->stream() << livelink_csv_->header() << '\n';
     }
+    if (const auto& stream = options.livelink_stream)
+      livelink_stream_.emplace(stream->target, stream->subject, info.fps,
+                               stream->paced && info.kind != InputKind::kCamera);
     if (options.gltf) {
       animations_.emplace(dir / "animation.glb", [this](const ShotOutput& out, const ShotKeys& shot) {
         const IdentityEstimate& id = shot.identity;
@@ -167,7 +174,7 @@ class FrameWriter {
     }
     write_gaze(f, o, row);
     o << ',' << f.shot << '\n';
-    if (livelink_) write_livelink(f);
+    if (livelink_face_) write_livelink(f);
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
@@ -261,6 +268,7 @@ class FrameWriter {
   int meshes_written() const { return meshes_; }
   const std::vector<fs::path>& animation_files() const { return animation_files_; }
   int gaze_frames() const { return gaze_frames_; }
+  const LiveLinkStreamer* livelink_stream() const { return livelink_stream_ ? &*livelink_stream_ : nullptr; }
   void set_refiner(const Refiner* r) { refiner_ = r; }
 
  private:
@@ -312,19 +320,22 @@ class FrameWriter {
     }
   }
 
-  // --livelink: the frame's weights, head angles and each eye's gaze as a
-  // Live Link Face row (io/livelink_csv.hpp).
+  // --livelink, --livelink-udp: the frame's weights, head angles and each
+  // eye's gaze as Live Link Face values (io/livelink_face.hpp), a row of the
+  // take and a datagram of the stream.
   void write_livelink(const CapturedFrame& f) {
     if (f.status != TrackStatus::kLost) {
-      livelink_weights_ = f.fit.expression;
-      livelink_pose_.head_yaw_pitch_roll_deg = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
+      LiveLinkPose pose;
+      pose.head_yaw_pitch_roll_deg = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
       const GazeEstimate& g = f.fit.gaze;
       // Eye 0 is the subject's right; an eye not seen looks where the other does.
       const Vec2d both = g.valid() ? g.angles_deg() : Vec2d::Zero();
-      livelink_pose_.right_eye_deg = g.eyes[0] ? gaze_angles_deg(g.eyes[0]->direction) : both;
-      livelink_pose_.left_eye_deg = g.eyes[1] ? gaze_angles_deg(g.eyes[1]->direction) : both;
+      pose.right_eye_deg = g.eyes[0] ? gaze_angles_deg(g.eyes[0]->direction) : both;
+      pose.left_eye_deg = g.eyes[1] ? gaze_angles_deg(g.eyes[1]->direction) : both;
+      livelink_values_ = livelink_face_->values(f.fit.expression, pose);
     }
-    livelink_->stream() << livelink_format_->row(f.time, livelink_weights_, livelink_pose_) << '\n';
+    if (livelink_) livelink_->stream() << livelink_csv_->row(f.time, livelink_values_) << '\n';
+    if (livelink_stream_) livelink_stream_->send(f.time, livelink_values_);
   }
 
   // Gaze (gaze.hpp): head-relative angles, the camera-frame direction and
@@ -420,12 +431,14 @@ class FrameWriter {
   const TrackOptions options_;  // a copy: a capture may outlive the options it was given
   StagedText csv_;
   StagedText jsonl_;
-  // --livelink: a row per frame; a lost frame holds the last tracked one's
-  // values (importers read rows as frames), the first ones the rest pose.
+  // --livelink, --livelink-udp: a row and a datagram per frame; a lost frame
+  // holds the last tracked one's values (importers read rows as frames, and
+  // a rig keeps its face), the first ones the rest pose.
+  std::optional<LiveLinkFace> livelink_face_;
+  LiveLinkFace::Values livelink_values_{};
   std::optional<StagedText> livelink_;
-  std::optional<LiveLinkCsv> livelink_format_;
-  Eigen::VectorXf livelink_weights_;
-  LiveLinkCsv::Pose livelink_pose_;
+  std::optional<LiveLinkCsv> livelink_csv_;
+  std::optional<LiveLinkStreamer> livelink_stream_;
   std::unique_ptr<VideoWriter> overlay_, shaded_, heatmap_;
   int gaze_frames_ = 0;
   std::vector<Polygon> face_polygons_;
@@ -514,6 +527,11 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
   summary.animation_files = impl_->writer.animation_files();
   summary.meshes_written = impl_->writer.meshes_written();
   summary.gaze_frames = impl_->writer.gaze_frames();
+  if (const LiveLinkStreamer* stream = impl_->writer.livelink_stream()) {
+    summary.livelink_sent = stream->sent();
+    summary.livelink_address = stream->address();
+    summary.livelink_error = stream->first_error();
+  }
   return summary;
 }
 

@@ -25,9 +25,11 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "facecap/io/udp_sender.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/refine/refiner.hpp"
 
@@ -42,6 +44,16 @@ struct TrackOptions {
   bool overlay = false;
   bool gltf = false;
   bool livelink = false;  // DIR/livelink_face.csv (io/livelink_csv.hpp)
+  // Each frame's Live Link Face values also sent as a datagram as the frame
+  // is written (io/livelink_packet.hpp: Unreal's Live Link, a MetaHuman).
+  struct LiveLinkStream {
+    NetworkTarget target;
+    std::string subject = "facecap";
+    // A file's frames are sent at the file's own pace (the capture waits), so
+    // that a rig plays them as fast as they were filmed; a camera's are live.
+    bool paced = true;
+  };
+  std::optional<LiveLinkStream> livelink_stream;
   bool refine = false;
   RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
@@ -56,6 +68,9 @@ struct TrackSummary {
   int meshes_written = 0;
   std::vector<std::filesystem::path> animation_files;  // --gltf: one per shot with a face (shot_animations.hpp)
   int gaze_frames = 0;                                 // frames with an iris found (gaze.hpp)
+  int livelink_sent = 0;                               // TrackOptions::livelink_stream: datagrams sent
+  std::string livelink_address;                        // ...to this address, as resolved
+  std::string livelink_error;                          // why the first datagram that failed did ("" where none did)
   int refined_frames = 0;
   double refine_ms = 0;  // total, on the refinement thread
 };
