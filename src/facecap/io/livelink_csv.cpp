@@ -3,82 +3,23 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-
-#include "facecap/core/error.hpp"
+#include <utility>
 
 namespace facecap {
 
 const std::vector<std::string>& LiveLinkCsv::columns() {
-  static const std::vector<std::string> names = {"EyeBlinkLeft",
-                                                 "EyeLookDownLeft",
-                                                 "EyeLookInLeft",
-                                                 "EyeLookOutLeft",
-                                                 "EyeLookUpLeft",
-                                                 "EyeSquintLeft",
-                                                 "EyeWideLeft",
-                                                 "EyeBlinkRight",
-                                                 "EyeLookDownRight",
-                                                 "EyeLookInRight",
-                                                 "EyeLookOutRight",
-                                                 "EyeLookUpRight",
-                                                 "EyeSquintRight",
-                                                 "EyeWideRight",
-                                                 "JawForward",
-                                                 "JawRight",
-                                                 "JawLeft",
-                                                 "JawOpen",
-                                                 "MouthClose",
-                                                 "MouthFunnel",
-                                                 "MouthPucker",
-                                                 "MouthRight",
-                                                 "MouthLeft",
-                                                 "MouthSmileLeft",
-                                                 "MouthSmileRight",
-                                                 "MouthFrownLeft",
-                                                 "MouthFrownRight",
-                                                 "MouthDimpleLeft",
-                                                 "MouthDimpleRight",
-                                                 "MouthStretchLeft",
-                                                 "MouthStretchRight",
-                                                 "MouthRollLower",
-                                                 "MouthRollUpper",
-                                                 "MouthShrugLower",
-                                                 "MouthShrugUpper",
-                                                 "MouthPressLeft",
-                                                 "MouthPressRight",
-                                                 "MouthLowerDownLeft",
-                                                 "MouthLowerDownRight",
-                                                 "MouthUpperUpLeft",
-                                                 "MouthUpperUpRight",
-                                                 "BrowDownLeft",
-                                                 "BrowDownRight",
-                                                 "BrowInnerUp",
-                                                 "BrowOuterUpLeft",
-                                                 "BrowOuterUpRight",
-                                                 "CheekPuff",
-                                                 "CheekSquintLeft",
-                                                 "CheekSquintRight",
-                                                 "NoseSneerLeft",
-                                                 "NoseSneerRight",
-                                                 "TongueOut",
-                                                 "HeadYaw",
-                                                 "HeadPitch",
-                                                 "HeadRoll",
-                                                 "LeftEyeYaw",
-                                                 "LeftEyePitch",
-                                                 "LeftEyeRoll",
-                                                 "RightEyeYaw",
-                                                 "RightEyePitch",
-                                                 "RightEyeRoll"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> c(LiveLinkFace::names().begin(), LiveLinkFace::names().end());
+    // The app's takes order two pairs the other way round from its stream.
+    for (const auto& [a, b] : {std::pair{"JawLeft", "JawRight"}, std::pair{"MouthLeft", "MouthRight"}})
+      std::swap(c[LiveLinkFace::index_of(a)], c[LiveLinkFace::index_of(b)]);
+    return c;
+  }();
   return names;
 }
 
 LiveLinkCsv::LiveLinkCsv(double fps) : fps_(fps > 0 ? fps : 30.0) {
-  for (const std::string& column : columns()) {
-    const int k = LiveLinkFace::index_of(column);
-    if (k < 0) throw Error("internal: Live Link column " + column + " has no value");
-    order_.push_back(k);
-  }
+  for (const std::string& column : columns()) order_.push_back(LiveLinkFace::index_of(column));
 }
 
 std::string LiveLinkCsv::header() const {
