@@ -1,10 +1,27 @@
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/swap_job.hpp"
 
 namespace facecap::cli {
+
+namespace {
+
+void report_swap(const SwapJobTimings& timings, const std::string& output) {
+  const double n = std::max(1, timings.swapped);
+  const SwapTimings& t = timings.swap;
+  std::fprintf(stderr,
+               "source %.0f ms | per frame swapped: lighting %.2f, appearance %.2f (first frames only), render %.2f, "
+               "wrinkles %.2f, expression ratio %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json (synthetic-media "
+               "marks)\n",
+               timings.source_ms, timings.lighting_ms / n, t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n,
+               t.ratio_ms / n, t.warp_ms / n, t.blend_ms / n, output.c_str(), output.c_str());
+}
+
+}  // namespace
 
 void register_swap(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand("swap",
@@ -15,6 +32,8 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     SwapJobOptions options;
     bool no_warp = false;
     bool photo_size = false;
+    bool all_faces = false;
+    AllFacesOptions all;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source,
@@ -33,17 +52,24 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                   "Output video (.mp4, .m4v, .mov or .mkv), or for a photo target also an image (.png, .jpg, .jpeg) "
                   "marked as synthetic in its metadata; OUT.json is its synthetic-media sidecar")
       ->required();
-  cmd->add_option("--gltf", a->options.gltf,
-                  "Also write the swapped performance as an animated glTF (.glb, as track --gltf): the source's face "
-                  "at the target's size with its harmonised texture, keyed by the target's pose and expression; "
-                  "marked as synthetic, with a sidecar OUT.glb.json. A target that cuts gets one per shot: "
-                  "OUT_shot<N>.glb after the first");
+  CLI::Option* gltf = cmd->add_option(
+      "--gltf", a->options.gltf,
+      "Also write the swapped performance as an animated glTF (.glb, as track --gltf): the source's face "
+      "at the target's size with its harmonised texture, keyed by the target's pose and expression; "
+      "marked as synthetic, with a sidecar OUT.glb.json. A target that cuts gets one per shot: "
+      "OUT_shot<N>.glb after the first");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_identity_option(*cmd, a->options.capture.fit.known_identity);
-  add_face_option(*cmd, a->options.capture.tracker.pick);
+  CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
+  CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
+  CLI::Option* all_faces = add_all_faces_options(
+      *cmd, a->all_faces, a->all,
+      "Put the source's face on every face the target shows, into the one output, each from the frame it is first "
+      "found in (a face entering later is found within --search-every frames): to replace everyone in a clip, as "
+      "for anonymising bystanders with a consenting person's face");
+  all_faces->excludes(face)->excludes(identity)->excludes(gltf);  // each is one face's
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held (counted once the target's "
                   "albedo, which its lighting is estimated against, is fixed: its first 4 frames with a face)")
@@ -61,17 +87,21 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     a->options.swap.match_target_size = !a->photo_size;
     a->options.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
+    if (a->all_faces) {
+      const AllFacesSwapSummary s = run_swap_all_faces(model, a->source, a->target, a->output, a->options, a->all);
+      for (size_t k = 0; k < s.swapped.size(); ++k)
+        std::fprintf(stderr, "face %zu (from frame %d): frames %d, swapped %d, lost %d\n", k,
+                     s.target.faces[k].first_frame, s.target.captures[k].frames, s.swapped[k],
+                     s.target.captures[k].lost);
+      report_swap(s.timings, a->output);
+      if (s.target.uncaptured_faces > 0)
+        std::fprintf(stderr, "facecap: up to %d more face(s) at once were left as they are (--max-faces %d)\n",
+                     s.target.uncaptured_faces, int(s.swapped.size()));
+      return;
+    }
     const SwapSummary s = run_swap(model, a->source, a->target, a->output, a->options);
-    const double n = std::max(1, s.timings.swapped);
-    const SwapTimings& t = s.timings.swap;
-    std::fprintf(stderr,
-                 "frames %d, swapped %d, lost %d | source %.0f ms | per frame: lighting %.2f, appearance %.2f "
-                 "(first frames only), render %.2f, wrinkles %.2f, expression ratio %.2f, warp %.2f, blend %.2f "
-                 "ms\nwrote %s and %s.json "
-                 "(synthetic-media marks)\n",
-                 s.target.frames, s.timings.swapped, s.target.lost, s.timings.source_ms, s.timings.lighting_ms / n,
-                 t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n, t.ratio_ms / n, t.warp_ms / n, t.blend_ms / n,
-                 a->output.c_str(), a->output.c_str());
+    std::fprintf(stderr, "frames %d, swapped %d, lost %d\n", s.target.frames, s.timings.swapped, s.target.lost);
+    report_swap(s.timings, a->output);
     if (const std::string note = unreadable_frames_note(s.target, a->target); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
     for (const std::filesystem::path& file : s.animation_files)

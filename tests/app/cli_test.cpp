@@ -95,7 +95,9 @@ TEST(Cli, BadOptionValuesAreNamed) {
         "transform in.mp4 -o x.mp4 --all-faces --face left", "transform in.mp4 -o x.mp4 --all-faces --plot p.png",
         "transform in.mp4 -o x.mp4 --all-faces --gltf x.glb", "transform in.mp4 -o x.mp4 --max-faces 2",
         "track in.mp4 -o x --livelink-udp host:0", "track in.mp4 -o x --livelink-udp :11111",
-        "track in.mp4 -o x --livelink-subject me"})
+        "track in.mp4 -o x --livelink-subject me",
+        "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --face left",
+        "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --gltf x.glb"})
     EXPECT_EQ(run(args).code, 2) << args;
   const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
   EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help

@@ -471,6 +471,79 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   EXPECT_FALSE(fs::exists(dir.path() / "none.png"));
 }
 
+// swap --all-faces: the source's face on both people in one output, each as
+// a run of its own puts it there (--start where the face was found, --face
+// there), frame for frame; what no face covers is the input's.
+TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  TempDir dir;
+  const fs::path two = dir.path() / "two.mp4";
+  const test::CommandResult made = two_people_clip(left, right, two);
+  ASSERT_EQ(made.code, 0) << made.out;
+  std::vector<cv::Mat> input;
+  {
+    auto source = open_input(two.string());
+    Frame f;
+    while (source->read(f)) input.push_back(f.image.clone());
+  }
+  SwapJobOptions o;
+  o.capture.quiet = true;
+  o.capture.max_frames = 40;  // the right face from 24 or 32 on
+  std::map<int, cv::Mat> both;
+  o.on_output_frame = [&](int index, const cv::Mat& image) {
+    EXPECT_TRUE(both.empty() || index == both.rbegin()->first + 1) << index;  // in order, each once
+    both[index] = image.clone();
+  };
+  const fs::path out = dir.path() / "both.mp4";
+  const AllFacesSwapSummary s = run_swap_all_faces(*model, photo.string(), two.string(), out, o);
+  ASSERT_EQ(s.swapped.size(), 2u);
+  ASSERT_EQ(both.size(), 40u);
+  EXPECT_EQ(open_input(out.string())->info().frames, 40);
+  std::ifstream sidecar(out.string() + ".json");
+  const nlohmann::json mark = nlohmann::json::parse(sidecar);
+  EXPECT_EQ(mark["parameters"]["faces"], "2");
+  EXPECT_EQ(mark["edit"], "face-swap");
+  const int entered = s.target.faces[1].first_frame;
+  ASSERT_TRUE(entered == 24 || entered == 32) << entered;
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(s.swapped[k], 40 - s.target.faces[k].first_frame) << k;
+
+  auto alone = [&](int k) {
+    SwapJobOptions one = o;
+    std::map<int, cv::Mat> frames;
+    one.on_output_frame = [&](int index, const cv::Mat& image) { frames[index] = image.clone(); };
+    one.capture.start_seconds = s.target.faces[k].first_time;
+    one.capture.max_frames = 40 - s.target.faces[k].first_frame;
+    one.capture.tracker.pick = {FacePick::Rule::kNearest, s.target.faces[k].box.center()};
+    run_swap(*model, photo.string(), two.string(), dir.path() / ("face" + std::to_string(k) + ".mp4"), one);
+    return frames;
+  };
+  const cv::Rect left_half(0, 0, 640, 360), right_half(640, 0, 640, 360);
+  const std::map<int, cv::Mat> left_alone = alone(0), right_alone = alone(1);
+  for (int i = 0; i < 40; ++i) {
+    const cv::Mat& b = both.at(i);
+    if (i < 8) {
+      EXPECT_EQ(cv::norm(b, input[i], cv::NORM_INF), 0.0) << i;  // no face: the input's frame
+      continue;
+    }
+    EXPECT_EQ(cv::norm(b(left_half), left_alone.at(i)(left_half), cv::NORM_INF), 0.0) << i;
+    EXPECT_GT(cv::norm(b(left_half), input[i](left_half), cv::NORM_L1), 0.0) << i;  // swapped
+    if (i < entered) {
+      EXPECT_EQ(cv::norm(b(right_half), input[i](right_half), cv::NORM_INF), 0.0) << i;
+    } else {
+      EXPECT_EQ(cv::norm(b(right_half), right_alone.at(i)(right_half), cv::NORM_INF), 0.0) << i;
+      EXPECT_GT(cv::norm(b(right_half), input[i](right_half), cv::NORM_L1), 0.0) << i;
+    }
+  }
+  // A glTF is one face's: asked for with every face, an error before any work.
+  SwapJobOptions with_gltf = o;
+  with_gltf.gltf = dir.path() / "swap.glb";
+  EXPECT_THROW(run_swap_all_faces(*model, photo.string(), two.string(), dir.path() / "gltf.mp4", with_gltf), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "gltf.mp4"));
+}
+
 // --all-faces: a face covered for 8 frames comes back into its own folder
 // (no third one); after a cut to a shot with one face on the right, that face
 // goes to the capture that began on the right, with an identity of its own.

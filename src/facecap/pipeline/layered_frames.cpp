@@ -36,7 +36,7 @@ void LayeredFrames::write_ready() {
     if (!e.layers.empty()) {
       const auto t0 = std::chrono::steady_clock::now();
       out = e.image->clone();
-      for (const auto& [face, layer] : e.layers) composite_layer(out, layer);
+      for (const auto& [face, layer] : e.layers) composite_(out, layer);
       composite_ms_ += ms_since(t0);
     }
     write_(out, first->first, e.time);

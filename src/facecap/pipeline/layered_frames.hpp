@@ -20,7 +20,10 @@ class LayeredFrames {
   // Called in frame order, each frame once, under the object's lock (on
   // whichever thread completed the frame).
   using Write = std::function<void(const cv::Mat& image, int index, double time)>;
-  explicit LayeredFrames(Write write) : write_(std::move(write)) {}
+  // How a face's layer goes over the frame (the transformation blends its
+  // re-rendered face in; a swap's layer is already blended, and is copied).
+  using Composite = std::function<void(cv::Mat& frame, const FaceLayer& layer)>;
+  LayeredFrames(Write write, Composite composite) : write_(std::move(write)), composite_(std::move(composite)) {}
 
   // Frame `index` (frames come in increasing order), waiting for `faces`
   // faces' word; one waiting for none is handed on at once.
@@ -45,6 +48,7 @@ class LayeredFrames {
   void write_ready();  // with mutex_ held
 
   Write write_;
+  Composite composite_;
   mutable std::mutex mutex_;
   std::map<int, Entry> entries_;
   int written_ = 0;

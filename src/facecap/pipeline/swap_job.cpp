@@ -14,8 +14,9 @@
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
+#include "facecap/pipeline/face_swap_stream.hpp"
+#include "facecap/pipeline/layered_frames.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
-#include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
 
 namespace facecap {
@@ -105,27 +106,38 @@ GltfAnimatedMesh swapped_animation(const FaceModel& model, const FaceSwapper& sw
 
 }  // namespace
 
-SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
-                     const fs::path& output, const SwapJobOptions& options) {
-  // Unwritable outputs fail before the work (the source's fit included).
+namespace {
+
+// What a swap does before the target's frames: unwritable outputs and a bad
+// target fail first (before the source's fit), then the source is
+// reconstructed and the marks made.
+struct SwapSetup {
+  std::unique_ptr<FrameSource> input;
+  InputInfo info;
+  SourceReconstruction source;
+  double source_ms = 0;
+  SyntheticMark mark;
+};
+
+SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
+                       const fs::path& output, const SwapJobOptions& options) {
   ensure_writable_file(fs::absolute(output));
   ensure_not_an_input(output, {source_photo, target});
   if (!options.gltf.empty()) {
     ensure_writable_file(fs::absolute(options.gltf));
     ensure_not_an_input(options.gltf, {source_photo, target});
   }
-  auto input = open_input(target, options.capture.start_seconds);  // a bad target fails before the source's fit
-  check_edit_output(output, input->info().kind);                   // a video, or an image for a photo target
-  SwapSummary summary;
-  auto t0 = std::chrono::steady_clock::now();
-  summary.source =
-      reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames, options.source_face);
-  summary.timings.source_ms = ms_since(t0);
-  const InputInfo info = input->info();
+  SwapSetup s;
+  s.input = open_input(target, options.capture.start_seconds);
+  s.info = s.input->info();
+  check_edit_output(output, s.info.kind);  // a video, or an image for a photo target
+  const auto t0 = std::chrono::steady_clock::now();
+  s.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames, options.source_face);
+  s.source_ms = ms_since(t0);
 
-  SyntheticMark mark;
+  SyntheticMark& mark = s.mark;
   mark.kind = "face-swap";
-  mark.description = std::string("The face in this ") + (info.kind == InputKind::kImage ? "image" : "video") +
+  mark.description = std::string("The face in this ") + (s.info.kind == InputKind::kImage ? "image" : "video") +
                      " was replaced by facecap with the face from " + fs::path(source_photo).filename().string() + ".";
   mark.sources = {source_photo, target};
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
@@ -136,36 +148,65 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                      {"residual_shading_mm", std::to_string(options.swap.residual_shading_mm)},
                      {"expression_ratio", options.swap.expression_ratio ? "true" : "false"},
                      {"photo_detail_gain", std::to_string(options.swap.photo_detail_gain)},
-                     {"source_frames_used", std::to_string(summary.source.frames_used)},
-                     {"target_start_seconds", std::to_string(start_time(info))}};
+                     {"source_frames_used", std::to_string(s.source.frames_used)},
+                     {"target_start_seconds", std::to_string(start_time(s.info))}};
+  return s;
+}
+
+VideoWriterOptions marked_output(const InputInfo& info, const SwapJobOptions& options, const SyntheticMark& mark) {
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
-  EditOutput writer(output, info.kind, vo);
+  return vo;
+}
 
-  FaceSwapper swapper(model, summary.source.photo, summary.source.face, options.swap);
-  // The target's albedo from its first 4 frames in a row (not every 3rd):
-  // the appearance waits for it (TargetFrame::lighting_final), and the
-  // lighting of the frames before it is on another scale. Self-swap
-  // (`eval swap --self`) median / mean on address_720p_a / _b: 4.325 / 6.210,
-  // 6.325 / 9.528 with neither; 4.325 / 6.160, 6.325 / 9.514 waiting for the
-  // albedo of every 3rd frame; 4.325 / 6.100, 6.325 / 9.502 with both.
-  RefineOptions refine = lighting_only_refinement();
-  refine.albedo.interval = 1;
-  // With wrinkles the target is refined as `track --refine` does, on a
-  // two-level hierarchy (the coarse mesh and one 4-8 level, about 4x the
-  // vertices), whose finest level carries the coating transfer.
-  if (options.swap.wrinkles) {
-    refine.displacements = true;
-    refine.hierarchy.levels = 2;
-  }
+// The pixels a swap changed, as a layer over the frame: its window, and
+// there the swapped pixels wherever they differ from the frame's.
+FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped) {
+  FaceLayer layer;
+  layer.box = swapped.window;
+  if (layer.box.area() == 0) return layer;
+  layer.colour = swapped.image(layer.box).clone();
+  cv::Mat difference;
+  cv::absdiff(layer.colour, frame(layer.box), difference);
+  cv::Mat channels[3];
+  cv::split(difference, channels);
+  layer.mask = (channels[0] | channels[1] | channels[2]) > 0;
+  return layer;
+}
+
+}  // namespace
+
+SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
+                     const fs::path& output, const SwapJobOptions& options) {
+  SwapSetup setup = prepare_swap(model, source_photo, target, output, options);
+  SwapSummary summary;
+  summary.source = std::move(setup.source);
+  summary.timings.source_ms = setup.source_ms;
+  const InputInfo& info = setup.info;
+  const SyntheticMark& mark = setup.mark;
+  EditOutput writer(output, info.kind, marked_output(info, options, mark));
+
+  std::optional<ShotAnimations> animations;
+  FaceSwapStream stream(model, summary.source.photo, summary.source.face, options.swap,
+                        [&](const CapturedFrame& f, const SwappedFrame* swapped) {
+                          if (swapped && animations)
+                            append_animation_key(animations->keys(f.shot, f.identity), has_timeline(info), f.index,
+                                                 f.time, f.fit.pose, f.fit.expression, key_gaze(f.fit.gaze));
+                          const cv::Mat& out = swapped ? swapped->image : f.image;
+                          writer.write(out, output_time(info, f.index, f.time));
+                          if (options.on_output_frame) options.on_output_frame(f.index, out);
+                          if (options.on_frame) options.on_frame(f, swapped ? *swapped : SwappedFrame{f.image, {}, {}});
+                        });
   // --gltf: one file per shot, each with the swapper's placement and
   // texture for that shot and the shot's focal length.
-  std::optional<ShotAnimations> animations;
+  stream.on_shot_end([&] {
+    if (animations) animations->end_shot();
+  });
   if (!options.gltf.empty()) {
     animations.emplace(
         options.gltf,
         [&](const ShotOutput& out, const ShotKeys& shot) {
-          GltfAnimatedMesh glb = swapped_animation(model, swapper, summary.source.face, shot.keys,
+          GltfAnimatedMesh glb = swapped_animation(model, stream.swapper(), summary.source.face, shot.keys,
                                                    {shot.identity.focal, info.width, info.height}, mark);
           glb.animation_name = shot_animation_name(
               fs::path(target).stem().string() + " (face from " + fs::path(source_photo).filename().string() + ")",
@@ -175,53 +216,87 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
         },
         std::vector<std::string>{source_photo, target});
   }
-  // The target's lighting, the swap and the output run on the refinement
-  // stage's thread, concurrently with the next frames' capture (§4.4.1's
-  // pipelining); frames reach it and leave it in order, so the results are
-  // those of one thread.
-  RefineStage stage(model, refine, [&](const RefinedFrame& r) {
-    const CapturedFrame& f = r.frame;
-    if (r.starts_shot) {
-      // A shot cut: what the swapper learnt of the target's first frames
-      // (appearance, light colour, expression reference) is of the last shot.
-      if (animations) animations->end_shot();
-      swapper = FaceSwapper(model, summary.source.photo, summary.source.face, options.swap);
-    }
-    SwappedFrame result;
-    if (!r.refinement) {
-      result.image = f.image;
-    } else {
-      TargetFrame t;
-      t.identity = f.identity.identity.cast<float>();
-      t.expression = f.fit.expression;
-      t.pose = f.fit.pose;
-      t.camera = r.camera;
-      t.lighting = r.refinement->lighting;
-      t.lighting_final = stage.refiner().albedo_fixed();
-      if (options.swap.wrinkles) {
-        t.fine = r.refinement->positions;
-        t.hierarchy = &stage.refiner().hierarchy();
-      }
-      result = swapper.swap(f.image, t, &summary.timings.swap);
-      ++summary.timings.swapped;
-      if (animations)
-        append_animation_key(animations->keys(f.shot, f.identity), has_timeline(info), f.index, f.time, t.pose,
-                             t.expression, key_gaze(f.fit.gaze));
-    }
-    writer.write(result.image, output_time(info, f.index, f.time));
-    if (options.on_frame) options.on_frame(f, result);
-  });
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
-  summary.target = run_capture(model, *input, capture, [&](const CapturedFrame& f) { stage.push(f); });
-  stage.finish();
-  summary.timings.lighting_ms = stage.refine_ms();
+  summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) { stream.push(f); });
+  stream.finish();
+  summary.timings.swap = stream.timings();
+  summary.timings.swapped = stream.swapped();
+  summary.timings.lighting_ms = stream.lighting_ms();
   if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
   write_synthetic_sidecar(output, mark);
   if (animations) summary.animation_files = animations->finish();
+  return summary;
+}
+
+AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string& source_photo,
+                                       const std::string& target, const fs::path& output, const SwapJobOptions& options,
+                                       const AllFacesOptions& all) {
+  if (!options.gltf.empty()) throw Error("--gltf is for one face: it cannot be used with --all-faces");
+  SwapSetup setup = prepare_swap(model, source_photo, target, output, options);
+  AllFacesSwapSummary summary;
+  summary.source = std::move(setup.source);
+  summary.timings.source_ms = setup.source_ms;
+  const InputInfo& info = setup.info;
+  SyntheticMark& mark = setup.mark;
+  mark.parameters["faces"] = "all";
+  EditOutput writer(output, info.kind, marked_output(info, options, mark));
+
+  // Each face's changed pixels, laid over the frame as they are: each swap
+  // has blended its face into the frame already.
+  LayeredFrames frames(
+      [&](const cv::Mat& image, int index, double time) {
+        writer.write(image, output_time(info, index, time));
+        if (options.on_output_frame) options.on_output_frame(index, image);
+      },
+      [](cv::Mat& frame, const FaceLayer& layer) { layer.colour.copyTo(frame(layer.box), layer.mask); });
+  // One stream per face, each on its thread. Declared after `frames`, so
+  // that their threads end before it goes.
+  std::vector<std::unique_ptr<FaceSwapStream>> streams;
+  CaptureOptions capture = options.capture;
+  capture.keep_images = true;
+  summary.target = run_capture_all_faces(
+      model, *setup.input, capture, all,
+      [&](const FoundFace& found, const InputInfo&) -> FrameSink {
+        streams.push_back(std::make_unique<FaceSwapStream>(
+            model, summary.source.photo, summary.source.face, options.swap,
+            [&frames, k = found.index](const CapturedFrame& f, const SwappedFrame* swapped) {
+              if (!swapped) {
+                frames.add_layer(f.index, k, nullptr);
+                return;
+              }
+              const FaceLayer layer = changed_pixels(f.image, *swapped);
+              frames.add_layer(f.index, k, layer.box.area() > 0 ? &layer : nullptr);
+            }));
+        return [stream = streams.back().get()](const CapturedFrame& f) { stream->push(f); };
+      },
+      [&](const DecodedFrame& d, int faces_in_frame) {
+        frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces_in_frame);
+      });
+  for (const auto& stream : streams) {
+    stream->finish();
+    const SwapTimings& t = stream->timings();
+    SwapTimings& sum = summary.timings.swap;
+    sum.appearance_ms += t.appearance_ms;
+    sum.render_ms += t.render_ms;
+    sum.warp_ms += t.warp_ms;
+    sum.blend_ms += t.blend_ms;
+    sum.wrinkle_ms += t.wrinkle_ms;
+    sum.ratio_ms += t.ratio_ms;
+    summary.timings.lighting_ms += stream->lighting_ms();
+    summary.timings.swapped += stream->swapped();
+    summary.swapped.push_back(stream->swapped());
+  }
+  frames.finish();
+  if (frames.written() == 0) throw Error("no frames could be read from " + target);
+  // A copy of the input marked as a swap would be neither: nothing is written.
+  if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
+  writer.finish();
+  mark.parameters["faces"] = std::to_string(streams.size());
+  write_synthetic_sidecar(output, mark);
   return summary;
 }
 

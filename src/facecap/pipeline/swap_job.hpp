@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 #include "facecap/swap/face_swapper.hpp"
 
 namespace facecap {
@@ -44,6 +46,9 @@ struct SwapJobOptions {
   std::filesystem::path gltf;
   // Called with each output frame (and the target frame it came from).
   std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
+  // Each output frame as it is written (before encoding), in order, with
+  // --all-faces too: for evals and tests.
+  std::function<void(int index, const cv::Mat& image)> on_output_frame;
 };
 
 struct SwapJobTimings {
@@ -62,5 +67,23 @@ struct SwapSummary {
 
 SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
                      const std::filesystem::path& output, const SwapJobOptions& options);
+
+struct AllFacesSwapSummary {
+  AllFacesSummary target;  // the target's faces, each one's capture, the shared pass
+  SourceReconstruction source;
+  SwapJobTimings timings;    // summed over the faces
+  std::vector<int> swapped;  // per face, the frames swapped
+};
+
+// `swap --all-faces`: the source's face put on every face the target shows
+// (face_roster.hpp: those entering later too), each as run_swap puts it on
+// one, on one pass, into one output: to replace everyone in a clip, as for
+// anonymising bystanders with a consenting person's face. Each face's swap
+// changes only its window of the frame; where two windows overlap, the face
+// found later is laid over. SwapJobOptions::gltf is for one face (an error
+// here); capture.tracker.pick and on_frame are not used.
+AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string& source_photo,
+                                       const std::string& target, const std::filesystem::path& output,
+                                       const SwapJobOptions& options, const AllFacesOptions& all = {});
 
 }  // namespace facecap

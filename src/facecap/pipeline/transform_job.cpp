@@ -145,10 +145,12 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
 
   AllFacesTransformSummary summary;
-  LayeredFrames frames([&](const cv::Mat& image, int index, double time) {
-    writer.write(image, output_time(info, index, time));
-    if (options.on_frame) options.on_frame(index, image);
-  });
+  LayeredFrames frames(
+      [&](const cv::Mat& image, int index, double time) {
+        writer.write(image, output_time(info, index, time));
+        if (options.on_frame) options.on_frame(index, image);
+      },
+      [](cv::Mat& frame, const FaceLayer& layer) { composite_layer(frame, layer); });
   // One stream per face, each on its thread; the frames go to the output
   // once every face in them is re-rendered. Declared after `frames`, so that
   // their threads end before it goes.
