@@ -94,9 +94,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                      s.target.faces[k].first_frame, s.target.captures[k].frames, s.swapped[k],
                      s.target.captures[k].lost);
       report_swap(s.timings, a->output);
-      if (s.target.uncaptured_faces > 0)
-        std::fprintf(stderr, "facecap: up to %d more face(s) at once were left as they are (--max-faces %d)\n",
-                     s.target.uncaptured_faces, int(s.swapped.size()));
+      report_uncaptured_faces(s.target, "left as they are");
       return;
     }
     const SwapSummary s = run_swap(model, a->source, a->target, a->output, a->options);

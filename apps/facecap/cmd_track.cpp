@@ -80,9 +80,7 @@ void report_all_faces(const AllFacesSummary& all) {
                "faces %.2f ms per frame | setup %.0f ms | %.1f fps for all faces\n",
                all.faces.size(), t.frames, t.decode_ms / n, t.detect_ms / n, t.setup_ms, t.fps());
   if (all.cuts > 0) std::fprintf(stderr, "facecap: %d shot cut(s); each face's identity is solved again\n", all.cuts);
-  if (all.uncaptured_faces > 0)
-    std::fprintf(stderr, "facecap: up to %d more face(s) at once were not captured (--max-faces %d)\n",
-                 all.uncaptured_faces, int(all.faces.size()));
+  report_uncaptured_faces(all, "not captured");
 }
 
 // The files a capture wrote, one per line.

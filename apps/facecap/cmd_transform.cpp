@@ -92,9 +92,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                      s.capture.faces[k].first_frame, s.frames[k].size(), transformed, s.capture.captures[k].lost);
       }
       report_transform(s.timings, a->output);
-      if (s.capture.uncaptured_faces > 0)
-        std::fprintf(stderr, "facecap: up to %d more face(s) at once were left as they are (--max-faces %d)\n",
-                     s.capture.uncaptured_faces, int(s.frames.size()));
+      report_uncaptured_faces(s.capture, "left as they are");
       return;
     }
     const TransformSummary s = run_transform(model, a->input, a->output, o);

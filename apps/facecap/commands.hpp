@@ -15,6 +15,7 @@
 namespace facecap {
 struct FacePick;
 struct AllFacesOptions;
+struct AllFacesSummary;
 }  // namespace facecap
 
 namespace facecap::cli {
@@ -46,6 +47,9 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
 // --all-faces (help: what it does for this command), with --max-faces and
 // --search-every (AllFacesOptions), which need it. Returns the flag.
 CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptions& all, const std::string& help);
+// One line on stderr where --all-faces left faces out (--max-faces): "up to
+// N more face(s) at once were <what>".
+void report_uncaptured_faces(const AllFacesSummary& all, const char* what);
 // --identity FILE: hold the identity of an earlier capture's identity.json
 // (CoarseFitOptions::known_identity), read when the option is parsed.
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);

@@ -82,6 +82,12 @@ CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptio
   return flag;
 }
 
+void report_uncaptured_faces(const AllFacesSummary& all, const char* what) {
+  if (all.uncaptured_faces > 0)
+    std::fprintf(stderr, "facecap: up to %d more face(s) at once were %s (--max-faces %d)\n", all.uncaptured_faces,
+                 what, int(all.faces.size()));
+}
+
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {
   return cmd.add_option_function<std::string>(
       "--identity", [&identity](const std::string& path) { identity = read_identity_weights(path); },

@@ -84,6 +84,40 @@ test::CommandResult two_people_clip(const fs::path& left, const fs::path& right,
       out);
 }
 
+// Every frame of `video`, decoded.
+std::vector<cv::Mat> decoded_frames(const fs::path& video) {
+  std::vector<cv::Mat> frames;
+  auto source = open_input(video.string());
+  Frame f;
+  while (source->read(f)) frames.push_back(f.image.clone());
+  return frames;
+}
+
+// An --all-faces edit of two_people_clip (`both`, its frames as written)
+// against each face's own run (`left_alone`, `right_alone`, from where the
+// face was found): the black frames are the input's; then each half is, to
+// the pixel, its face's own run, and changed from the input; the right half
+// is the input's before its face is found (at `entered`).
+void expect_each_half_as_its_own_run(const std::map<int, cv::Mat>& both, const std::map<int, cv::Mat>& left_alone,
+                                     const std::map<int, cv::Mat>& right_alone, const std::vector<cv::Mat>& input,
+                                     int entered) {
+  const cv::Rect left_half(0, 0, 640, 360), right_half(640, 0, 640, 360);
+  for (const auto& [i, b] : both) {
+    if (i < 8) {
+      EXPECT_EQ(cv::norm(b, input[i], cv::NORM_INF), 0.0) << i;  // no face: the input's frame
+      continue;
+    }
+    EXPECT_EQ(cv::norm(b(left_half), left_alone.at(i)(left_half), cv::NORM_INF), 0.0) << i;
+    EXPECT_GT(cv::norm(b(left_half), input[i](left_half), cv::NORM_L1), 0.0) << i;  // edited
+    if (i < entered) {
+      EXPECT_EQ(cv::norm(b(right_half), input[i](right_half), cv::NORM_INF), 0.0) << i;
+    } else {
+      EXPECT_EQ(cv::norm(b(right_half), right_alone.at(i)(right_half), cv::NORM_INF), 0.0) << i;
+      EXPECT_GT(cv::norm(b(right_half), input[i](right_half), cv::NORM_L1), 0.0) << i;
+    }
+  }
+}
+
 }  // namespace
 
 TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
@@ -395,12 +429,7 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   const fs::path two = dir.path() / "two.mp4";
   const test::CommandResult made = two_people_clip(left, right, two);
   ASSERT_EQ(made.code, 0) << made.out;
-  std::vector<cv::Mat> input;
-  {
-    auto source = open_input(two.string());
-    Frame f;
-    while (source->read(f)) input.push_back(f.image.clone());
-  }
+  const std::vector<cv::Mat> input = decoded_frames(two);
   ASSERT_EQ(input.size(), 56u);
 
   TransformJobOptions o;
@@ -439,23 +468,7 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
     EXPECT_EQ(r.frames.size(), s.frames[k].size()) << k;
     return frames;
   };
-  const cv::Rect left_half(0, 0, 640, 360), right_half(640, 0, 640, 360);
-  const std::map<int, cv::Mat> left_alone = alone(0), right_alone = alone(1);
-  for (int i = 0; i < 56; ++i) {
-    const cv::Mat& b = both.at(i);
-    if (i < 8) {
-      EXPECT_EQ(cv::norm(b, input[i], cv::NORM_INF), 0.0) << i;  // no face: the input's frame
-      continue;
-    }
-    EXPECT_EQ(cv::norm(b(left_half), left_alone.at(i)(left_half), cv::NORM_INF), 0.0) << i;
-    EXPECT_GT(cv::norm(b(left_half), input[i](left_half), cv::NORM_L1), 0.0) << i;  // transformed
-    if (i < entered) {
-      EXPECT_EQ(cv::norm(b(right_half), input[i](right_half), cv::NORM_INF), 0.0) << i;
-    } else {
-      EXPECT_EQ(cv::norm(b(right_half), right_alone.at(i)(right_half), cv::NORM_INF), 0.0) << i;
-      EXPECT_GT(cv::norm(b(right_half), input[i](right_half), cv::NORM_L1), 0.0) << i;
-    }
-  }
+  expect_each_half_as_its_own_run(both, alone(0), alone(1), input, entered);
 
   // A glTF or a plot is one face's: asked for with every face, it is an
   // error before any work.
@@ -483,12 +496,7 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
   const fs::path two = dir.path() / "two.mp4";
   const test::CommandResult made = two_people_clip(left, right, two);
   ASSERT_EQ(made.code, 0) << made.out;
-  std::vector<cv::Mat> input;
-  {
-    auto source = open_input(two.string());
-    Frame f;
-    while (source->read(f)) input.push_back(f.image.clone());
-  }
+  const std::vector<cv::Mat> input = decoded_frames(two);
   SwapJobOptions o;
   o.capture.quiet = true;
   o.capture.max_frames = 40;  // the right face from 24 or 32 on
@@ -520,23 +528,7 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
     run_swap(*model, photo.string(), two.string(), dir.path() / ("face" + std::to_string(k) + ".mp4"), one);
     return frames;
   };
-  const cv::Rect left_half(0, 0, 640, 360), right_half(640, 0, 640, 360);
-  const std::map<int, cv::Mat> left_alone = alone(0), right_alone = alone(1);
-  for (int i = 0; i < 40; ++i) {
-    const cv::Mat& b = both.at(i);
-    if (i < 8) {
-      EXPECT_EQ(cv::norm(b, input[i], cv::NORM_INF), 0.0) << i;  // no face: the input's frame
-      continue;
-    }
-    EXPECT_EQ(cv::norm(b(left_half), left_alone.at(i)(left_half), cv::NORM_INF), 0.0) << i;
-    EXPECT_GT(cv::norm(b(left_half), input[i](left_half), cv::NORM_L1), 0.0) << i;  // swapped
-    if (i < entered) {
-      EXPECT_EQ(cv::norm(b(right_half), input[i](right_half), cv::NORM_INF), 0.0) << i;
-    } else {
-      EXPECT_EQ(cv::norm(b(right_half), right_alone.at(i)(right_half), cv::NORM_INF), 0.0) << i;
-      EXPECT_GT(cv::norm(b(right_half), input[i](right_half), cv::NORM_L1), 0.0) << i;
-    }
-  }
+  expect_each_half_as_its_own_run(both, alone(0), alone(1), input, entered);
   // A glTF is one face's: asked for with every face, an error before any work.
   SwapJobOptions with_gltf = o;
   with_gltf.gltf = dir.path() / "swap.glb";
