@@ -345,7 +345,13 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   fs::create_directories(out / "face_notes");
   TrackOptions o;
   o.capture.quiet = true;
-  const EachFaceSummary each = run_track_each_face(*model, two.string(), out, o);
+  // --livelink-udp: each face streams as a subject of its own.
+  const test::UdpReceiver receiver;
+  TrackOptions streamed = o;
+  streamed.livelink_stream.emplace();
+  streamed.livelink_stream->target = {"127.0.0.1", receiver.port()};
+  streamed.livelink_stream->paced = false;
+  const EachFaceSummary each = run_track_each_face(*model, two.string(), out, streamed);
   ASSERT_EQ(each.faces.size(), 2u);
   ASSERT_EQ(each.runs.size(), 2u);
   EXPECT_EQ(each.capture.timings.frames, 56);
@@ -389,6 +395,10 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
     EXPECT_EQ(cv::norm(sheet(tile_rect), each.faces[k].thumbnail, cv::NORM_INF), 0.0) << k;  // lossless
   }
   EXPECT_FALSE(fs::exists(out / "face_2"));
+  std::map<std::string, int> datagrams;
+  while (const auto d = receiver.receive(200)) ++datagrams[test::decode_livelink(*d).subject];
+  EXPECT_EQ(datagrams, (std::map<std::string, int>{{"facecap_face0", 48}, {"facecap_face1", 56 - entered}}));
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(each.runs[k].livelink_sent, 56 - each.faces[k].first_frame) << k;
   EXPECT_TRUE(fs::exists(out / "face_notes"));
 
   // --max-faces 1: the second is not captured, and that is said.
