@@ -70,6 +70,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
       "found in (a face entering later is found within --search-every frames): to replace everyone in a clip, as "
       "for anonymising bystanders with a consenting person's face");
   all_faces->excludes(face)->excludes(identity)->excludes(gltf);  // each is one face's
+  add_leave_faces_option(*cmd, all_faces, a->all);
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held (counted once the target's "
                   "albedo, which its lighting is estimated against, is fixed: its first 4 frames with a face)")
@@ -90,9 +91,9 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     if (a->all_faces) {
       const AllFacesSwapSummary s = run_swap_all_faces(model, a->source, a->target, a->output, a->options, a->all);
       for (size_t k = 0; k < s.swapped.size(); ++k)
-        std::fprintf(stderr, "face %zu (from frame %d): frames %d, swapped %d, lost %d\n", k,
+        std::fprintf(stderr, "face %zu (from frame %d): frames %d, swapped %d, lost %d%s\n", k,
                      s.target.faces[k].first_frame, s.target.captures[k].frames, s.swapped[k],
-                     s.target.captures[k].lost);
+                     s.target.captures[k].lost, a->all.unedited.contains(int(k)) ? " (--leave-faces)" : "");
       report_swap(s.timings, a->output);
       report_uncaptured_faces(s.target, "left as they are");
       return;

@@ -65,6 +65,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       "Transform every face the input shows into the one output, each from the frame it is first found in (a face "
       "entering later is found within --search-every frames), each with its own identity, lighting and smoothing");
   all_faces->excludes(face)->excludes(identity)->excludes(plot)->excludes(gltf);  // each is one face's
+  add_leave_faces_option(*cmd, all_faces, a->all);
   cmd->callback([a, &global] {
     const auto to = parse_emotion(a->to), from = parse_emotion(a->from);
     if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
@@ -88,8 +89,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       for (size_t k = 0; k < s.frames.size(); ++k) {
         const int transformed = int(
             std::count_if(s.frames[k].begin(), s.frames[k].end(), [](const TransformedFrame& f) { return f.valid; }));
-        std::fprintf(stderr, "face %zu (from frame %d): frames %zu, transformed %d, lost %d\n", k,
-                     s.capture.faces[k].first_frame, s.frames[k].size(), transformed, s.capture.captures[k].lost);
+        std::fprintf(stderr, "face %zu (from frame %d): frames %d, transformed %d, lost %d%s\n", k,
+                     s.capture.faces[k].first_frame, s.capture.captures[k].frames, transformed,
+                     s.capture.captures[k].lost, a->all.unedited.contains(int(k)) ? " (--leave-faces)" : "");
       }
       report_transform(s.timings, a->output);
       report_uncaptured_faces(s.capture, "left as they are");

@@ -47,6 +47,10 @@ CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& n
 // --all-faces (help: what it does for this command), with --max-faces and
 // --search-every (AllFacesOptions), which need it. Returns the flag.
 CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptions& all, const std::string& help);
+// --leave-faces K,K...: for transform and swap --all-faces, the faces (by
+// the index track --all-faces gives them, in faces.png) left as they are
+// (AllFacesOptions::unedited). Needs `all_faces`.
+void add_leave_faces_option(CLI::App& cmd, CLI::Option* all_faces, AllFacesOptions& all);
 // One line on stderr where --all-faces left faces out (--max-faces): "up to
 // N more face(s) at once were <what>".
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what);

@@ -82,6 +82,16 @@ CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptio
   return flag;
 }
 
+void add_leave_faces_option(CLI::App& cmd, CLI::Option* all_faces, AllFacesOptions& all) {
+  cmd.add_option_function<std::vector<int>>(
+         "--leave-faces", [&all](const std::vector<int>& faces) { all.unedited.insert(faces.begin(), faces.end()); },
+         "--all-faces: leave these faces as they are (K,K...: each face's index in the order found, as track "
+         "--all-faces numbers them in DIR/faces.png)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber)
+      ->needs(all_faces);
+}
+
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what) {
   if (all.uncaptured_faces > 0)
     std::fprintf(stderr, "facecap: up to %d more face(s) at once were %s (--max-faces %d)\n", all.uncaptured_faces,

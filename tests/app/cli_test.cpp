@@ -84,20 +84,32 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
   // Usage errors exit with 2, whichever CLI11 error they are: a missing
   // argument, a value out of range, an unknown option or subcommand.
-  for (const char* args :
-       {"probe", "track in.mp4 -o x --start -5", "track in.mp4 -o x --bogus", "nosuchcommand",
-        "transform in.mp4 -o x.mp4 --face 3",
-        "swap --source a.jpg --target b.mp4 -o x.mp4 "
-        "--source-face up",
-        "track in.mp4 -o x --all-faces --max-faces 0", "track in.mp4 -o x --max-faces 3",
-        "track in.mp4 -o x --all-faces --search-every 0", "track in.mp4 -o x --all-faces --face left",
-        "track in.mp4 -o x --all-faces --stream", "bench track in.mp4 --all-faces --refine",
-        "transform in.mp4 -o x.mp4 --all-faces --face left", "transform in.mp4 -o x.mp4 --all-faces --plot p.png",
-        "transform in.mp4 -o x.mp4 --all-faces --gltf x.glb", "transform in.mp4 -o x.mp4 --max-faces 2",
-        "track in.mp4 -o x --livelink-udp host:0", "track in.mp4 -o x --livelink-udp :11111",
-        "track in.mp4 -o x --livelink-subject me",
-        "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --face left",
-        "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --gltf x.glb"})
+  for (const char* args : {"probe",
+                           "track in.mp4 -o x --start -5",
+                           "track in.mp4 -o x --bogus",
+                           "nosuchcommand",
+                           "transform in.mp4 -o x.mp4 --face 3",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 "
+                           "--source-face up",
+                           "track in.mp4 -o x --all-faces --max-faces 0",
+                           "track in.mp4 -o x --max-faces 3",
+                           "track in.mp4 -o x --all-faces --search-every 0",
+                           "track in.mp4 -o x --all-faces --face left",
+                           "track in.mp4 -o x --all-faces --stream",
+                           "bench track in.mp4 --all-faces --refine",
+                           "transform in.mp4 -o x.mp4 --all-faces --face left",
+                           "transform in.mp4 -o x.mp4 --all-faces --plot p.png",
+                           "transform in.mp4 -o x.mp4 --all-faces --gltf x.glb",
+                           "transform in.mp4 -o x.mp4 --max-faces 2",
+                           "track in.mp4 -o x --livelink-udp host:0",
+                           "track in.mp4 -o x --livelink-udp :11111",
+                           "track in.mp4 -o x --livelink-subject me",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --face left",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --gltf x.glb",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 --leave-faces 0",
+                           "transform in.mp4 -o x.mp4 --leave-faces 1",
+                           "transform in.mp4 -o x.mp4 --all-faces --leave-faces -1",
+                           "transform in.mp4 -o x.mp4 --all-faces --leave-faces a"})
     EXPECT_EQ(run(args).code, 2) << args;
   const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
   EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help

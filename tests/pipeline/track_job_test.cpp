@@ -402,7 +402,9 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   EXPECT_TRUE(fs::exists(out / "face_notes"));
 
   // --max-faces 1: the second is not captured, and that is said.
-  const EachFaceSummary one = run_track_each_face(*model, two.string(), dir.path() / "one", o, {.max_faces = 1});
+  AllFacesOptions one_face;
+  one_face.max_faces = 1;
+  const EachFaceSummary one = run_track_each_face(*model, two.string(), dir.path() / "one", o, one_face);
   ASSERT_EQ(one.faces.size(), 1u);
   EXPECT_EQ(one.capture.uncaptured_faces, 1);
   EXPECT_EQ(one.runs[0].capture.frames, 48);
@@ -539,6 +541,34 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
     return frames;
   };
   expect_each_half_as_its_own_run(both, alone(0), alone(1), input, entered);
+  // --leave-faces 0: the left face is followed and left as it is; the right
+  // one is swapped as before.
+  std::map<int, cv::Mat> spared;
+  SwapJobOptions leave = o;
+  leave.on_output_frame = [&](int index, const cv::Mat& image) { spared[index] = image.clone(); };
+  AllFacesOptions leave_first;
+  leave_first.unedited = {0};
+  const AllFacesSwapSummary l =
+      run_swap_all_faces(*model, photo.string(), two.string(), dir.path() / "spared.mp4", leave, leave_first);
+  EXPECT_EQ(l.swapped, (std::vector<int>{0, 40 - entered}));
+  ASSERT_EQ(spared.size(), 40u);
+  const cv::Rect left_half(0, 0, 640, 360), right_half(640, 0, 640, 360);
+  for (const auto& [i, frame] : spared) {
+    EXPECT_EQ(cv::norm(frame(left_half), input[i](left_half), cv::NORM_INF), 0.0) << i;
+    EXPECT_EQ(cv::norm(frame(right_half), both.at(i)(right_half), cv::NORM_INF), 0.0) << i;
+  }
+  std::ifstream spared_mark((dir.path() / "spared.mp4").string() + ".json");
+  EXPECT_EQ(nlohmann::json::parse(spared_mark)["parameters"]["faces"], "1");
+  // Every face left as it is: nothing to swap, said so, and nothing written.
+  leave_first.unedited = {0, 1};
+  try {
+    run_swap_all_faces(*model, photo.string(), two.string(), dir.path() / "none.mp4", leave, leave_first);
+    ADD_FAILURE() << "every face left, yet a swap";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--leave-faces"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "none.mp4"));
+
   // A glTF is one face's: asked for with every face, an error before any work.
   SwapJobOptions with_gltf = o;
   with_gltf.gltf = dir.path() / "swap.glb";

@@ -12,6 +12,7 @@
 // shot go to the captures whose faces first appeared nearest them (each
 // shot's identity is solved afresh), and the rest start captures of their own.
 #include <functional>
+#include <set>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -25,6 +26,10 @@ struct AllFacesOptions {
   int search_every = 8;  // frames between whole-frame searches for new faces
   int fine_every = 4;    // every this many searches, also at twice the size (faces down to half as small)
   int max_faces = 8;     // faces past this many are not captured (AllFacesSummary::uncaptured_faces)
+  // For the edits (transform and swap --all-faces): faces, by FoundFace::index,
+  // that are followed but left as they are (`--leave-faces`: say, the one
+  // person in a crowd who is not to be anonymised).
+  std::set<int> unedited;
 };
 
 struct FoundFace {

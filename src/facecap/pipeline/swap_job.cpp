@@ -261,6 +261,10 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   summary.target = run_capture_all_faces(
       model, *setup.input, capture, all,
       [&](const FoundFace& found, const InputInfo&) -> FrameSink {
+        if (all.unedited.contains(found.index)) {  // followed, and passed through
+          streams.emplace_back();
+          return [&frames, k = found.index](const CapturedFrame& f) { frames.add_layer(f.index, k, nullptr); };
+        }
         streams.push_back(std::make_unique<FaceSwapStream>(
             model, summary.source.photo, summary.source.face, options.swap,
             [&frames, k = found.index](const CapturedFrame& f, const SwappedFrame* swapped) {
@@ -277,6 +281,10 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
         frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces_in_frame);
       });
   for (const auto& stream : streams) {
+    if (!stream) {  // left as it is
+      summary.swapped.push_back(0);
+      continue;
+    }
     stream->finish();
     const SwapTimings& t = stream->timings();
     SwapTimings& sum = summary.timings.swap;
@@ -293,9 +301,13 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   frames.finish();
   if (frames.written() == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
+  if (summary.timings.swapped == 0 && !streams.empty() &&
+      std::none_of(streams.begin(), streams.end(), [](const auto& stream) { return stream != nullptr; }))
+    throw Error("every face of " + target + " is left as it is (--leave-faces): nothing to swap");
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
-  mark.parameters["faces"] = std::to_string(streams.size());
+  mark.parameters["faces"] = std::to_string(
+      std::count_if(streams.begin(), streams.end(), [](const auto& stream) { return stream != nullptr; }));
   write_synthetic_sidecar(output, mark);
   return summary;
 }

@@ -72,7 +72,7 @@ struct AllFacesSwapSummary {
   AllFacesSummary target;  // the target's faces, each one's capture, the shared pass
   SourceReconstruction source;
   SwapJobTimings timings;    // summed over the faces
-  std::vector<int> swapped;  // per face, the frames swapped
+  std::vector<int> swapped;  // per face, the frames swapped (0 for one left as it is)
 };
 
 // `swap --all-faces`: the source's face put on every face the target shows

@@ -165,6 +165,8 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
       model, *source, capture, all,
       [&](const FoundFace& found, const InputInfo&) -> FrameSink {
         Face& face = *faces.emplace_back(std::make_unique<Face>());
+        if (all.unedited.contains(found.index))  // followed, and passed through
+          return [&frames, k = found.index](const CapturedFrame& f) { frames.add_layer(f.index, k, nullptr); };
         face.stream =
             std::make_unique<FaceTransformStream>(model, mapper, options.transform, info.width, info.height,
                                                   [&frames, &face, k = found.index](const TransformedFaceFrame& t) {
@@ -177,6 +179,10 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
         frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces_in_frame);
       });
   for (const auto& face : faces) {
+    if (!face->stream) {  // left as it is
+      summary.frames.emplace_back();
+      continue;
+    }
     face->stream->finish();
     const TransformTimings t = face->stream->timings();
     summary.timings.mapping_ms += t.mapping_ms;
@@ -191,9 +197,13 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   const bool any = std::any_of(summary.frames.begin(), summary.frames.end(), [](const auto& face) {
     return std::any_of(face.begin(), face.end(), [](const TransformedFrame& f) { return f.valid; });
   });
+  if (!any && !faces.empty() &&
+      std::none_of(faces.begin(), faces.end(), [](const auto& f) { return f->stream != nullptr; }))
+    throw Error("every face of " + input + " is left as it is (--leave-faces): nothing to transform");
   if (!any) throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
-  mark.parameters["faces"] = std::to_string(summary.frames.size());
+  mark.parameters["faces"] = std::to_string(
+      std::count_if(faces.begin(), faces.end(), [](const auto& face) { return face->stream != nullptr; }));
   write_synthetic_sidecar(output, mark);
   return summary;
 }

@@ -44,9 +44,10 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
                                const TransformJobOptions& options);
 
 struct AllFacesTransformSummary {
-  AllFacesSummary capture;                            // the faces, each one's capture, the shared pass
-  std::vector<std::vector<TransformedFrame>> frames;  // per face, from the frame it was found in
-  TransformTimings timings;                           // summed over the faces; frames: the output's
+  AllFacesSummary capture;  // the faces, each one's capture, the shared pass
+  std::vector<std::vector<TransformedFrame>>
+      frames;                // per face, from the frame it was found in (none for one left as it is)
+  TransformTimings timings;  // summed over the faces; frames: the output's
 };
 
 // `transform --all-faces`: every face the input shows (face_roster.hpp), each
