@@ -61,4 +61,21 @@ double LayeredFrames::composite_ms() const {
   return composite_ms_;
 }
 
+AllFacesSummary capture_all_faces_into(LayeredFrames& frames, const FaceModel& model, FrameSource& source,
+                                       CaptureOptions capture, const AllFacesOptions& all,
+                                       const EditFaceSink& edit_face) {
+  capture.keep_images = true;
+  const InputInfo info = source.info();
+  return run_capture_all_faces(
+      model, source, capture, all,
+      [&](const FoundFace& face, const InputInfo&) -> FrameSink {
+        if (all.unedited.contains(face.index))  // followed, and passed through
+          return [&frames, k = face.index](const CapturedFrame& f) { frames.add_layer(f.index, k, nullptr); };
+        return edit_face(face);
+      },
+      [&](const DecodedFrame& d, int faces) {
+        frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces);
+      });
+}
+
 }  // namespace facecap

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/compose/face_layer.hpp"
+#include "facecap/pipeline/face_roster.hpp"
 
 namespace facecap {
 
@@ -54,5 +55,17 @@ class LayeredFrames {
   int written_ = 0;
   double composite_ms_ = 0;
 };
+
+// An edit of every face (transform and swap --all-faces): the input's faces
+// captured on one pass (face_roster.hpp, with the frames' images), every
+// frame handed to `frames`, waiting for the faces in it. `edit_face` makes
+// the sink for each face to edit, which gives `frames` its word on each of
+// that face's frames under FoundFace::index; a face in
+// AllFacesOptions::unedited is followed and passed through (its sink says
+// "no layer").
+using EditFaceSink = std::function<FrameSink(const FoundFace& face)>;
+AllFacesSummary capture_all_faces_into(LayeredFrames& frames, const FaceModel& model, FrameSource& source,
+                                       CaptureOptions capture, const AllFacesOptions& all,
+                                       const EditFaceSink& edit_face);
 
 }  // namespace facecap

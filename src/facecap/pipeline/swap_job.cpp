@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/atomic_file.hpp"
@@ -253,19 +254,13 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
         if (options.on_output_frame) options.on_output_frame(index, image);
       },
       [](cv::Mat& frame, const FaceLayer& layer) { layer.colour.copyTo(frame(layer.box), layer.mask); });
-  // One stream per face, each on its thread. Declared after `frames`, so
-  // that their threads end before it goes.
-  std::vector<std::unique_ptr<FaceSwapStream>> streams;
-  CaptureOptions capture = options.capture;
-  capture.keep_images = true;
-  summary.target = run_capture_all_faces(
-      model, *setup.input, capture, all,
-      [&](const FoundFace& found, const InputInfo&) -> FrameSink {
-        if (all.unedited.contains(found.index)) {  // followed, and passed through
-          streams.emplace_back();
-          return [&frames, k = found.index](const CapturedFrame& f) { frames.add_layer(f.index, k, nullptr); };
-        }
-        streams.push_back(std::make_unique<FaceSwapStream>(
+  // One stream per face swapped (by FoundFace::index), each on its thread.
+  // Declared after `frames`, so that their threads end before it goes.
+  std::map<int, std::unique_ptr<FaceSwapStream>> streams;
+  summary.target = capture_all_faces_into(
+      frames, model, *setup.input, options.capture, all, [&](const FoundFace& found) -> FrameSink {
+        auto& stream = streams[found.index];
+        stream = std::make_unique<FaceSwapStream>(
             model, summary.source.photo, summary.source.face, options.swap,
             [&frames, k = found.index](const CapturedFrame& f, const SwappedFrame* swapped) {
               if (!swapped) {
@@ -274,19 +269,18 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
               }
               const FaceLayer layer = changed_pixels(f.image, *swapped);
               frames.add_layer(f.index, k, layer.box.area() > 0 ? &layer : nullptr);
-            }));
-        return [stream = streams.back().get()](const CapturedFrame& f) { stream->push(f); };
-      },
-      [&](const DecodedFrame& d, int faces_in_frame) {
-        frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces_in_frame);
+            });
+        return [stream = stream.get()](const CapturedFrame& f) { stream->push(f); };
       });
-  for (const auto& stream : streams) {
-    if (!stream) {  // left as it is
+  for (const FoundFace& found : summary.target.faces) {
+    const auto it = streams.find(found.index);
+    if (it == streams.end()) {  // left as it is
       summary.swapped.push_back(0);
       continue;
     }
-    stream->finish();
-    const SwapTimings& t = stream->timings();
+    FaceSwapStream& stream = *it->second;
+    stream.finish();
+    const SwapTimings& t = stream.timings();
     SwapTimings& sum = summary.timings.swap;
     sum.appearance_ms += t.appearance_ms;
     sum.render_ms += t.render_ms;
@@ -294,20 +288,18 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     sum.blend_ms += t.blend_ms;
     sum.wrinkle_ms += t.wrinkle_ms;
     sum.ratio_ms += t.ratio_ms;
-    summary.timings.lighting_ms += stream->lighting_ms();
-    summary.timings.swapped += stream->swapped();
-    summary.swapped.push_back(stream->swapped());
+    summary.timings.lighting_ms += stream.lighting_ms();
+    summary.timings.swapped += stream.swapped();
+    summary.swapped.push_back(stream.swapped());
   }
   frames.finish();
   if (frames.written() == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
-  if (summary.timings.swapped == 0 && !streams.empty() &&
-      std::none_of(streams.begin(), streams.end(), [](const auto& stream) { return stream != nullptr; }))
+  if (summary.timings.swapped == 0 && streams.empty() && !summary.target.faces.empty())
     throw Error("every face of " + target + " is left as it is (--leave-faces): nothing to swap");
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
-  mark.parameters["faces"] = std::to_string(
-      std::count_if(streams.begin(), streams.end(), [](const auto& stream) { return stream != nullptr; }));
+  mark.parameters["faces"] = std::to_string(streams.size());
   write_synthetic_sidecar(output, mark);
   return summary;
 }

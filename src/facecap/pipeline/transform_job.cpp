@@ -151,22 +151,17 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
         if (options.on_frame) options.on_frame(index, image);
       },
       [](cv::Mat& frame, const FaceLayer& layer) { composite_layer(frame, layer); });
-  // One stream per face, each on its thread; the frames go to the output
-  // once every face in them is re-rendered. Declared after `frames`, so that
-  // their threads end before it goes.
+  // One stream per face edited (by FoundFace::index), each on its thread;
+  // the frames go to the output once every face in them is re-rendered.
+  // Declared after `frames`, so that their threads end before it goes.
   struct Face {
     std::unique_ptr<FaceTransformStream> stream;
     std::vector<TransformedFrame> frames;
   };
-  std::vector<std::unique_ptr<Face>> faces;
-  CaptureOptions capture = options.capture;
-  capture.keep_images = true;
-  summary.capture = run_capture_all_faces(
-      model, *source, capture, all,
-      [&](const FoundFace& found, const InputInfo&) -> FrameSink {
-        Face& face = *faces.emplace_back(std::make_unique<Face>());
-        if (all.unedited.contains(found.index))  // followed, and passed through
-          return [&frames, k = found.index](const CapturedFrame& f) { frames.add_layer(f.index, k, nullptr); };
+  std::map<int, Face> faces;
+  summary.capture =
+      capture_all_faces_into(frames, model, *source, options.capture, all, [&](const FoundFace& found) -> FrameSink {
+        Face& face = faces[found.index];
         face.stream =
             std::make_unique<FaceTransformStream>(model, mapper, options.transform, info.width, info.height,
                                                   [&frames, &face, k = found.index](const TransformedFaceFrame& t) {
@@ -174,21 +169,20 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
                                                     frames.add_layer(t.frame.index, k, t.layer);
                                                   });
         return [&face](const CapturedFrame& f) { face.stream->push(f); };
-      },
-      [&](const DecodedFrame& d, int faces_in_frame) {
-        frames.add_frame(d.frame.index, d.frame.time, image_or_black(d.frame, info), faces_in_frame);
       });
-  for (const auto& face : faces) {
-    if (!face->stream) {  // left as it is
+  for (const FoundFace& found : summary.capture.faces) {
+    const auto it = faces.find(found.index);
+    if (it == faces.end()) {  // left as it is
       summary.frames.emplace_back();
       continue;
     }
-    face->stream->finish();
-    const TransformTimings t = face->stream->timings();
+    Face& face = it->second;
+    face.stream->finish();
+    const TransformTimings t = face.stream->timings();
     summary.timings.mapping_ms += t.mapping_ms;
     summary.timings.lighting_ms += t.lighting_ms;
     summary.timings.render_ms += t.render_ms;
-    summary.frames.push_back(std::move(face->frames));
+    summary.frames.push_back(std::move(face.frames));
   }
   frames.finish();
   summary.timings.render_ms += frames.composite_ms();
@@ -197,13 +191,11 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   const bool any = std::any_of(summary.frames.begin(), summary.frames.end(), [](const auto& face) {
     return std::any_of(face.begin(), face.end(), [](const TransformedFrame& f) { return f.valid; });
   });
-  if (!any && !faces.empty() &&
-      std::none_of(faces.begin(), faces.end(), [](const auto& f) { return f->stream != nullptr; }))
+  if (!any && faces.empty() && !summary.capture.faces.empty())
     throw Error("every face of " + input + " is left as it is (--leave-faces): nothing to transform");
   if (!any) throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
-  mark.parameters["faces"] = std::to_string(
-      std::count_if(faces.begin(), faces.end(), [](const auto& face) { return face->stream != nullptr; }));
+  mark.parameters["faces"] = std::to_string(faces.size());
   write_synthetic_sidecar(output, mark);
   return summary;
 }
