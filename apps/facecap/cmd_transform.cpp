@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
@@ -29,6 +31,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     double intensity = 1.0;
     int window = 1;
     bool all_faces = false;
+    std::vector<std::string> face_to, face_schedule;
     TransformJobOptions options;
     AllFacesOptions all;
   };
@@ -66,6 +69,23 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       "entering later is found within --search-every frames), each with its own identity, lighting and smoothing");
   all_faces->excludes(face)->excludes(identity)->excludes(plot)->excludes(gltf);  // each is one face's
   add_leave_faces_option(*cmd, all_faces, a->all);
+  cmd->add_option("--face-to", a->face_to,
+                  "--all-faces: give face K an expression of its own, K=EMOTION (say 1=sadness; with --intensity), "
+                  "instead of --to; repeat for more faces")
+      ->type_name("K=EMOTION")
+      ->needs(all_faces)
+      ->check(face_value_check([](const std::string& emotion) {
+        if (!parse_emotion(emotion))
+          throw Error(
+              "the expression must be one of neutral, anger, disgust, fear, happiness, sadness, surprise, "
+              "not '" +
+              emotion + "'");
+      }));
+  cmd->add_option("--face-schedule", a->face_schedule,
+                  "--all-faces: give face K a schedule of its own, K=FILE (as --schedule); repeat for more faces")
+      ->type_name("K=FILE")
+      ->needs(all_faces)
+      ->check(face_value_check());
   cmd->callback([a, &global] {
     const auto to = parse_emotion(a->to), from = parse_emotion(a->from);
     if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
@@ -82,6 +102,21 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     o.gltf = a->gltf;
     if (!a->models.empty()) o.models_dir = a->models;
     o.description = a->schedule.empty() ? a->from + " to " + a->to : "schedule " + a->schedule;
+    // Faces with an expression of their own.
+    auto add_face = [&o](const std::pair<int, std::string>& face, const ExpressionSchedule& schedule,
+                         const std::string& description) {
+      if (!o.face_expressions.emplace(face.first, TransformJobOptions::FaceExpression{schedule, description}).second)
+        throw Error("face " + std::to_string(face.first) + " is given two expressions (--face-to, --face-schedule)");
+    };
+    for (const std::string& text : a->face_to) {
+      const auto face = parse_face_value(text);
+      const Emotion target = *parse_emotion(face.second);  // checked as parsed
+      add_face(face, ExpressionSchedule::constant(target, a->intensity), a->from + " to " + face.second);
+    }
+    for (const std::string& text : a->face_schedule) {
+      const auto face = parse_face_value(text);
+      add_face(face, ExpressionSchedule::read(face.second), "schedule " + face.second);
+    }
     o.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
     if (a->all_faces) {
@@ -89,12 +124,19 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       for (size_t k = 0; k < s.frames.size(); ++k) {
         const int transformed = int(
             std::count_if(s.frames[k].begin(), s.frames[k].end(), [](const TransformedFrame& f) { return f.valid; }));
+        const auto own = o.face_expressions.find(int(k));
+        const std::string what = a->all.unedited.contains(int(k))  ? " (--leave-faces)"
+                                 : own != o.face_expressions.end() ? " (" + own->second.description + ")"
+                                                                   : "";
         std::fprintf(stderr, "face %zu (from frame %d): frames %d, transformed %d, lost %d%s\n", k,
                      s.capture.faces[k].first_frame, s.capture.captures[k].frames, transformed,
-                     s.capture.captures[k].lost, a->all.unedited.contains(int(k)) ? " (--leave-faces)" : "");
+                     s.capture.captures[k].lost, what.c_str());
       }
       report_transform(s.timings, a->output);
       report_uncaptured_faces(s.capture, "left as they are");
+      std::vector<int> named;
+      for (const auto& [face, expression] : o.face_expressions) named.push_back(face);
+      report_unfound_faces(named, s.capture, "--face-to, --face-schedule");
       return;
     }
     const TransformSummary s = run_transform(model, a->input, a->output, o);

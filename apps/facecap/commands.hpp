@@ -4,9 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "facecap/model/face_model.hpp"
 #include "facecap/refine/compute_device.hpp"
@@ -51,6 +54,18 @@ CLI::Option* add_all_faces_options(CLI::App& cmd, bool& all_faces, AllFacesOptio
 // the index track --all-faces gives them, in faces.png) left as they are
 // (AllFacesOptions::unedited). Needs `all_faces`.
 void add_leave_faces_option(CLI::App& cmd, CLI::Option* all_faces, AllFacesOptions& all);
+// One value of a per-face option of --all-faces, "K=VALUE" (--face-to
+// 1=sadness, --face-source 1=photo.jpg): the face's index (as --leave-faces
+// numbers faces) and the value. Throws facecap::Error ("must be K=VALUE ...")
+// when the text is not that.
+std::pair<int, std::string> parse_face_value(const std::string& text);
+// A CLI11 check of such an option's values (a usage error, exit 2, named by
+// CLI11): the K=VALUE form, and `value` (which throws facecap::Error with
+// what is wrong) on the value.
+CLI::Validator face_value_check(std::function<void(const std::string& value)> value = nullptr);
+// One line on stderr for each face a per-face option named but the input
+// did not show: "facecap: face K (<option>) was not found".
+void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& all, const char* option);
 // One line on stderr where --all-faces left faces out (--max-faces): "up to
 // N more face(s) at once were <what>".
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what);

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -90,6 +92,38 @@ void add_leave_faces_option(CLI::App& cmd, CLI::Option* all_faces, AllFacesOptio
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber)
       ->needs(all_faces);
+}
+
+std::pair<int, std::string> parse_face_value(const std::string& text) {
+  const size_t equals = text.find('=');
+  const std::string usage = "must be K=VALUE (K: the face's index, 0 for the first found), not '" + text + "'";
+  if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) throw Error(usage);
+  const std::string index = text.substr(0, equals);
+  if (!std::all_of(index.begin(), index.end(), [](unsigned char c) { return std::isdigit(c); }) || index.size() > 6)
+    throw Error(usage);
+  return {std::stoi(index), text.substr(equals + 1)};
+}
+
+CLI::Validator face_value_check(std::function<void(const std::string& value)> value) {
+  return CLI::Validator(
+      [value](std::string& text) {
+        try {
+          const auto face = parse_face_value(text);
+          if (value) value(face.second);
+          return std::string();
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+      },
+      "");
+}
+
+void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& all, const char* option) {
+  for (const int face : named) {
+    if (face >= int(all.faces.size()))
+      std::fprintf(stderr, "facecap: face %d (%s) was not found: the input showed %d face(s)\n", face, option,
+                   int(all.faces.size()));
+  }
 }
 
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what) {

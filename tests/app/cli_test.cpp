@@ -109,7 +109,12 @@ TEST(Cli, BadOptionValuesAreNamed) {
                            "swap --source a.jpg --target b.mp4 -o x.mp4 --leave-faces 0",
                            "transform in.mp4 -o x.mp4 --leave-faces 1",
                            "transform in.mp4 -o x.mp4 --all-faces --leave-faces -1",
-                           "transform in.mp4 -o x.mp4 --all-faces --leave-faces a"})
+                           "transform in.mp4 -o x.mp4 --all-faces --leave-faces a",
+                           "transform in.mp4 -o x.mp4 --face-to 1=sadness",
+                           "transform in.mp4 -o x.mp4 --all-faces --face-to sadness",
+                           "transform in.mp4 -o x.mp4 --all-faces --face-to 1=glee",
+                           "transform in.mp4 -o x.mp4 --all-faces --face-to -1=anger",
+                           "transform in.mp4 -o x.mp4 --all-faces --face-schedule 1="})
     EXPECT_EQ(run(args).code, 2) << args;
   const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
   EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help
@@ -580,12 +585,21 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   EXPECT_LT(nose_x(dir.path() / "all" / "face_0"), left.cols);
   EXPECT_GT(nose_x(dir.path() / "all" / "face_1"), left.cols);
   EXPECT_NE(all.out.find("2 face(s) in 1 frames, one decoding pass"), std::string::npos) << all.out;
-  // transform --all-faces: both smile in the one marked image.
+  // transform --all-faces: the left one smiles and the right one looks sad
+  // (--face-to) in the one marked image; a face the photo does not show is
+  // said to be missing.
   const fs::path smiles = dir.path() / "smiles.png";
-  const RunResult happy = test::run_command(std::string(FACECAP_BINARY) + " transform " + image.string() + " -o " +
-                                            smiles.string() + " --to happiness --all-faces 2>&1");
+  const RunResult happy =
+      test::run_command(std::string(FACECAP_BINARY) + " transform " + image.string() + " -o " + smiles.string() +
+                        " --to happiness --all-faces --face-to 1=sadness --face-to 4=anger 2>&1");
   ASSERT_EQ(happy.code, 0) << happy.out;
-  EXPECT_NE(happy.out.find("face 1 (from frame 0): frames 1, transformed 1, lost 0"), std::string::npos) << happy.out;
+  EXPECT_NE(happy.out.find("face 0 (from frame 0): frames 1, transformed 1, lost 0\n"), std::string::npos) << happy.out;
+  EXPECT_NE(happy.out.find("face 1 (from frame 0): frames 1, transformed 1, lost 0 (neutral to sadness)"),
+            std::string::npos)
+      << happy.out;
+  EXPECT_NE(happy.out.find("face 4 (--face-to, --face-schedule) was not found: the input showed 2 face(s)"),
+            std::string::npos)
+      << happy.out;
   const cv::Mat changed = cv::imread(smiles.string());
   ASSERT_EQ(changed.size(), both.size());
   EXPECT_TRUE(fs::exists(smiles.string() + ".json"));

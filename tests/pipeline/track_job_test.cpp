@@ -432,7 +432,9 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
 
 // transform --all-faces: both people transformed in one output, each as a
 // run of its own transforms them (--start where the face was found, --face
-// there), frame for frame; what no face covers is the input's.
+// there), frame for frame; what no face covers is the input's. The right
+// face has an expression of its own (--face-to 1=sadness), the left one
+// --to's.
 TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
@@ -447,19 +449,25 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   TransformJobOptions o;
   o.capture.quiet = true;
   o.description = "test";
+  const ExpressionSchedule sadness = ExpressionSchedule::constant(Emotion::kSadness, 1.0);
+  TransformJobOptions sad_right = o;
+  sad_right.face_expressions[1] = {sadness, "neutral to sadness"};
   std::map<int, cv::Mat> both;
-  o.on_frame = [&](int index, const cv::Mat& image) {
+  sad_right.on_frame = [&](int index, const cv::Mat& image) {
     EXPECT_TRUE(both.empty() || index == both.rbegin()->first + 1) << index;  // in order, each once
     both[index] = image.clone();
   };
   const fs::path out = dir.path() / "both.mp4";
-  const AllFacesTransformSummary s = run_transform_all_faces(*model, two.string(), out, o);
+  const AllFacesTransformSummary s = run_transform_all_faces(*model, two.string(), out, sad_right);
   ASSERT_EQ(s.frames.size(), 2u);
   ASSERT_EQ(both.size(), 56u);
   EXPECT_EQ(s.timings.frames, 56);
   EXPECT_EQ(open_input(out.string())->info().frames, 56);
   std::ifstream sidecar(out.string() + ".json");
-  EXPECT_EQ(nlohmann::json::parse(sidecar)["parameters"]["faces"], "2");
+  const nlohmann::json mark = nlohmann::json::parse(sidecar);
+  EXPECT_EQ(mark["parameters"]["faces"], "2");
+  EXPECT_EQ(mark["parameters"]["face_1"], "neutral to sadness");
+  EXPECT_NE(mark["description"].get<std::string>().find("face 1: neutral to sadness"), std::string::npos);
   const int entered = s.capture.faces[1].first_frame;
   EXPECT_TRUE(entered == 24 || entered == 32) << entered;
   for (int k = 0; k < 2; ++k) {
@@ -468,9 +476,10 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
         << k;
   }
 
-  // Each face alone, from where it was found.
+  // Each face alone, from where it was found, with its expression.
   auto alone = [&](int k) {
     TransformJobOptions one = o;
+    if (k == 1) one.transform.schedule = sadness;
     std::map<int, cv::Mat> frames;
     one.on_frame = [&](int index, const cv::Mat& image) { frames[index] = image.clone(); };
     one.capture.start_seconds = s.capture.faces[k].first_time;
@@ -488,6 +497,13 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   with_plot.plot = dir.path() / "plot.png";
   EXPECT_THROW(run_transform_all_faces(*model, two.string(), dir.path() / "plot.mp4", with_plot), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "plot.mp4"));
+  // A face both left as it is and given an expression, or an expression per
+  // face without every face: errors before any work.
+  AllFacesOptions leave_right;
+  leave_right.unedited = {1};
+  EXPECT_THROW(run_transform_all_faces(*model, two.string(), dir.path() / "left.mp4", sad_right, leave_right), Error);
+  EXPECT_THROW(run_transform(*model, two.string(), dir.path() / "left.mp4", sad_right), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "left.mp4"));
   // No face anywhere: an error, and nothing is written.
   const fs::path grey = dir.path() / "grey.png";
   cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));

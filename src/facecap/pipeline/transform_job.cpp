@@ -33,8 +33,15 @@ void check_transform_job(const std::string& input, const InputInfo& info, const 
                          const TransformJobOptions& options, const ExpressionMapper& mapper) {
   ensure_writable_file(fs::absolute(output));
   check_edit_output(output, info.kind);  // a video, or an image for a photo
-  for (const ScheduleKey& k : options.transform.schedule.keys()) {
-    if (k.target != Emotion::kNeutral) mapper.pair(k.target);
+  auto check_schedule = [&mapper](const ExpressionSchedule& schedule) {
+    for (const ScheduleKey& k : schedule.keys()) {
+      if (k.target != Emotion::kNeutral) mapper.pair(k.target);
+    }
+  };
+  check_schedule(options.transform.schedule);
+  for (const auto& [face, expression] : options.face_expressions) {
+    if (face < 0) throw Error("a face's index must be 0 or more, not " + std::to_string(face));
+    check_schedule(expression.schedule);
   }
   if (options.transform.from != Emotion::kNeutral) mapper.pair(options.transform.from);
   ensure_not_an_input(output, {input});
@@ -48,12 +55,17 @@ void check_transform_job(const std::string& input, const InputInfo& info, const 
 SyntheticMark transform_mark(const std::string& input, const InputInfo& info, const TransformJobOptions& options) {
   SyntheticMark mark;
   mark.kind = "expression-transform";
-  mark.description = "The facial expression was changed by facecap (" + options.description +
-                     "); the lips follow the original speech.";
+  std::string what = options.description;
+  for (const auto& [face, expression] : options.face_expressions)
+    what += "; face " + std::to_string(face) + ": " + expression.description;
+  mark.description =
+      "The facial expression was changed by facecap (" + what + "); the lips follow the original speech.";
   mark.sources = {input};
   mark.parameters = {{"description", options.description},
                      {"method", options.transform.method == MappingMethod::kLinear ? "linear" : "cyclegan"},
                      {"start_seconds", std::to_string(start_time(info))}};
+  for (const auto& [face, expression] : options.face_expressions)
+    mark.parameters["face_" + std::to_string(face)] = expression.description;
   return mark;
 }
 
@@ -67,6 +79,8 @@ VideoWriterOptions marked_output(const InputInfo& info, const TransformJobOption
 
 TransformSummary run_transform(const FaceModel& model, const std::string& input, const fs::path& output,
                                const TransformJobOptions& options) {
+  if (!options.face_expressions.empty())
+    throw Error("an expression per face (--face-to, --face-schedule) needs --all-faces");
   auto source = open_input(input, options.capture.start_seconds);
   const InputInfo info = source->info();
   const ExpressionMapper mapper(options.models_dir);
@@ -136,6 +150,10 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
                                                  const AllFacesOptions& all) {
   if (!options.gltf.empty() || !options.plot.empty())
     throw Error("--gltf and --plot are for one face: they cannot be used with --all-faces");
+  for (const auto& [face, expression] : options.face_expressions) {
+    if (all.unedited.contains(face))
+      throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given an expression");
+  }
   auto source = open_input(input, options.capture.start_seconds);
   const InputInfo info = source->info();
   const ExpressionMapper mapper(options.models_dir);
@@ -162,8 +180,11 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   summary.capture =
       capture_all_faces_into(frames, model, *source, options.capture, all, [&](const FoundFace& found) -> FrameSink {
         Face& face = faces[found.index];
+        TransformOptions transform = options.transform;
+        if (const auto own = options.face_expressions.find(found.index); own != options.face_expressions.end())
+          transform.schedule = own->second.schedule;
         face.stream =
-            std::make_unique<FaceTransformStream>(model, mapper, options.transform, info.width, info.height,
+            std::make_unique<FaceTransformStream>(model, mapper, transform, info.width, info.height,
                                                   [&frames, &face, k = found.index](const TransformedFaceFrame& t) {
                                                     face.frames.push_back(t.weights);
                                                     frames.add_layer(t.frame.index, k, t.layer);

@@ -8,6 +8,7 @@
 // and the synthetic-media marks.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,14 @@ struct TransformJobOptions {
   // the input cuts (shot_animations.hpp).
   std::filesystem::path gltf;
   std::string description;  // for the synthetic mark, e.g. "neutral to happiness"
+  // --all-faces: faces (by index in the order found, as track --all-faces
+  // numbers them) given an expression of their own (`--face-to 1=sadness`,
+  // `--face-schedule 1=keys.txt`) instead of transform.schedule.
+  struct FaceExpression {
+    ExpressionSchedule schedule;
+    std::string description;  // for the synthetic mark, e.g. "neutral to sadness"
+  };
+  std::map<int, FaceExpression> face_expressions;
   // Each output frame as it is written (before encoding), in order: for evals and tests.
   std::function<void(int index, const cv::Mat& image)> on_frame;
 };
