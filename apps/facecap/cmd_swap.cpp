@@ -1,5 +1,8 @@
 #include <algorithm>
 #include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
@@ -33,6 +36,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     bool no_warp = false;
     bool photo_size = false;
     bool all_faces = false;
+    std::vector<std::string> face_sources;
     AllFacesOptions all;
   };
   auto a = std::make_shared<Args>();
@@ -71,6 +75,12 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
       "for anonymising bystanders with a consenting person's face");
   all_faces->excludes(face)->excludes(identity)->excludes(gltf);  // each is one face's
   add_leave_faces_option(*cmd, all_faces, a->all);
+  cmd->add_option("--face-source", a->face_sources,
+                  "--all-faces: put another face on face K, K=PHOTO (a photo, short video or folder, as --source; its "
+                  "largest face) instead of --source's; repeat for more faces")
+      ->type_name("K=PHOTO")
+      ->needs(all_faces)
+      ->check(face_value_check());
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held (counted once the target's "
                   "albedo, which its lighting is estimated against, is fixed: its first 4 frames with a face)")
@@ -87,15 +97,29 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     a->options.swap.warp_background = !a->no_warp;
     a->options.swap.match_target_size = !a->photo_size;
     a->options.capture.quiet = global.quiet;
+    std::map<int, std::string>& sources = a->options.face_sources;
+    for (const std::string& text : a->face_sources) {
+      const auto [face, photo] = parse_face_value(text);
+      if (!sources.emplace(face, photo).second)
+        throw Error("face " + std::to_string(face) + " is given two sources (--face-source)");
+    }
     const FaceModel model = load_model(global);
     if (a->all_faces) {
       const AllFacesSwapSummary s = run_swap_all_faces(model, a->source, a->target, a->output, a->options, a->all);
-      for (size_t k = 0; k < s.swapped.size(); ++k)
+      for (size_t k = 0; k < s.swapped.size(); ++k) {
+        const auto own = sources.find(int(k));
+        const std::string what = a->all.unedited.contains(int(k)) ? " (--leave-faces)"
+                                 : own != sources.end()           ? " (the face from " + own->second + ")"
+                                                                  : "";
         std::fprintf(stderr, "face %zu (from frame %d): frames %d, swapped %d, lost %d%s\n", k,
                      s.target.faces[k].first_frame, s.target.captures[k].frames, s.swapped[k],
-                     s.target.captures[k].lost, a->all.unedited.contains(int(k)) ? " (--leave-faces)" : "");
+                     s.target.captures[k].lost, what.c_str());
+      }
       report_swap(s.timings, a->output);
       report_uncaptured_faces(s.target, "left as they are");
+      std::vector<int> named;
+      for (const auto& [face, photo] : sources) named.push_back(face);
+      report_unfound_faces(named, s.target, "--face-source");
       return;
     }
     const SwapSummary s = run_swap(model, a->source, a->target, a->output, a->options);

@@ -114,7 +114,9 @@ TEST(Cli, BadOptionValuesAreNamed) {
                            "transform in.mp4 -o x.mp4 --all-faces --face-to sadness",
                            "transform in.mp4 -o x.mp4 --all-faces --face-to 1=glee",
                            "transform in.mp4 -o x.mp4 --all-faces --face-to -1=anger",
-                           "transform in.mp4 -o x.mp4 --all-faces --face-schedule 1="})
+                           "transform in.mp4 -o x.mp4 --all-faces --face-schedule 1=",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 --face-source 1=c.jpg",
+                           "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --face-source c.jpg"})
     EXPECT_EQ(run(args).code, 2) << args;
   const RunResult face = run("swap --source a.jpg --target b.mp4 -o x.mp4 --source-face up");
   EXPECT_EQ(lines(face.out), 2) << face.out;  // the error, and CLI11's pointer to --help
@@ -606,6 +608,20 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   const cv::Rect left_part(0, 0, left.cols, left.rows), right_part(left.cols, 0, right.cols, right.rows);
   EXPECT_GT(cv::norm(changed(left_part), both(left_part), cv::NORM_INF), 40.0);
   EXPECT_GT(cv::norm(changed(right_part), both(right_part), cv::NORM_INF), 40.0);
+  // swap --all-faces: Biden's face on the left one, Obama's (--face-source)
+  // on the right one.
+  const fs::path swapped = dir.path() / "swapped.png";
+  const RunResult swap = test::run_command(std::string(FACECAP_BINARY) + " swap --source " + biden.string() +
+                                           " --target " + image.string() + " -o " + swapped.string() +
+                                           " --all-faces --face-source 1=" + obama.string() + " 2>&1");
+  ASSERT_EQ(swap.code, 0) << swap.out;
+  EXPECT_NE(swap.out.find("face 1 (from frame 0): frames 1, swapped 1, lost 0 (the face from " + obama.string() + ")"),
+            std::string::npos)
+      << swap.out;
+  const cv::Mat swapped_image = cv::imread(swapped.string());
+  ASSERT_EQ(swapped_image.size(), both.size());
+  EXPECT_GT(cv::norm(swapped_image(left_part), both(left_part), cv::NORM_INF), 40.0);
+  EXPECT_GT(cv::norm(swapped_image(right_part), both(right_part), cv::NORM_INF), 40.0);
   const RunResult bad = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                           (dir.path() / "bad").string() + " --face middle 2>&1");
   EXPECT_EQ(bad.code, 2) << bad.out;

@@ -514,12 +514,14 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
 
 // swap --all-faces: the source's face on both people in one output, each as
 // a run of its own puts it there (--start where the face was found, --face
-// there), frame for frame; what no face covers is the input's.
+// there), frame for frame; what no face covers is the input's. The right
+// face gets a source of its own (--face-source 1=PHOTO).
 TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
   FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
   FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  FACECAP_REQUIRE_DATA(other, "portrait_obama.jpg");
   TempDir dir;
   const fs::path two = dir.path() / "two.mp4";
   const test::CommandResult made = two_people_clip(left, right, two);
@@ -528,20 +530,26 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
   SwapJobOptions o;
   o.capture.quiet = true;
   o.capture.max_frames = 40;  // the right face from 24 or 32 on
+  SwapJobOptions own_right = o;
+  own_right.face_sources[1] = other.string();
   std::map<int, cv::Mat> both;
-  o.on_output_frame = [&](int index, const cv::Mat& image) {
+  own_right.on_output_frame = [&](int index, const cv::Mat& image) {
     EXPECT_TRUE(both.empty() || index == both.rbegin()->first + 1) << index;  // in order, each once
     both[index] = image.clone();
   };
   const fs::path out = dir.path() / "both.mp4";
-  const AllFacesSwapSummary s = run_swap_all_faces(*model, photo.string(), two.string(), out, o);
+  const AllFacesSwapSummary s = run_swap_all_faces(*model, photo.string(), two.string(), out, own_right);
   ASSERT_EQ(s.swapped.size(), 2u);
   ASSERT_EQ(both.size(), 40u);
   EXPECT_EQ(open_input(out.string())->info().frames, 40);
   std::ifstream sidecar(out.string() + ".json");
   const nlohmann::json mark = nlohmann::json::parse(sidecar);
   EXPECT_EQ(mark["parameters"]["faces"], "2");
+  EXPECT_EQ(mark["parameters"]["face_1_source"], other.string());
+  EXPECT_EQ(mark["sources"], (std::vector<std::string>{photo.string(), two.string(), other.string()}));
   EXPECT_EQ(mark["edit"], "face-swap");
+  ASSERT_EQ(s.face_sources.size(), 1u);
+  EXPECT_GT((s.face_sources.at(1).face.identity - s.source.face.identity).norm(), 1.0);  // two people
   const int entered = s.target.faces[1].first_frame;
   ASSERT_TRUE(entered == 24 || entered == 32) << entered;
   for (int k = 0; k < 2; ++k) EXPECT_EQ(s.swapped[k], 40 - s.target.faces[k].first_frame) << k;
@@ -553,14 +561,15 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
     one.capture.start_seconds = s.target.faces[k].first_time;
     one.capture.max_frames = 40 - s.target.faces[k].first_frame;
     one.capture.tracker.pick = {FacePick::Rule::kNearest, s.target.faces[k].box.center()};
-    run_swap(*model, photo.string(), two.string(), dir.path() / ("face" + std::to_string(k) + ".mp4"), one);
+    run_swap(*model, (k == 1 ? other : photo).string(), two.string(),
+             dir.path() / ("face" + std::to_string(k) + ".mp4"), one);
     return frames;
   };
   expect_each_half_as_its_own_run(both, alone(0), alone(1), input, entered);
   // --leave-faces 0: the left face is followed and left as it is; the right
   // one is swapped as before.
   std::map<int, cv::Mat> spared;
-  SwapJobOptions leave = o;
+  SwapJobOptions leave = own_right;
   leave.on_output_frame = [&](int index, const cv::Mat& image) { spared[index] = image.clone(); };
   AllFacesOptions leave_first;
   leave_first.unedited = {0};
@@ -575,8 +584,14 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
   }
   std::ifstream spared_mark((dir.path() / "spared.mp4").string() + ".json");
   EXPECT_EQ(nlohmann::json::parse(spared_mark)["parameters"]["faces"], "1");
-  // Every face left as it is: nothing to swap, said so, and nothing written.
+  // A face both left as it is and given a source, or a source per face
+  // without every face: errors before any work.
   leave_first.unedited = {0, 1};
+  EXPECT_THROW(run_swap_all_faces(*model, photo.string(), two.string(), dir.path() / "none.mp4", leave, leave_first),
+               Error);
+  EXPECT_THROW(run_swap(*model, photo.string(), two.string(), dir.path() / "none.mp4", leave), Error);
+  // Every face left as it is: nothing to swap, said so, and nothing written.
+  leave.face_sources.clear();
   try {
     run_swap_all_faces(*model, photo.string(), two.string(), dir.path() / "none.mp4", leave, leave_first);
     ADD_FAILURE() << "every face left, yet a swap";

@@ -28,11 +28,11 @@ void ensure_writable_file(const fs::path& path) {
   if (fs::is_directory(path, ec)) throw Error("cannot write " + path.string() + ": it is a folder");
 }
 
-void ensure_not_an_input(const fs::path& output, std::initializer_list<std::string_view> inputs) {
-  for (const std::string_view input : inputs) {
+void ensure_not_an_input(const fs::path& output, const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs) {
     std::error_code ec;
     if (fs::equivalent(output, fs::path(input), ec) && !ec)
-      throw Error("output " + output.string() + " is the input " + std::string(input) +
+      throw Error("output " + output.string() + " is the input " + input +
                   ": write it under another name (the input would be replaced)");
   }
 }

@@ -6,11 +6,9 @@
 // removed by the destructor.
 #include <cstddef>
 #include <filesystem>
-#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "facecap/core/temp_files.hpp"
@@ -65,7 +63,7 @@ void ensure_writable_file(const std::filesystem::path& path);
 // (by identity: another spelling or a link to it counts), as in
 // `transform in.mp4 -o in.mp4`: the committed output would replace what the
 // run reads. Inputs that are no file (cam:0, a missing path) never match.
-void ensure_not_an_input(const std::filesystem::path& output, std::initializer_list<std::string_view> inputs);
+void ensure_not_an_input(const std::filesystem::path& output, const std::vector<std::string>& inputs);
 
 // Writes text, or bytes, atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);

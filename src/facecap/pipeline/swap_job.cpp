@@ -116,17 +116,23 @@ struct SwapSetup {
   std::unique_ptr<FrameSource> input;
   InputInfo info;
   SourceReconstruction source;
+  std::map<int, SourceReconstruction> face_sources;  // SwapJobOptions::face_sources
   double source_ms = 0;
   SyntheticMark mark;
 };
 
 SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
                        const fs::path& output, const SwapJobOptions& options) {
+  std::vector<std::string> inputs = {source_photo, target};
+  for (const auto& [face, photo] : options.face_sources) {
+    if (face < 0) throw Error("a face's index must be 0 or more, not " + std::to_string(face));
+    inputs.push_back(photo);
+  }
   ensure_writable_file(fs::absolute(output));
-  ensure_not_an_input(output, {source_photo, target});
+  ensure_not_an_input(output, inputs);
   if (!options.gltf.empty()) {
     ensure_writable_file(fs::absolute(options.gltf));
-    ensure_not_an_input(options.gltf, {source_photo, target});
+    ensure_not_an_input(options.gltf, inputs);
   }
   SwapSetup s;
   s.input = open_input(target, options.capture.start_seconds);
@@ -134,13 +140,24 @@ SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, 
   check_edit_output(output, s.info.kind);  // a video, or an image for a photo target
   const auto t0 = std::chrono::steady_clock::now();
   s.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames, options.source_face);
+  // Each other source once, however many faces take it.
+  std::map<std::string, const SourceReconstruction*> done;
+  for (const auto& [face, photo] : options.face_sources) {
+    const auto [known, fresh] = done.emplace(photo, nullptr);
+    s.face_sources[face] =
+        fresh ? reconstruct_source(model, photo, options.capture.quiet, options.source_frames) : *known->second;
+    known->second = &s.face_sources[face];
+  }
   s.source_ms = ms_since(t0);
 
   SyntheticMark& mark = s.mark;
   mark.kind = "face-swap";
   mark.description = std::string("The face in this ") + (s.info.kind == InputKind::kImage ? "image" : "video") +
-                     " was replaced by facecap with the face from " + fs::path(source_photo).filename().string() + ".";
-  mark.sources = {source_photo, target};
+                     " was replaced by facecap with the face from " + fs::path(source_photo).filename().string();
+  for (const auto& [face, photo] : options.face_sources)
+    mark.description += "; face " + std::to_string(face) + " with the face from " + fs::path(photo).filename().string();
+  mark.description += ".";
+  mark.sources = inputs;
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
                      {"warp_background", options.swap.warp_background ? "true" : "false"},
                      {"match_target_size", options.swap.match_target_size ? "true" : "false"},
@@ -151,6 +168,8 @@ SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, 
                      {"photo_detail_gain", std::to_string(options.swap.photo_detail_gain)},
                      {"source_frames_used", std::to_string(s.source.frames_used)},
                      {"target_start_seconds", std::to_string(start_time(s.info))}};
+  for (const auto& [face, photo] : options.face_sources)
+    mark.parameters["face_" + std::to_string(face) + "_source"] = photo;
   return s;
 }
 
@@ -179,6 +198,7 @@ FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped) {
 
 SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
                      const fs::path& output, const SwapJobOptions& options) {
+  if (!options.face_sources.empty()) throw Error("a source per face (--face-source) needs --all-faces");
   SwapSetup setup = prepare_swap(model, source_photo, target, output, options);
   SwapSummary summary;
   summary.source = std::move(setup.source);
@@ -237,9 +257,14 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
                                        const std::string& target, const fs::path& output, const SwapJobOptions& options,
                                        const AllFacesOptions& all) {
   if (!options.gltf.empty()) throw Error("--gltf is for one face: it cannot be used with --all-faces");
+  for (const auto& [face, photo] : options.face_sources) {
+    if (all.unedited.contains(face))
+      throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given a source");
+  }
   SwapSetup setup = prepare_swap(model, source_photo, target, output, options);
   AllFacesSwapSummary summary;
   summary.source = std::move(setup.source);
+  summary.face_sources = std::move(setup.face_sources);
   summary.timings.source_ms = setup.source_ms;
   const InputInfo& info = setup.info;
   SyntheticMark& mark = setup.mark;
@@ -260,8 +285,10 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   summary.target = capture_all_faces_into(
       frames, model, *setup.input, options.capture, all, [&](const FoundFace& found) -> FrameSink {
         auto& stream = streams[found.index];
+        const auto own = summary.face_sources.find(found.index);
+        const SourceReconstruction& source = own != summary.face_sources.end() ? own->second : summary.source;
         stream = std::make_unique<FaceSwapStream>(
-            model, summary.source.photo, summary.source.face, options.swap,
+            model, source.photo, source.face, options.swap,
             [&frames, k = found.index](const CapturedFrame& f, const SwappedFrame* swapped) {
               if (!swapped) {
                 frames.add_layer(f.index, k, nullptr);

@@ -7,6 +7,7 @@
 // The output carries the target's audio and the synthetic-media marks.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,11 @@ struct SwapJobOptions {
   SwapOptions swap;
   int source_frames = 30;  // frames of a source video or folder the identity is solved from
   FacePick source_face;    // which face of the source where it shows several (capture.tracker.pick: the target's)
+  // --all-faces: target faces (by index in the order found, as track
+  // --all-faces numbers them) given a source of their own (`--face-source
+  // 1=photo.jpg`: a photo, video or folder, as the source; its largest face)
+  // instead of the job's source.
+  std::map<int, std::string> face_sources;
   // The swapped performance as an animated glTF (face_animation.hpp): the
   // source's identity at the size the swap gives it, performing the target's
   // keys (pose and expression), textured with the source's harmonised albedo
@@ -71,8 +77,9 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
 struct AllFacesSwapSummary {
   AllFacesSummary target;  // the target's faces, each one's capture, the shared pass
   SourceReconstruction source;
-  SwapJobTimings timings;    // summed over the faces
-  std::vector<int> swapped;  // per face, the frames swapped (0 for one left as it is)
+  std::map<int, SourceReconstruction> face_sources;  // SwapJobOptions::face_sources, reconstructed
+  SwapJobTimings timings;                            // summed over the faces
+  std::vector<int> swapped;                          // per face, the frames swapped (0 for one left as it is)
 };
 
 // `swap --all-faces`: the source's face put on every face the target shows
