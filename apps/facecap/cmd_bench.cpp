@@ -155,9 +155,8 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
   struct Args {
     std::string source, target;
     int max_frames = 120;
-    bool wrinkles = false;
-    bool no_expression_ratio = false;
     bool all_faces = false;
+    SwapOptions swap;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source, "Source portrait photo")->required();
@@ -166,14 +165,12 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
                 "each face's, and the swap's summed over the faces");
   cmd->add_option("--target", a->target, "Target video")->required();
   cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
-  cmd->add_flag("--wrinkles", a->wrinkles, "With the wrinkle prediction of §6.1.2 (the target is refined)");
-  cmd->add_flag("--no-expression-ratio", a->no_expression_ratio,
-                "Without the target's own fine change of appearance carried onto the new face");
+  cmd->add_flag("--wrinkles", a->swap.wrinkles, "With the wrinkle prediction of §6.1.2 (the target is refined)");
+  add_swap_texture_flags(*cmd, a->swap);
   cmd->callback([a, &global] {
     const FaceModel model = load_model(global);
     SwapJobOptions o;
-    o.swap.wrinkles = a->wrinkles;
-    o.swap.expression_ratio = !a->no_expression_ratio;
+    o.swap = a->swap;
     o.capture.max_frames = a->max_frames;
     o.capture.quiet = true;
     const TempDir scratch("facecap-bench");
@@ -198,7 +195,7 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double n = std::max(1, timings.swapped);
     const SwapTimings& t = timings.swap;
-    const double steady_ms = (t.render_ms + t.wrinkle_ms + t.ratio_ms + t.warp_ms + t.blend_ms) / n;
+    const double steady_ms = (t.render_ms + t.wrinkle_ms + t.ratio_ms + t.occlusion_ms + t.warp_ms + t.blend_ms) / n;
     const double with_appearance_ms = steady_ms + t.appearance_ms / n;
     j["swap"] = {{"frames", timings.swapped},
                  {"frames_note", "frames swapped; with --all-faces, summed over the faces, as are the timings"},
@@ -210,6 +207,7 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
                  {"blend_ms_per_frame", t.blend_ms / n},
                  {"wrinkle_ms_per_frame", t.wrinkle_ms / n},
                  {"expression_ratio_ms_per_frame", t.ratio_ms / n},
+                 {"occlusion_ms_per_frame", t.occlusion_ms / n},
                  {"swap_ms_per_frame", steady_ms},
                  {"swap_fps", steady_ms > 0 ? 1000.0 / steady_ms : 0.0},
                  {"swap_fps_with_appearance", with_appearance_ms > 0 ? 1000.0 / with_appearance_ms : 0.0},

@@ -338,6 +338,8 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
                   {"photometric_mean_rest", r.regions[2].mean},
                   {"pixel_share_mouth", r.regions[0].share},
                   {"pixel_share_eyes", r.regions[1].share},
+                  {"covered_mean", r.covered_mean},
+                  {"covered_max", r.covered_max},
                   {"render_ms_per_frame", r.timings.swap.render_ms / n},
                   {"warp_ms_per_frame", r.timings.swap.warp_ms / n},
                   {"blend_ms_per_frame", r.timings.swap.blend_ms / n}});
@@ -363,7 +365,9 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
                 {"expression_correlation", r.expression_correlation},
                 {"expression_weights_compared", r.expression_weights_compared},
                 {"seam_ratio", r.seam_ratio},
-                {"seam_ratio_target", r.seam_ratio_target}});
+                {"seam_ratio_target", r.seam_ratio_target},
+                {"covered_mean", r.covered_mean},
+                {"covered_max", r.covered_max}});
   });
 }
 

@@ -73,7 +73,8 @@ void report_uncaptured_faces(const AllFacesSummary& all, const char* what);
 // (CoarseFitOptions::known_identity), read when the option is parsed.
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);
 // --no-mirror, --no-light-colour, --residual-shading and --photo-detail:
-// how the swap completes, tints, shades and filters the photo's texture
+// how the swap completes, tints, shades and filters the photo's texture;
+// --no-occlusion: whether it leaves what covers the target's face in front
 // (SwapOptions), for `swap` and `eval swap` alike.
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
 // --device cpu|cuda: where the refinement's sampling and displacement solve run (default:

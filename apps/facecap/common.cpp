@@ -196,6 +196,10 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
                  "that land in the wrong place on another expression; 1 keeps the photo's texture as it is")
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
+  cmd.add_flag_callback(
+      "--no-occlusion", [&swap] { swap.keep_occluders = false; },
+      "Paint the new face over whatever covers the target's face (a hand, a microphone, hair) rather than "
+      "leave it in front");
 }
 
 }  // namespace facecap::cli

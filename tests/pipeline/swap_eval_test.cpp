@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -178,6 +180,73 @@ TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {
   const double inside = cv::mean(d(window))[1];
   EXPECT_GT(inside, 0.05);
   EXPECT_LT(inside, 20.0);
+}
+
+// Something in front of the target's face (a navy disc over its chin and
+// cheek, moving, from frame 20 on: after the appearance frames) stays in
+// front of the new face (SwapOptions::keep_occluders); the paper's swap,
+// without it, paints the new face over it. Where nothing covers the face,
+// nothing is taken for a cover.
+TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  TempDir dir;
+  constexpr int kFrames = 44, kCoverFrom = 20, kRadius = 32;
+  auto cover_centre = [](int i) { return cv::Point(470 + (i - kCoverFrom), 350); };
+  std::vector<cv::Mat> input;
+  {
+    auto source = open_input(video.string());
+    Frame f;
+    fs::create_directories(dir.path() / "covered");
+    for (int i = 0; i < kFrames && source->read(f); ++i) {
+      cv::Mat image = f.image.clone();
+      if (i >= kCoverFrom) cv::circle(image, cover_centre(i), kRadius, cv::Scalar(96, 48, 32), cv::FILLED);
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%03d.png", i);
+      ASSERT_TRUE(cv::imwrite((dir.path() / "covered" / name).string(), image));
+      input.push_back(image);
+    }
+  }
+  ASSERT_EQ(int(input.size()), kFrames);
+  // Per frame: the share of the cover (less 4 px at its edge) the output
+  // keeps within 12 grey levels of the input, and SwappedFrame::covered.
+  struct Measured {
+    double kept = 0, covered = 0;
+  };
+  auto swap = [&](bool keep_occluders) {
+    SwapJobOptions o = short_run(kFrames);
+    o.swap.keep_occluders = keep_occluders;
+    std::map<int, Measured> frames;
+    o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& r) {
+      Measured& m = frames[target.index];
+      m.covered = r.covered;
+      if (target.index < kCoverFrom) return;
+      cv::Mat disc(r.image.size(), CV_8U, cv::Scalar(0));
+      cv::circle(disc, cover_centre(target.index), kRadius - 4, cv::Scalar(255), cv::FILLED);
+      cv::Mat difference, channels[3];
+      cv::absdiff(r.image, input[target.index], difference);
+      cv::split(difference, channels);
+      const cv::Mat near = cv::max(cv::max(channels[0], channels[1]), channels[2]) <= 12;
+      m.kept = double(cv::countNonZero(near & disc)) / cv::countNonZero(disc);
+    };
+    const SwapSummary s = run_swap(*model, photo.string(), (dir.path() / "covered").string(),
+                                   dir.path() / (keep_occluders ? "kept.mp4" : "painted.mp4"), o);
+    EXPECT_EQ(s.timings.swapped, kFrames);
+    return frames;
+  };
+  const std::map<int, Measured> kept = swap(true), painted = swap(false);
+  ASSERT_EQ(int(kept.size()), kFrames);
+  for (const auto& [i, m] : kept) {
+    if (i < kCoverFrom) {
+      EXPECT_LT(m.covered, 0.005) << i;  // nothing covers the face
+    } else if (i >= kCoverFrom + 2) {
+      EXPECT_GT(m.kept, 0.95) << i;
+      EXPECT_GT(m.covered, 0.02) << i;
+      EXPECT_LT(painted.at(i).kept, 0.5) << i;  // the cover is on the face
+    }
+  }
+  EXPECT_EQ(painted.at(kFrames - 1).covered, 0.0);
 }
 
 // `swap --gltf`: the source's face, placed as the swap places it (at the

@@ -161,12 +161,15 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
       }
     }
     ++r.frames;
+    r.covered_mean += result.covered;
+    r.covered_max = std::max(r.covered_max, result.covered);
   };
   const SwapSummary s = run_swap(model, source.string(), video, temp.path() / "self_swap.mp4", o);
   r.source_frames_used = s.source.frames_used;
   r.photometric_median = errors.median();
   r.photometric_mean = errors.mean();
   r.face_pixels_per_frame = r.frames > 0 ? errors.count / r.frames : 0;
+  r.covered_mean = r.frames > 0 ? r.covered_mean / r.frames : 0;
   for (int k = 0; k < 3; ++k) {
     r.regions[k].mean = region_count[k] > 0 ? region_sum[k] / region_count[k] : 0;
     r.regions[k].share = errors.count > 0 ? region_count[k] / errors.count : 0;
@@ -194,12 +197,15 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
     seams += seam_ratio(result.image(result.window), result.alpha);
     seams_target += seam_ratio(target.image(result.window), result.alpha);
     ++seam_frames;
+    r.covered_mean += result.covered;
+    r.covered_max = std::max(r.covered_max, result.covered);
   };
   const SwapSummary s = run_swap(model, photo, video, out, o);
   r.timings = s.timings;
   r.faces_in_source = s.source.faces_found;
   r.seam_ratio = seam_frames > 0 ? seams / seam_frames : 0;
   r.seam_ratio_target = seam_frames > 0 ? seams_target / seam_frames : 0;
+  r.covered_mean = seam_frames > 0 ? r.covered_mean / seam_frames : 0;
 
   // Track the output again: whose face is it now, and does it do what the target did?
   std::vector<Eigen::VectorXf> output_weights;

@@ -30,6 +30,11 @@ struct SwapSelfEval {
     double mean = 0, share = 0;
   };
   std::array<Region, 3> regions;  // mouth, eyes, rest
+  // SwappedFrame::covered, mean and largest over the frames measured: on
+  // footage where nothing covers the face, how much of it the occlusion
+  // mask takes for a cover (those pixels are the target's, and are left out
+  // of the photometric error, which alpha > 0.5 selects).
+  double covered_mean = 0, covered_max = 0;
   SwapJobTimings timings;
 };
 
@@ -67,6 +72,7 @@ struct SwapPairEval {
   // often lies on real edges (jaw, hairline), which no blend should remove.
   double seam_ratio_target = 0;
   int faces_in_source = 0;
+  double covered_mean = 0, covered_max = 0;  // SwappedFrame::covered over the frames swapped
   SwapJobTimings timings;
 };
 

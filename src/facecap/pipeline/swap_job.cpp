@@ -160,6 +160,7 @@ SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, 
   mark.sources = inputs;
   mark.parameters = {{"appearance_frames", std::to_string(options.swap.appearance_frames)},
                      {"warp_background", options.swap.warp_background ? "true" : "false"},
+                     {"keep_occluders", options.swap.keep_occluders ? "true" : "false"},
                      {"match_target_size", options.swap.match_target_size ? "true" : "false"},
                      {"mirror_source", options.swap.mirror_source ? "true" : "false"},
                      {"follow_light_colour", options.swap.follow_light_colour ? "true" : "false"},
@@ -315,6 +316,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     sum.blend_ms += t.blend_ms;
     sum.wrinkle_ms += t.wrinkle_ms;
     sum.ratio_ms += t.ratio_ms;
+    sum.occlusion_ms += t.occlusion_ms;
     summary.timings.lighting_ms += stream.lighting_ms();
     summary.timings.swapped += stream.swapped();
     summary.swapped.push_back(stream.swapped());

@@ -23,6 +23,7 @@
 #include "facecap/swap/light_colour.hpp"
 #include "facecap/swap/lit_vertices.hpp"
 #include "facecap/swap/noise_matching.hpp"
+#include "facecap/swap/occlusion_mask.hpp"
 #include "facecap/swap/residual_shading.hpp"
 #include "facecap/swap/size_match.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
@@ -89,6 +90,52 @@ std::vector<std::vector<cv::Point>> feature_holes(const FaceModel& model, const 
   return holes;
 }
 
+// `seen` (per vertex) with the vertices under a cover (any part of the
+// OcclusionMask's grid `cover` above zero at one of their UVs) unseen: the
+// frame's colour there is not the face's.
+std::vector<float> uncovered(const TriangleMesh& mesh, std::vector<float> seen, const cv::Mat& cover) {
+  const float texels = float(cover.cols - 1);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec2f& uv = mesh.uvs[mesh.triangle_uvs[t][k]];
+      if (sample_bilinear_channels<1>(cover, uv.x() * texels, (1.0f - uv.y()) * texels)[0] > 0)
+        seen[mesh.triangles[t][k]] = 0;
+    }
+  }
+  return seen;
+}
+
+// How covered the target face is (the OcclusionMask grid `cover`) at each
+// pixel of a window of `size` that `camera` sees, where the target's
+// `points` (the skin mesh's vertices in camera space) show: CV_32F.
+cv::Mat covered_pixels(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
+                       const cv::Mat& cover) {
+  RasterBuffers buffers;
+  buffers.resize(size.width, size.height);
+  rasterize(points, skin.triangles, camera, buffers);
+  cv::Mat out(size, CV_32F, cv::Scalar(0));
+  const float texels = float(cover.cols - 1);
+  parallel_for(
+      size.height,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          float* o = out.ptr<float>(y);
+          for (int x = 0; x < size.width; ++x) {
+            const size_t i = size_t(y) * size.width + x;
+            const int tri = buffers.triangle[i];
+            if (tri < 0) continue;
+            const Vec2f b = buffers.bary[i];
+            const Triangle& uv = skin.triangle_uvs[tri];
+            const Vec2f coord =
+                (1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]];
+            o[x] = sample_bilinear_channels<1>(cover, coord.x() * texels, (1.0f - coord.y()) * texels)[0];
+          }
+        }
+      },
+      16);
+  return out;
+}
+
 }  // namespace
 
 struct FaceSwapper::Impl {
@@ -109,7 +156,8 @@ struct FaceSwapper::Impl {
   FaceTexture target_sum;
   FaceTexture target_first;
   int appearance_seen = 0;
-  std::vector<int> anchors;  // landmark and boundary vertices for the background warp
+  std::vector<int> anchors;                      // landmark and boundary vertices for the background warp
+  std::vector<std::optional<Vec2f>> anchor_uvs;  // each anchor's UV on the skin (none off it)
   BackgroundWarp warp;
   // §6.1.2, built on the first refined target frame.
   std::unique_ptr<CoatingTransfer> coating;
@@ -128,6 +176,7 @@ struct FaceSwapper::Impl {
   std::vector<float> target_vertex_seen;
   std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
   std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
+  std::optional<OcclusionMask> occlusion;   // SwapOptions::keep_occluders
 
   // Follows the target's identity (fixed once its tracker has solved it).
   void update_target_identity(const Eigen::VectorXf& identity) {
@@ -177,13 +226,20 @@ struct FaceSwapper::Impl {
       ro.low_pass_mm = options.residual_shading_mm;
       residual.emplace(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace), ro);
     }
-    if (options.expression_ratio)
-      ratio.emplace(skin, millimetres_per_uv(
-                              skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace)));
+    const double mm_per_uv =
+        millimetres_per_uv(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace));
+    if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
+    if (options.keep_occluders) occlusion.emplace(skin, mm_per_uv);
     anchors = model.landmarks.vertices;
     for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
       if (boundary[v] && (k++ % 3 == 0)) anchors.push_back(v);
     }
+    std::vector<std::optional<Vec2f>> vertex_uvs(skin.num_vertices);
+    for (size_t t = 0; t < skin.triangles.size(); ++t)
+      for (int c = 0; c < 3; ++c) {
+        if (!vertex_uvs[skin.triangles[t][c]]) vertex_uvs[skin.triangles[t][c]] = skin.uvs[skin.triangle_uvs[t][c]];
+      }
+    for (const int v : anchors) anchor_uvs.push_back(v < skin.num_vertices ? vertex_uvs[v] : std::nullopt);
   }
 
   // Eq. 6.1-6.2: the target's fine motion since the reference frame, rotated
@@ -331,14 +387,33 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     m.appearance_seen = 0;
     m.target_sum = FaceTexture();
     if (m.ratio) m.ratio->clear_reference();
+    if (m.occlusion) m.occlusion->clear_reference();
   }
   const std::vector<std::vector<cv::Point>> holes = feature_holes(m.model, target_points, target.camera);
   const bool appearance_frame = m.appearance_seen < m.options.appearance_frames;
+  // What covers the target face; its skin texture, on the same grid as the
+  // expression ratio's, serves that too.
+  cv::Mat cover;
+  std::optional<FaceTexture> skin_now;
+  double occlusion_ms = 0;
+  if (m.occlusion) {
+    t0 = std::chrono::steady_clock::now();
+    const FaceTexture seen = m.occlusion->unshade(frame, target_points, target.camera, target.lighting, holes);
+    skin_now = FaceTexture{seen.albedo, seen.weight.clone()};
+    drop_non_skin(*skin_now);
+    if (appearance_frame) m.occlusion->add_reference(seen);
+    cover = m.occlusion->covered(seen);
+    skin_now->weight.setTo(0, cover > 0);  // the expression ratio's change is the face's, not a cover's
+    occlusion_ms = ms_since(t0);
+    t.occlusion_ms += occlusion_ms;
+  }
   cv::Mat ratio_gains;
   double ratio_ms = 0;
   if (m.ratio) {
     t0 = std::chrono::steady_clock::now();
-    const FaceTexture now = m.ratio->unshade(frame, target_points, target.camera, target.lighting, holes);
+    const FaceTexture now = skin_now && m.occlusion->grid_size() == m.ratio->grid_size()
+                                ? *skin_now
+                                : m.ratio->unshade(frame, target_points, target.camera, target.lighting, holes);
     if (appearance_frame) m.ratio->add_reference(now);
     ratio_gains = m.ratio->gains(now);
     ratio_ms = ms_since(t0);
@@ -365,7 +440,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   cv::Mat gains;
   if (m.target_vertex_albedo.cols() > 0 && (m.options.follow_light_colour || m.residual)) {
     const std::vector<LitVertex> lit =
-        lit_vertices(frame, target_points, vertex_normals(target_points, m.skin.triangles), m.target_vertex_seen,
+        lit_vertices(frame, target_points, vertex_normals(target_points, m.skin.triangles),
+                     cover.empty() ? m.target_vertex_seen : uncovered(m.skin, m.target_vertex_seen, cover),
                      target.camera, target.lighting);
     if (m.options.follow_light_colour) tint = light_colour(lit, m.target_vertex_albedo);
     if (m.residual) gains = m.residual->gains(lit, m.target_vertex_albedo);
@@ -428,7 +504,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
         }
       },
       16);
-  t.render_ms += ms_since(start) - appearance_ms - ratio_ms;
+  t.render_ms += ms_since(start) - appearance_ms - ratio_ms - occlusion_ms;
 
   if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {
     t0 = std::chrono::steady_clock::now();
@@ -440,8 +516,17 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   t0 = std::chrono::steady_clock::now();
   cv::Mat background;
   if (m.options.warp_background) {
-    m.warp.warp(frame, project_vertices(target_points, m.anchors, target.camera),
-                project_vertices(swapped_points, m.anchors, target.camera), out.window, background);
+    const std::vector<cv::Point2f> from = project_vertices(target_points, m.anchors, target.camera);
+    std::vector<cv::Point2f> to = project_vertices(swapped_points, m.anchors, target.camera);
+    // What covers an anchor holds still, beyond the face's outline too
+    // (the rest of a hand, a microphone's stand).
+    for (size_t k = 0; k < to.size() && !cover.empty(); ++k) {
+      const std::optional<Vec2f>& uv = m.anchor_uvs[k];
+      const float texels = float(cover.cols - 1);
+      if (uv && sample_bilinear_channels<1>(cover, uv->x() * texels, (1.0f - uv->y()) * texels)[0] > 0.5f)
+        to[k] = from[k];
+    }
+    m.warp.warp(frame, from, to, out.window, background);
   } else {
     background = frame(out.window).clone();
   }
@@ -471,6 +556,31 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   out.alpha.convertTo(layer.mask, CV_8U, 255.0);
   composite_layer(out.image, layer, 0, 1.0);
   t.blend_ms += ms_since(t0);
+
+  if (!cover.empty() && cv::countNonZero(cover) > 0) {
+    // The covers stay in front, where the frame has them: neither the new
+    // face nor the background's warp moves them.
+    t0 = std::chrono::steady_clock::now();
+    cv::Mat in_front = covered_pixels(m.skin, target_points, window, out.window.size(), cover);
+    // Across the openings of the skin mesh (the mouth, the eyes) where a
+    // cover lies on both sides of them.
+    const int across = std::max(1, cvRound(0.06 * out.window.width));
+    cv::morphologyEx(in_front, in_front, cv::MORPH_CLOSE,
+                     cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * across + 1, 2 * across + 1)));
+    const double full = cv::sum(out.alpha)[0];
+    out.alpha = out.alpha.mul(1.0f - in_front);
+    out.covered = full > 0 ? 1.0 - cv::sum(out.alpha)[0] / full : 0.0;
+    if (out.covered > 0) {
+      cv::Mat mixed, weight;
+      cv::merge(std::vector<cv::Mat>(3, in_front), weight);
+      cv::Mat swapped_f, frame_f;
+      out.image(out.window).convertTo(swapped_f, CV_32FC3);
+      frame(out.window).convertTo(frame_f, CV_32FC3);
+      mixed = swapped_f + weight.mul(frame_f - swapped_f);
+      mixed.convertTo(out.image(out.window), CV_8UC3);
+    }
+    t.occlusion_ms += ms_since(t0);
+  }
   return out;
 }
 

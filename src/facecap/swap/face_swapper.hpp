@@ -89,6 +89,10 @@ struct SwapOptions {
   // / 9.539 (_b); at 32 texels (gain 0.7) 4.675 / 6.346 and 6.675 / 9.682.
   float photo_detail_gain = 0.7f;
   double photo_detail_fraction = 16.0 / 1024.0;
+  // Leave what covers the target's face (a hand, a microphone, hair) in
+  // front of the new face (occlusion_mask.hpp); off: the new face is laid
+  // over it, as in the paper (`swap --no-occlusion`).
+  bool keep_occluders = true;
 };
 
 // The source portrait, reconstructed.
@@ -127,12 +131,16 @@ struct SwapTimings {
   double blend_ms = 0;       // alpha blending
   double wrinkle_ms = 0;     // coating transfer and its shading (with SwapOptions::wrinkles)
   double ratio_ms = 0;       // the target's unshading and change (with SwapOptions::expression_ratio)
+  double occlusion_ms = 0;   // what covers the target face (with SwapOptions::keep_occluders)
 };
 
 struct SwappedFrame {
   cv::Mat image;
   cv::Rect window;  // where the frame changed
   cv::Mat alpha;    // CV_32F, window-sized: the new face's share of each pixel
+  // The share of the new face (of its alpha, summed) left out where
+  // something covers the target's face (SwapOptions::keep_occluders).
+  double covered = 0;
 };
 
 class FaceSwapper {

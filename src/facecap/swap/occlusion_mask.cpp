@@ -1,0 +1,154 @@
+#include "facecap/swap/occlusion_mask.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+#include "facecap/core/error.hpp"
+
+namespace facecap {
+
+namespace {
+
+constexpr float kNone = std::numeric_limits<float>::max();
+
+cv::Mat log_colour(const cv::Mat& bgr) {
+  cv::Mat out;
+  cv::log(cv::max(bgr, 0.02f), out);
+  return out;
+}
+
+// A round structuring element `radius` texels across each way.
+cv::Mat disc(int radius) {
+  return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
+}
+
+int texels(float mm, double texels_per_mm) { return static_cast<int>(std::lround(mm * texels_per_mm)); }
+
+}  // namespace
+
+OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options)
+    : options_(options), skin_(skin) {
+  if (!(mm_per_uv > 0)) throw Error("occlusion mask: the mesh has no UV extent");
+  if (!(options_.texel_mm > 0 && options_.min_log_change > 0 && options_.slide_mm >= 0 && options_.min_extent_mm >= 0 &&
+        options_.unseen_mm >= 0 && options_.margin_mm >= 0 && options_.feather_mm >= 0))
+    throw Error("occlusion mask: needs a positive texel size and change, and no negative distance");
+  const int size = std::clamp(static_cast<int>(std::lround(mm_per_uv / options_.texel_mm)), 32, 1024);
+  map_ = rasterize_uv(skin_, size);
+  texels_per_mm_ = (size - 1) / mm_per_uv;
+}
+
+FaceTexture OcclusionMask::unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
+                                   const ShCoeffs& lighting,
+                                   const std::vector<std::vector<cv::Point>>& excluded) const {
+  return unshade_face(frame, target_points, skin_.triangles, camera, lighting, map_, excluded);
+}
+
+void OcclusionMask::clear_reference() { low_ = high_ = log_sum_ = weight_sum_ = cv::Mat(); }
+
+void OcclusionMask::add_reference(const FaceTexture& seen) {
+  const int n = map_.size;
+  if (low_.empty()) {
+    low_ = cv::Mat(n, n, CV_32FC3, cv::Scalar::all(kNone));
+    high_ = cv::Mat(n, n, CV_32FC3, cv::Scalar::all(-kNone));
+    log_sum_ = cv::Mat(n, n, CV_32FC3, cv::Scalar::all(0));
+    weight_sum_ = cv::Mat(n, n, CV_32F, cv::Scalar(0));
+  }
+  const cv::Mat log = log_colour(seen.albedo);
+  const cv::Mat unseen = seen.weight <= 0;
+  // This frame's least and most within slide_mm (unseen texels take no
+  // part), folded into the envelope.
+  cv::Mat low = log.clone(), high = log.clone();
+  low.setTo(cv::Scalar::all(kNone), unseen);
+  high.setTo(cv::Scalar::all(-kNone), unseen);
+  const int slide = texels(options_.slide_mm, texels_per_mm_);
+  if (slide > 0) {
+    cv::erode(low, low, disc(slide), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar::all(kNone));
+    cv::dilate(high, high, disc(slide), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar::all(-kNone));
+  }
+  low_ = cv::min(low_, low);
+  high_ = cv::max(high_, high);
+  cv::Mat weighted;
+  cv::merge(std::vector<cv::Mat>(3, seen.weight), weighted);
+  log_sum_ += log.mul(weighted);
+  weight_sum_ += seen.weight;
+}
+
+cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
+  const int n = map_.size;
+  cv::Mat out(n, n, CV_32F, cv::Scalar(0));
+  if (low_.empty() || seen.empty()) return out;
+  const cv::Mat log = log_colour(seen.albedo);
+  const cv::Mat both = (seen.weight > 0) & (weight_sum_ > 0);
+  if (cv::countNonZero(both) < 50) return out;
+
+  // The frame's overall shift: per channel, the median of its log colour
+  // less the appearance frames' mean, over the texels both saw (every
+  // third of them each way: a median needs no more).
+  cv::Vec3f shift;
+  {
+    std::vector<float> values[3];
+    for (int k = 0; k < 3; ++k) values[k].reserve(size_t(n) * n / 9 + n);
+    for (int y = 0; y < n; y += 3) {
+      const auto* l = log.ptr<cv::Vec3f>(y);
+      const auto* s = log_sum_.ptr<cv::Vec3f>(y);
+      const float* w = weight_sum_.ptr<float>(y);
+      const uchar* b = both.ptr<uchar>(y);
+      for (int x = 0; x < n; x += 3) {
+        if (!b[x]) continue;
+        for (int k = 0; k < 3; ++k) values[k].push_back(l[x][k] - s[x][k] / w[x]);
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      std::nth_element(values[k].begin(), values[k].begin() + values[k].size() / 2, values[k].end());
+      shift[k] = values[k][values[k].size() / 2];
+    }
+  }
+  // Outside the envelope by more than min_log_change in some channel.
+  cv::Mat found(n, n, CV_8U, cv::Scalar(0));
+  for (int y = 0; y < n; ++y) {
+    const auto* l = log.ptr<cv::Vec3f>(y);
+    const auto* lo = low_.ptr<cv::Vec3f>(y);
+    const auto* hi = high_.ptr<cv::Vec3f>(y);
+    const float* w = seen.weight.ptr<float>(y);
+    uchar* f = found.ptr<uchar>(y);
+    for (int x = 0; x < n; ++x) {
+      if (w[x] <= 0 || lo[x][0] == kNone) continue;
+      float outside = 0;
+      for (int k = 0; k < 3; ++k) {
+        const float v = l[x][k] - shift[k];
+        outside = std::max({outside, lo[x][k] - v, v - hi[x][k]});
+      }
+      if (outside > options_.min_log_change) f[x] = 255;
+    }
+  }
+  const int speck = texels(0.5f * options_.min_extent_mm, texels_per_mm_);
+  if (speck > 0) cv::morphologyEx(found, found, cv::MORPH_OPEN, disc(speck));
+  if (cv::countNonZero(found) == 0) return out;
+  // Gaps as wide as an edge's band, and what the frame does not see (turned
+  // away at the chin, inside the mouth's outline) as far as unseen_mm from
+  // a cover: the new face's outline differs from the target's, and may
+  // show there.
+  const int band = texels(options_.slide_mm + 2.0f, texels_per_mm_);
+  if (band > 0) cv::morphologyEx(found, found, cv::MORPH_CLOSE, disc(band));
+  const cv::Mat unseen = seen.weight <= 0;
+  for (int i = 0, reach = texels(options_.unseen_mm, texels_per_mm_); i < reach; ++i) {
+    cv::Mat grown;
+    cv::dilate(found, grown, disc(1));
+    found |= grown & unseen;
+  }
+  // What the covers enclose: all that the grid's border cannot reach.
+  cv::Mat outside;
+  cv::copyMakeBorder(found, outside, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
+  cv::floodFill(outside, cv::Point(0, 0), 128);
+  found.setTo(255, outside(cv::Rect(1, 1, n, n)) == 0);
+  const int grow = texels(options_.margin_mm, texels_per_mm_);
+  if (grow > 0) cv::dilate(found, found, disc(grow));
+  found.convertTo(out, CV_32F, 1.0 / 255);
+  const double sigma = 0.5 * options_.feather_mm * texels_per_mm_;
+  if (sigma > 0) cv::GaussianBlur(out, out, cv::Size(0, 0), sigma);
+  return out;
+}
+
+}  // namespace facecap

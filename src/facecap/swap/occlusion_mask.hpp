@@ -1,0 +1,79 @@
+#pragma once
+// What covers the target's face in a frame (a hand, a microphone, a cup, a
+// strand of hair), so that the swap leaves it in front of the new face
+// rather than painting over it: a departure from the paper, whose swap
+// (§6.3) blends the new face over whatever hides the old one.
+//
+// Each frame the target face is unshaded into a UV grid about a millimetre
+// per texel. A texel is covered where this frame's colour there lies
+// outside what the appearance frames showed around it: in some channel, its
+// log colour (after the frame's overall shift, which the light's colour
+// and level leave, is taken out) is more than min_log_change below the
+// least or above the most that any appearance frame saw within slide_mm of
+// the texel. The neighbourhood is what tolerates the tracking sliding an
+// edge (a brow, a lip, a mole) across the surface; a cover's colour is
+// nowhere near. Specks narrower than min_extent_mm are dropped; gaps as
+// wide as an edge's band and what the covers enclose are filled, and so is
+// what the frame does not see up to unseen_mm from a cover (the new face's
+// outline is not the target's); the rest grows by margin_mm and fades over
+// feather_mm, so the cover's edge takes the frame's own pixels.
+//
+// Something that covers the face in its appearance frames is taken for the
+// face; a cover of the skin's own colour and brightness (a hand in the same
+// light) is not found.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/core/mesh.hpp"
+#include "facecap/core/spherical_harmonics.hpp"
+#include "facecap/render/uv_raster.hpp"
+#include "facecap/swap/face_texture.hpp"
+
+namespace facecap {
+
+struct OcclusionOptions {
+  float texel_mm = 1.0f;        // the grid, as the expression ratio's
+  float min_log_change = 0.7f;  // a factor of 2 in a channel, past what the appearance frames showed nearby
+  float slide_mm = 3.0f;        // how far the tracking slides the face's features
+  float min_extent_mm = 3.0f;   // narrower covers are noise
+  float unseen_mm = 10.0f;      // covers reach this far into what the frame does not see
+  float margin_mm = 2.0f;       // the mask grows this far past what was found
+  float feather_mm = 2.0f;      // and fades over this width
+};
+
+class OcclusionMask {
+ public:
+  // `skin`: the face's triangles with UVs; `mm_per_uv`: millimetres on the
+  // face per unit of UV (millimetres_per_uv()).
+  OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options = {});
+
+  // One frame unshaded into the grid (unshade_face's arguments), as the
+  // camera saw it: nothing dropped as non-skin.
+  FaceTexture unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
+                      const ShCoeffs& lighting, const std::vector<std::vector<cv::Point>>& excluded) const;
+
+  // The appearance frames (unshade()'s): what the face looks like uncovered.
+  void clear_reference();
+  void add_reference(const FaceTexture& seen);
+
+  // How covered each texel is (CV_32F, 0..1, grid_size() square over UV
+  // [0, 1]^2, row 0 at v = 1) in a frame unshaded by unshade(); all zero
+  // before any reference.
+  cv::Mat covered(const FaceTexture& seen) const;
+
+  int grid_size() const { return map_.size; }
+
+ private:
+  OcclusionOptions options_;
+  TriangleMesh skin_;
+  UvTexelMap map_;
+  double texels_per_mm_ = 0;
+  // Over the appearance frames so far, per texel and channel, the least and
+  // the most log colour seen within slide_mm (CV_32FC3; +-inf where none
+  // was), and the weighted sums of the mean log colour.
+  cv::Mat low_, high_;
+  cv::Mat log_sum_, weight_sum_;
+};
+
+}  // namespace facecap
