@@ -68,7 +68,9 @@ TEST(OcclusionMask, ACoverOfAnotherColourIsCoveredAndFeatheredAtItsEdge) {
   const cv::Mat c = mask.covered(with_disc(skin(n, 20), {64, 80}, 15, kNavy));
   EXPECT_GT(c.at<float>(80, 64), 0.99f);
   EXPECT_GT(c.at<float>(80, 64 + 14), 0.99f);  // its edge, inside the 2 mm margin
-  EXPECT_GT(c.at<float>(80, 64 + 17), 0.3f);   // fading past the margin
+  EXPECT_GT(c.at<float>(80, 64 + 16), 0.5f);
+  EXPECT_GT(c.at<float>(80, 64 + 18), 0.0f);  // fading past the margin
+  EXPECT_LT(c.at<float>(80, 64 + 18), 0.5f);
   EXPECT_EQ(c.at<float>(80, 64 + 24), 0.0f);
   EXPECT_EQ(c.at<float>(20, 20), 0.0f);
   // So is a white one (a microphone) over the brow. (A dark one there is
@@ -82,10 +84,12 @@ TEST(OcclusionMask, SlidingFeaturesSpecksAndLightAreNoCover) {
   OcclusionMask mask(unit_square(), kMmPerUv);
   const int n = mask.grid_size();
   mask.add_reference(skin(n, 40));
-  // The brow 3 mm lower (the tracking slid it), within slide_mm.
-  EXPECT_EQ(largest(mask.covered(skin(n, 43))), 0.0);
-  // 6 mm lower is a change no slide explains: the brow's new rows are covered.
-  EXPECT_GT(largest(mask.covered(skin(n, 46))), 0.5);
+  // The brow 4 mm lower (the tracking slid it), within slide_mm; 10 mm
+  // lower, the 6 mm past slide_mm are narrower than a cover.
+  EXPECT_EQ(largest(mask.covered(skin(n, 44))), 0.0);
+  EXPECT_EQ(largest(mask.covered(skin(n, 50))), 0.0);
+  // 12 mm lower is a change no slide explains: the brow's new rows are covered.
+  EXPECT_GT(largest(mask.covered(skin(n, 52))), 0.5);
   // A speck narrower than min_extent_mm.
   FaceTexture speck = skin(n, 40);
   speck.albedo(cv::Rect(64, 90, 2, 2)).setTo(cv::Scalar(kNavy[0], kNavy[1], kNavy[2]));

@@ -35,8 +35,8 @@ namespace facecap {
 struct OcclusionOptions {
   float texel_mm = 1.0f;        // the grid, as the expression ratio's
   float min_log_change = 0.7f;  // a factor of 2 in a channel, past what the appearance frames showed nearby
-  float slide_mm = 3.0f;        // how far the tracking slides the face's features
-  float min_extent_mm = 3.0f;   // narrower covers are noise
+  float slide_mm = 4.0f;        // how far the tracking slides the face's features
+  float min_extent_mm = 6.0f;   // narrower covers are noise
   float unseen_mm = 10.0f;      // covers reach this far into what the frame does not see
   float margin_mm = 2.0f;       // the mask grows this far past what was found
   float feather_mm = 2.0f;      // and fades over this width
