@@ -94,12 +94,9 @@ std::vector<std::vector<cv::Point>> feature_holes(const FaceModel& model, const 
 // OcclusionMask's grid `cover` above zero at one of their UVs) unseen: the
 // frame's colour there is not the face's.
 std::vector<float> uncovered(const TriangleMesh& mesh, std::vector<float> seen, const cv::Mat& cover) {
-  const float texels = float(cover.cols - 1);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
-      const Vec2f& uv = mesh.uvs[mesh.triangle_uvs[t][k]];
-      if (sample_bilinear_channels<1>(cover, uv.x() * texels, (1.0f - uv.y()) * texels)[0] > 0)
-        seen[mesh.triangles[t][k]] = 0;
+      if (cover_at(cover, mesh.uvs[mesh.triangle_uvs[t][k]]) > 0) seen[mesh.triangles[t][k]] = 0;
     }
   }
   return seen;
@@ -114,7 +111,6 @@ cv::Mat covered_pixels(const TriangleMesh& skin, const Positions& points, const 
   buffers.resize(size.width, size.height);
   rasterize(points, skin.triangles, camera, buffers);
   cv::Mat out(size, CV_32F, cv::Scalar(0));
-  const float texels = float(cover.cols - 1);
   parallel_for(
       size.height,
       [&](int y0, int y1) {
@@ -128,7 +124,7 @@ cv::Mat covered_pixels(const TriangleMesh& skin, const Positions& points, const 
             const Triangle& uv = skin.triangle_uvs[tri];
             const Vec2f coord =
                 (1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]];
-            o[x] = sample_bilinear_channels<1>(cover, coord.x() * texels, (1.0f - coord.y()) * texels)[0];
+            o[x] = cover_at(cover, coord);
           }
         }
       },
@@ -521,10 +517,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     // What covers an anchor holds still, beyond the face's outline too
     // (the rest of a hand, a microphone's stand).
     for (size_t k = 0; k < to.size() && !cover.empty(); ++k) {
-      const std::optional<Vec2f>& uv = m.anchor_uvs[k];
-      const float texels = float(cover.cols - 1);
-      if (uv && sample_bilinear_channels<1>(cover, uv->x() * texels, (1.0f - uv->y()) * texels)[0] > 0.5f)
-        to[k] = from[k];
+      if (m.anchor_uvs[k] && cover_at(cover, *m.anchor_uvs[k]) > 0.5f) to[k] = from[k];
     }
     m.warp.warp(frame, from, to, out.window, background);
   } else {
@@ -563,7 +556,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     t0 = std::chrono::steady_clock::now();
     cv::Mat in_front = covered_pixels(m.skin, target_points, window, out.window.size(), cover);
     // Across the openings of the skin mesh (the mouth, the eyes) where a
-    // cover lies on both sides of them.
+    // cover lies on both sides of them: up to 6 % of the window each way
+    // (the window is about 1.4 face widths: some 12 mm).
     const int across = std::max(1, cvRound(0.06 * out.window.width));
     cv::morphologyEx(in_front, in_front, cv::MORPH_CLOSE,
                      cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * across + 1, 2 * across + 1)));

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/image_sampling.hpp"
 
 namespace facecap {
 
@@ -27,6 +28,11 @@ cv::Mat disc(int radius) {
 int texels(float mm, double texels_per_mm) { return static_cast<int>(std::lround(mm * texels_per_mm)); }
 
 }  // namespace
+
+float cover_at(const cv::Mat& cover, const Vec2f& uv) {
+  const float texels = float(cover.cols - 1);
+  return sample_bilinear_channels<1>(cover, uv.x() * texels, (1.0f - uv.y()) * texels)[0];
+}
 
 OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options)
     : options_(options), skin_(skin) {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "facecap/core/camera.hpp"
+#include "facecap/core/geometry.hpp"
 #include "facecap/core/mesh.hpp"
 #include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/render/uv_raster.hpp"
@@ -41,6 +42,9 @@ struct OcclusionOptions {
   float margin_mm = 2.0f;       // the mask grows this far past what was found
   float feather_mm = 2.0f;      // and fades over this width
 };
+
+// A covered() grid's value at a UV point (bilinear).
+float cover_at(const cv::Mat& cover, const Vec2f& uv);
 
 class OcclusionMask {
  public:
