@@ -214,13 +214,22 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
   struct Measured {
     double kept = 0, covered = 0;
   };
+  // --matte: the alpha of each frame, as the video will hold it.
+  const fs::path matte = dir.path() / "matte.mp4";
+  std::vector<cv::Mat> alphas;
   auto swap = [&](bool keep_occluders) {
     SwapJobOptions o = short_run(kFrames);
     o.swap.keep_occluders = keep_occluders;
+    if (keep_occluders) o.matte = matte;
     std::map<int, Measured> frames;
     o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& r) {
       Measured& m = frames[target.index];
       m.covered = r.covered;
+      if (keep_occluders) {
+        cv::Mat alpha(r.image.size(), CV_8U, cv::Scalar(0));
+        r.alpha.convertTo(alpha(r.window), CV_8U, 255.0);
+        alphas.push_back(alpha);
+      }
       if (target.index < kCoverFrom) return;
       cv::Mat disc(r.image.size(), CV_8U, cv::Scalar(0));
       cv::circle(disc, cover_centre(target.index), kRadius - 4, cv::Scalar(255), cv::FILLED);
@@ -247,6 +256,21 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
     }
   }
   EXPECT_EQ(painted.at(kFrames - 1).covered, 0.0);
+  // The matte: frame for frame the new face's alpha, the cover cut out,
+  // within x264's rounding of grey levels; marked as the swap is.
+  EXPECT_TRUE(carries_synthetic_marks(matte));
+  auto matte_video = open_input(matte.string());
+  ASSERT_EQ(matte_video->info().frames, kFrames);
+  Frame f;
+  for (int i = 0; i < kFrames && matte_video->read(f); ++i) {
+    cv::Mat grey;
+    cv::extractChannel(f.image, grey, 1);
+    EXPECT_LE(cv::norm(grey, alphas[i], cv::NORM_INF), 3.0) << i;
+    if (i >= kCoverFrom + 2) {
+      EXPECT_LT(grey.at<uchar>(cover_centre(i)), 3) << i;
+    }
+    EXPECT_GT(cv::countNonZero(grey > 128), 20000) << i;  // the face
+  }
 }
 
 // `swap --gltf`: the source's face, placed as the swap places it (at the

@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
@@ -109,6 +110,35 @@ TEST(TransformEval, LinearBaselineAlsoKeepsTheLips) {
   const TransformEval r = evaluate_transform(*model, video.string(), Emotion::kSurprise, o);
   EXPECT_LE(r.lip_error_mm, 1.0);
   EXPECT_GT(r.target_rise, 0.1);
+}
+
+// --matte: the re-rendered face's blend mask over each frame, frame for
+// frame with the output and marked as it is; not the output's own name.
+TEST(TransformJob, TheMatteShowsWhereTheFaceWasReRendered) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  TransformJobOptions o = short_run(12);
+  o.matte = dir.path() / "matte.mp4";
+  const fs::path out = dir.path() / "out.mp4";
+  const TransformSummary s = run_transform(*model, video.string(), out, o);
+  ASSERT_EQ(s.frames.size(), 12u);
+  EXPECT_TRUE(carries_synthetic_marks(o.matte));
+  auto matte = open_input(o.matte.string());
+  EXPECT_EQ(matte->info().frames, 12);
+  EXPECT_FALSE(matte->info().audio);
+  Frame m;
+  for (int i = 0; i < 12 && matte->read(m); ++i) {
+    cv::Mat grey;
+    cv::extractChannel(m.image, grey, 1);
+    // The face inside the matte; the frame's corners outside.
+    EXPECT_GT(cv::countNonZero(grey > 200), 2000) << i;
+    EXPECT_LT(grey.at<uchar>(5, 5), 3) << i;
+    EXPECT_LT(grey.at<uchar>(grey.rows - 5, grey.cols - 5), 3) << i;
+  }
+  TransformJobOptions same = o;
+  same.matte = out;
+  EXPECT_THROW(run_transform(*model, video.string(), out, same), Error);
 }
 
 TEST(TransformJob, AMissingModelFolderFailsBeforeWritingAnything) {

@@ -16,10 +16,14 @@ FaceLayer make_layer(const cv::Mat& frame, cv::Rect content, int margin) {
   return layer;
 }
 
+cv::Mat layer_blend_mask(const FaceLayer& layer, int inset, double feather) {
+  return feather_mask(layer.mask, inset, feather);
+}
+
 void composite_layer(cv::Mat& frame, const FaceLayer& layer, int inset, double feather, int levels) {
   if (layer.box.area() == 0 || cv::countNonZero(layer.mask) == 0) return;
   cv::Mat window = frame(layer.box);
-  const cv::Mat blended = laplacian_blend(window, layer.colour, feather_mask(layer.mask, inset, feather), levels);
+  const cv::Mat blended = laplacian_blend(window, layer.colour, layer_blend_mask(layer, inset, feather), levels);
   blended.copyTo(window);
 }
 

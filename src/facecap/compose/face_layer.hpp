@@ -17,8 +17,13 @@ struct FaceLayer {
 // the frame's pixels and an empty mask.
 FaceLayer make_layer(const cv::Mat& frame, cv::Rect content, int margin);
 
-// Blends the layer into the frame in place: the mask eroded by `inset`
-// pixels, feathered by `feather` pixels, and a Laplacian pyramid of `levels`.
+// The mask composite_layer() blends the layer with (8-bit, box-sized): the
+// layer's eroded by `inset` pixels and feathered by `feather` pixels; the
+// pyramid then spreads each band over its own scale.
+cv::Mat layer_blend_mask(const FaceLayer& layer, int inset = 2, double feather = 3.0);
+
+// Blends the layer into the frame in place: with layer_blend_mask() and a
+// Laplacian pyramid of `levels`.
 void composite_layer(cv::Mat& frame, const FaceLayer& layer, int inset = 2, double feather = 3.0, int levels = 5);
 
 }  // namespace facecap

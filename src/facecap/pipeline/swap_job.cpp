@@ -11,6 +11,7 @@
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
+#include "facecap/io/matte_output.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/regions.hpp"
@@ -138,6 +139,7 @@ SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, 
   s.input = open_input(target, options.capture.start_seconds);
   s.info = s.input->info();
   check_edit_output(output, s.info.kind);  // a video, or an image for a photo target
+  if (!options.matte.empty()) check_matte_output(options.matte, output, s.info.kind, inputs);
   const auto t0 = std::chrono::steady_clock::now();
   s.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames, options.source_face);
   // Each other source once, however many faces take it.
@@ -207,6 +209,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   const InputInfo& info = setup.info;
   const SyntheticMark& mark = setup.mark;
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
+  std::optional<MatteOutput> matte;
+  if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
 
   std::optional<ShotAnimations> animations;
   FaceSwapStream stream(model, summary.source.photo, summary.source.face, options.swap,
@@ -215,7 +219,11 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
                             append_animation_key(animations->keys(f.shot, f.identity), has_timeline(info), f.index,
                                                  f.time, f.fit.pose, f.fit.expression, key_gaze(f.fit.gaze));
                           const cv::Mat& out = swapped ? swapped->image : f.image;
-                          writer.write(out, output_time(info, f.index, f.time));
+                          const double time = output_time(info, f.index, f.time);
+                          writer.write(out, time);
+                          if (matte)
+                            matte->write(swapped ? swapped->alpha : cv::Mat(), swapped ? swapped->window : cv::Rect(),
+                                         f.image.size(), time);
                           if (options.on_output_frame) options.on_output_frame(f.index, out);
                           if (options.on_frame) options.on_frame(f, swapped ? *swapped : SwappedFrame{f.image, {}, {}});
                         });
@@ -250,6 +258,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
   write_synthetic_sidecar(output, mark);
+  if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
   return summary;
 }
@@ -257,7 +266,8 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
 AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string& source_photo,
                                        const std::string& target, const fs::path& output, const SwapJobOptions& options,
                                        const AllFacesOptions& all) {
-  if (!options.gltf.empty()) throw Error("--gltf is for one face: it cannot be used with --all-faces");
+  if (!options.gltf.empty() || !options.matte.empty())
+    throw Error("--gltf and --matte are for one face: they cannot be used with --all-faces");
   for (const auto& [face, photo] : options.face_sources) {
     if (all.unedited.contains(face))
       throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given a source");

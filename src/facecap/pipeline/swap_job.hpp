@@ -50,6 +50,10 @@ struct SwapJobOptions {
   // sidecar GLTF.json; one per shot where the target cuts
   // (shot_animations.hpp). Empty: none.
   std::filesystem::path gltf;
+  // The new face's share of each output pixel (SwappedFrame::alpha, after
+  // the covers), as a greyscale video or image frame for frame with the
+  // output (matte_output.hpp), marked like it. Empty: none.
+  std::filesystem::path matte;
   // Called with each output frame (and the target frame it came from).
   std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
   // Each output frame as it is written (before encoding), in order, with
@@ -88,7 +92,7 @@ struct AllFacesSwapSummary {
 // anonymising bystanders with a consenting person's face. Each face's swap
 // changes only its window of the frame; where two windows overlap, the face
 // found later is laid over. SwapJobOptions::gltf is for one face (an error
-// here); capture.tracker.pick and on_frame are not used.
+// here, as is matte); capture.tracker.pick and on_frame are not used.
 AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string& source_photo,
                                        const std::string& target, const std::filesystem::path& output,
                                        const SwapJobOptions& options, const AllFacesOptions& all = {});

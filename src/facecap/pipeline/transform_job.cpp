@@ -12,6 +12,7 @@
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
+#include "facecap/io/matte_output.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/pipeline/face_animation.hpp"
@@ -50,6 +51,7 @@ void check_transform_job(const std::string& input, const InputInfo& info, const 
     ensure_not_an_input(options.gltf, {input});
   }
   if (!options.plot.empty()) ensure_not_an_input(options.plot, {input});
+  if (!options.matte.empty()) check_matte_output(options.matte, output, info.kind, {input});
 }
 
 SyntheticMark transform_mark(const std::string& input, const InputInfo& info, const TransformJobOptions& options) {
@@ -87,6 +89,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   check_transform_job(input, info, output, options, mapper);
   const SyntheticMark mark = transform_mark(input, info, options);
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
+  std::optional<MatteOutput> matte;
+  if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
 
   TransformSummary summary;
   std::optional<ShotAnimations> animations;  // --gltf, one file per shot
@@ -99,7 +103,11 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
           composite_layer(out, *t.layer);
           summary.timings.render_ms += ms_since(t0);
         }
-        writer.write(out, output_time(info, t.frame.index, t.frame.time));
+        const double time = output_time(info, t.frame.index, t.frame.time);
+        writer.write(out, time);
+        if (matte)
+          matte->write(t.layer ? layer_blend_mask(*t.layer) : cv::Mat(), t.layer ? t.layer->box : cv::Rect(),
+                       t.frame.image.size(), time);
         if (options.on_frame) options.on_frame(t.frame.index, out);
         if (t.weights.valid && animations)
           append_animation_key(animations->keys(t.frame.shot, t.frame.identity), has_timeline(info), t.weights.index,
@@ -140,6 +148,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
     throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
   write_synthetic_sidecar(output, mark);
+  if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
   if (!options.plot.empty()) write_weight_plot(options.plot, summary.frames, model.expression_names);
   return summary;
@@ -148,8 +157,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
 AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const std::string& input,
                                                  const fs::path& output, const TransformJobOptions& options,
                                                  const AllFacesOptions& all) {
-  if (!options.gltf.empty() || !options.plot.empty())
-    throw Error("--gltf and --plot are for one face: they cannot be used with --all-faces");
+  if (!options.gltf.empty() || !options.plot.empty() || !options.matte.empty())
+    throw Error("--gltf, --plot and --matte are for one face: they cannot be used with --all-faces");
   for (const auto& [face, expression] : options.face_expressions) {
     if (all.unedited.contains(face))
       throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given an expression");

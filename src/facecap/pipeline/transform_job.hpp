@@ -29,6 +29,10 @@ struct TransformJobOptions {
   // marked as synthetic like the video (empty: none); one per shot where
   // the input cuts (shot_animations.hpp).
   std::filesystem::path gltf;
+  // The re-rendered face's share of each output pixel (layer_blend_mask,
+  // before the pyramid), as a greyscale video or image frame for frame with
+  // the output (matte_output.hpp), marked like it. Empty: none; one face's.
+  std::filesystem::path matte;
   std::string description;  // for the synthetic mark, e.g. "neutral to happiness"
   // --all-faces: faces (by index in the order found, as track --all-faces
   // numbers them) given an expression of their own (`--face-to 1=sadness`,
