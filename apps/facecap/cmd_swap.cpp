@@ -107,15 +107,12 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     const FaceModel model = load_model(global);
     if (a->all_faces) {
       const AllFacesSwapSummary s = run_swap_all_faces(model, a->source, a->target, a->output, a->options, a->all);
-      for (size_t k = 0; k < s.swapped.size(); ++k) {
-        const auto own = sources.find(int(k));
-        const std::string what = a->all.unedited.contains(int(k)) ? " (--leave-faces)"
-                                 : own != sources.end()           ? " (the face from " + own->second + ")"
-                                                                  : "";
-        std::fprintf(stderr, "face %zu (from frame %d): frames %d, swapped %d, lost %d%s\n", k,
-                     s.target.faces[k].first_frame, s.target.captures[k].frames, s.swapped[k],
-                     s.target.captures[k].lost, what.c_str());
-      }
+      report_edited_faces(
+          s.target, a->all, "swapped", [&s](int k) { return s.swapped[k]; },
+          [&sources](int k) {
+            const auto own = sources.find(k);
+            return own != sources.end() ? "the face from " + own->second : std::string();
+          });
       report_swap(s.timings, a->output);
       report_uncaptured_faces(s.target, "left as they are");
       std::vector<int> named;

@@ -122,17 +122,16 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     const FaceModel model = load_model(global);
     if (a->all_faces) {
       const AllFacesTransformSummary s = run_transform_all_faces(model, a->input, a->output, o, a->all);
-      for (size_t k = 0; k < s.frames.size(); ++k) {
-        const int transformed = int(
-            std::count_if(s.frames[k].begin(), s.frames[k].end(), [](const TransformedFrame& f) { return f.valid; }));
-        const auto own = o.face_expressions.find(int(k));
-        const std::string what = a->all.unedited.contains(int(k))  ? " (--leave-faces)"
-                                 : own != o.face_expressions.end() ? " (" + own->second.description + ")"
-                                                                   : "";
-        std::fprintf(stderr, "face %zu (from frame %d): frames %d, transformed %d, lost %d%s\n", k,
-                     s.capture.faces[k].first_frame, s.capture.captures[k].frames, transformed,
-                     s.capture.captures[k].lost, what.c_str());
-      }
+      report_edited_faces(
+          s.capture, a->all, "transformed",
+          [&s](int k) {
+            return int(std::count_if(s.frames[k].begin(), s.frames[k].end(),
+                                     [](const TransformedFrame& f) { return f.valid; }));
+          },
+          [&o](int k) {
+            const auto own = o.face_expressions.find(k);
+            return own != o.face_expressions.end() ? own->second.description : std::string();
+          });
       report_transform(s.timings, a->output);
       report_uncaptured_faces(s.capture, "left as they are");
       std::vector<int> named;

@@ -63,6 +63,12 @@ std::pair<int, std::string> parse_face_value(const std::string& text);
 // CLI11): the K=VALUE form, and `value` (which throws facecap::Error with
 // what is wrong) on the value.
 CLI::Validator face_value_check(std::function<void(const std::string& value)> value = nullptr);
+// One line on stderr per face of an --all-faces edit, "face K (from frame
+// F): frames N, <verb> E, lost L", with in brackets --leave-faces for a face
+// left as it is, or `own(K)` for one with a choice of its own (per-face
+// options; empty: none). `edited(K)`: the frames the edit changed.
+void report_edited_faces(const AllFacesSummary& all, const AllFacesOptions& options, const char* verb,
+                         const std::function<int(int face)>& edited, const std::function<std::string(int face)>& own);
 // One line on stderr for each face a per-face option named but the input
 // did not show: "facecap: face K (<option>) was not found".
 void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& all, const char* option);

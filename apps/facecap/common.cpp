@@ -118,6 +118,18 @@ CLI::Validator face_value_check(std::function<void(const std::string& value)> va
       "");
 }
 
+void report_edited_faces(const AllFacesSummary& all, const AllFacesOptions& options, const char* verb,
+                         const std::function<int(int face)>& edited, const std::function<std::string(int face)>& own) {
+  for (int k = 0; k < int(all.faces.size()); ++k) {
+    const std::string choice = own(k);
+    const std::string note = options.unedited.contains(k) ? " (--leave-faces)"
+                             : choice.empty()             ? ""
+                                                          : " (" + choice + ")";
+    std::fprintf(stderr, "face %d (from frame %d): frames %d, %s %d, lost %d%s\n", k, all.faces[k].first_frame,
+                 all.captures[k].frames, verb, edited(k), all.captures[k].lost, note.c_str());
+  }
+}
+
 void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& all, const char* option) {
   for (const int face : named) {
     if (face >= int(all.faces.size()))

@@ -6,21 +6,15 @@
 #include <cmath>
 
 #include "facecap/core/error.hpp"
+#include "swap/unit_square.hpp"
 
 namespace facecap {
 
 namespace {
 
-// Two triangles covering UV [0, 1]^2; at 128 mm per UV unit and 1 mm per
-// texel the ratio's grid is 128 texels square.
-TriangleMesh unit_square() {
-  TriangleMesh m;
-  m.num_vertices = 4;
-  m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  m.triangle_uvs = m.triangles;
-  return m;
-}
+// At 128 mm per UV unit and 1 mm per texel the grid of test::unit_square()
+// is 128 texels square.
+using test::unit_square;
 
 constexpr double kMmPerUv = 128.0;
 

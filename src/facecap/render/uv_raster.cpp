@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facecap/core/error.hpp"
+
 namespace facecap {
 
 UvTexelMap rasterize_uv(const TriangleMesh& mesh, int size) {
@@ -45,6 +47,13 @@ double millimetres_per_uv(const TriangleMesh& mesh, const Positions& shape) {
     }
   }
   return length_uv > 0 ? 10.0 * length_3d / length_uv : 0;
+}
+
+MillimetreGrid millimetre_grid(const TriangleMesh& mesh, double mm_per_uv, double texel_mm) {
+  if (!(mm_per_uv > 0)) throw Error("the mesh has no UV extent");
+  if (!(texel_mm > 0)) throw Error("a texel must have a positive size");
+  const int size = std::clamp(static_cast<int>(std::lround(mm_per_uv / texel_mm)), 32, 1024);
+  return {rasterize_uv(mesh, size), (size - 1) / mm_per_uv};
 }
 
 }  // namespace facecap

@@ -30,6 +30,16 @@ UvTexelMap rasterize_uv(const TriangleMesh& mesh, int size);
 // `mesh` with `shape` (cm) as its positions.
 double millimetres_per_uv(const TriangleMesh& mesh, const Positions& shape);
 
+// A texel map of about `texel_mm` millimetres of surface per texel, on a
+// mesh of `mm_per_uv` millimetres per unit of UV (millimetres_per_uv()),
+// between 32 and 1024 texels square; and its texels per millimetre.
+struct MillimetreGrid {
+  UvTexelMap map;
+  double texels_per_mm = 0;
+};
+// Throws facecap::Error unless mm_per_uv and texel_mm are positive.
+MillimetreGrid millimetre_grid(const TriangleMesh& mesh, double mm_per_uv, double texel_mm);
+
 // Texel coordinates of a UV (u right, v up).
 inline Vec2f uv_to_texel(const Vec2f& uv, int size) { return {uv.x() * (size - 1), (1.0f - uv.y()) * (size - 1)}; }
 

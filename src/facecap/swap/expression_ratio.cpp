@@ -59,9 +59,9 @@ ExpressionRatio::ExpressionRatio(const TriangleMesh& skin, double mm_per_uv, Exp
   if (!(mm_per_uv > 0)) throw Error("expression ratio: the mesh has no UV extent");
   if (!(options_.texel_mm > 0 && options_.fine_mm > 0 && options_.coarse_mm > options_.fine_mm))
     throw Error("expression ratio: needs 0 < fine_mm < coarse_mm and a positive texel size");
-  const int size = std::clamp(static_cast<int>(std::lround(mm_per_uv / options_.texel_mm)), 32, 1024);
-  map_ = rasterize_uv(skin_, size);
-  texels_per_mm_ = (size - 1) / mm_per_uv;
+  MillimetreGrid grid = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
+  map_ = std::move(grid.map);
+  texels_per_mm_ = grid.texels_per_mm;
 }
 
 FaceTexture ExpressionRatio::unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,

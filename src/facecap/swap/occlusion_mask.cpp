@@ -30,8 +30,8 @@ int texels(float mm, double texels_per_mm) { return static_cast<int>(std::lround
 }  // namespace
 
 float cover_at(const cv::Mat& cover, const Vec2f& uv) {
-  const float texels = float(cover.cols - 1);
-  return sample_bilinear_channels<1>(cover, uv.x() * texels, (1.0f - uv.y()) * texels)[0];
+  const Vec2f texel = uv_to_texel(uv, cover.cols);
+  return sample_bilinear_channels<1>(cover, texel.x(), texel.y())[0];
 }
 
 OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options)
@@ -40,9 +40,9 @@ OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, Occlusi
   if (!(options_.texel_mm > 0 && options_.min_log_change > 0 && options_.slide_mm >= 0 && options_.min_extent_mm >= 0 &&
         options_.unseen_mm >= 0 && options_.margin_mm >= 0 && options_.feather_mm >= 0))
     throw Error("occlusion mask: needs a positive texel size and change, and no negative distance");
-  const int size = std::clamp(static_cast<int>(std::lround(mm_per_uv / options_.texel_mm)), 32, 1024);
-  map_ = rasterize_uv(skin_, size);
-  texels_per_mm_ = (size - 1) / mm_per_uv;
+  MillimetreGrid grid = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
+  map_ = std::move(grid.map);
+  texels_per_mm_ = grid.texels_per_mm;
 }
 
 FaceTexture OcclusionMask::unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
