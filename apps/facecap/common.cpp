@@ -219,8 +219,8 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
       ->capture_default_str();
   cmd.add_flag_callback(
       "--no-occlusion", [&swap] { swap.keep_occluders = false; },
-      "Paint the new face over whatever covers the target's face (a hand, a microphone, hair) rather than "
-      "leave it in front");
+      "Paint the new face over whatever covers the target's face (a microphone, a cup, hair: covers of another "
+      "colour than the skin; a hand in the same light is not found either way) rather than leave it in front");
 }
 
 }  // namespace facecap::cli

@@ -89,7 +89,7 @@ struct SwapOptions {
   // / 9.539 (_b); at 32 texels (gain 0.7) 4.675 / 6.346 and 6.675 / 9.682.
   float photo_detail_gain = 0.7f;
   double photo_detail_fraction = 16.0 / 1024.0;
-  // Leave what covers the target's face (a hand, a microphone, hair) in
+  // Leave what covers the target's face (a microphone, a cup, hair) in
   // front of the new face (occlusion_mask.hpp); off: the new face is laid
   // over it, as in the paper (`swap --no-occlusion`).
   bool keep_occluders = true;

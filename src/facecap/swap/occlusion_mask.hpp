@@ -1,6 +1,6 @@
 #pragma once
-// What covers the target's face in a frame (a hand, a microphone, a cup, a
-// strand of hair), so that the swap leaves it in front of the new face
+// What covers the target's face in a frame (a microphone, a cup, a strand
+// of hair, a gloved hand), so that the swap leaves it in front of the new face
 // rather than painting over it: a departure from the paper, whose swap
 // (§6.3) blends the new face over whatever hides the old one.
 //
