@@ -62,7 +62,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
       "at the target's size with its harmonised texture, keyed by the target's pose and expression; "
       "marked as synthetic, with a sidecar OUT.glb.json. A target that cuts gets one per shot: "
       "OUT_shot<N>.glb after the first");
-  CLI::Option* matte = add_matte_option(*cmd, a->options.matte, "new face");
+  add_matte_option(*cmd, a->options.matte, "new face");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
@@ -74,7 +74,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
       "Put the source's face on every face the target shows, into the one output, each from the frame it is first "
       "found in (a face entering later is found within --search-every frames): to replace everyone in a clip, as "
       "for anonymising bystanders with a consenting person's face");
-  all_faces->excludes(face)->excludes(identity)->excludes(gltf)->excludes(matte);  // each is one face's
+  all_faces->excludes(face)->excludes(identity)->excludes(gltf);  // each is one face's
   add_leave_faces_option(*cmd, all_faces, a->all);
   cmd->add_option("--face-source", a->face_sources,
                   "--all-faces: put another face on face K, K=PHOTO (a photo, short video or folder, as --source; its "

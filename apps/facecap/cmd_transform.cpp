@@ -56,7 +56,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                       "Also write the transformed performance as an animated glTF (.glb, as track --gltf; marked as "
                       "synthetic, with a sidecar .json). An input that cuts gets one per shot: OUT_shot<N>.glb after "
                       "the first");
-  CLI::Option* matte = add_matte_option(*cmd, a->options.matte, "re-rendered face");
+  add_matte_option(*cmd, a->options.matte, "re-rendered face");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
@@ -68,7 +68,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       *cmd, a->all_faces, a->all,
       "Transform every face the input shows into the one output, each from the frame it is first found in (a face "
       "entering later is found within --search-every frames), each with its own identity, lighting and smoothing");
-  all_faces->excludes(face)->excludes(identity)->excludes(plot)->excludes(gltf)->excludes(matte);  // one face's
+  all_faces->excludes(face)->excludes(identity)->excludes(plot)->excludes(gltf);  // one face's
   add_leave_faces_option(*cmd, all_faces, a->all);
   cmd->add_option("--face-to", a->face_to,
                   "--all-faces: give face K an expression of its own, K=EMOTION (say 1=sadness; with --intensity), "

@@ -76,8 +76,8 @@ void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& 
 // N more face(s) at once were <what>".
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what);
 // --matte FILE: the edit's matte (SwapJobOptions / TransformJobOptions::matte);
-// `what`: what the matte shows ("new face"). Returns the option.
-CLI::Option* add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what);
+// `what`: what the matte shows ("new face").
+void add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what);
 // --identity FILE: hold the identity of an earlier capture's identity.json
 // (CoarseFitOptions::known_identity), read when the option is parsed.
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity);

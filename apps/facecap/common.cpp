@@ -144,13 +144,13 @@ void report_uncaptured_faces(const AllFacesSummary& all, const char* what) {
                  what, int(all.faces.size()));
 }
 
-CLI::Option* add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what) {
-  return cmd.add_option(
+void add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what) {
+  cmd.add_option(
       "--matte", matte,
       "Also write the " + what +
-          "'s matte: a greyscale video (or image, for a photo) of its share "
-          "of each output pixel, 255 to 0, frame for frame with the output, for compositing; marked as "
-          "synthetic, with a sidecar MATTE.json, and without sound");
+          "'s matte: a greyscale video (or image, for a photo) of its share of each "
+          "output pixel, 255 to 0, frame for frame with the output, for compositing (with --all-faces, the "
+          "largest of the faces' shares); marked as synthetic, with a sidecar MATTE.json, and without sound");
 }
 
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {

@@ -17,6 +17,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/livelink_face.hpp"
+#include "facecap/io/synthetic_mark.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 #include "facecap/pipeline/swap_job.hpp"
 #include "facecap/pipeline/track_each_face.hpp"
@@ -458,6 +459,7 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
     both[index] = image.clone();
   };
   const fs::path out = dir.path() / "both.mp4";
+  sad_right.matte = dir.path() / "both_matte.mp4";
   const AllFacesTransformSummary s = run_transform_all_faces(*model, two.string(), out, sad_right);
   ASSERT_EQ(s.frames.size(), 2u);
   ASSERT_EQ(both.size(), 56u);
@@ -474,6 +476,21 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
     EXPECT_EQ(int(s.frames[k].size()), 56 - s.capture.faces[k].first_frame) << k;
     EXPECT_TRUE(std::all_of(s.frames[k].begin(), s.frames[k].end(), [](const TransformedFrame& f) { return f.valid; }))
         << k;
+  }
+
+  // --matte: each face's re-rendered share in its half, from where it was found.
+  const std::vector<cv::Mat> matte = decoded_frames(sad_right.matte);
+  ASSERT_EQ(matte.size(), 56u);
+  for (int k = 0; k < 2; ++k) {
+    const cv::Rect half(640 * k, 0, 640, 360);
+    for (int i = 0; i < 56; ++i) {
+      const int face = cv::countNonZero(matte[i](half).reshape(1) > 128);
+      if (i < s.capture.faces[k].first_frame) {
+        EXPECT_EQ(face, 0) << k << " " << i;
+      } else {
+        EXPECT_GT(face, 3000) << k << " " << i;
+      }
+    }
   }
 
   // Each face alone, from where it was found, with its expression.
@@ -538,6 +555,7 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
     both[index] = image.clone();
   };
   const fs::path out = dir.path() / "both.mp4";
+  own_right.matte = dir.path() / "both_matte.mp4";
   const AllFacesSwapSummary s = run_swap_all_faces(*model, photo.string(), two.string(), out, own_right);
   ASSERT_EQ(s.swapped.size(), 2u);
   ASSERT_EQ(both.size(), 40u);
@@ -561,11 +579,32 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
     one.capture.start_seconds = s.target.faces[k].first_time;
     one.capture.max_frames = 40 - s.target.faces[k].first_frame;
     one.capture.tracker.pick = {FacePick::Rule::kNearest, s.target.faces[k].box.center()};
+    one.matte = dir.path() / ("face" + std::to_string(k) + "_matte.mp4");
     run_swap(*model, (k == 1 ? other : photo).string(), two.string(),
              dir.path() / ("face" + std::to_string(k) + ".mp4"), one);
     return frames;
   };
   expect_each_half_as_its_own_run(both, alone(0), alone(1), input, entered);
+  // --matte: each half of the matte is its face's own run's matte (within
+  // the grey levels' rounding), and nothing before that face is found.
+  EXPECT_TRUE(carries_synthetic_marks(own_right.matte));
+  const std::vector<cv::Mat> matte = decoded_frames(own_right.matte);
+  ASSERT_EQ(matte.size(), 40u);
+  const cv::Rect halves[2] = {cv::Rect(0, 0, 640, 360), cv::Rect(640, 0, 640, 360)};
+  for (int k = 0; k < 2; ++k) {
+    const int first = s.target.faces[k].first_frame;
+    const std::vector<cv::Mat> own = decoded_frames(dir.path() / ("face" + std::to_string(k) + "_matte.mp4"));
+    ASSERT_EQ(int(own.size()), 40 - first) << k;
+    for (int i = 0; i < 40; ++i) {
+      const cv::Mat half = matte[i](halves[k]);
+      if (i < first) {
+        EXPECT_EQ(cv::norm(half, cv::NORM_INF), 0.0) << k << " " << i;
+        continue;
+      }
+      EXPECT_LE(cv::norm(half, own[i - first](halves[k]), cv::NORM_INF), 3.0) << k << " " << i;
+      EXPECT_GT(cv::countNonZero(half.reshape(1) > 128), 3000) << k << " " << i;  // the face
+    }
+  }
   // --leave-faces 0: the left face is followed and left as it is; the right
   // one is swapped as before.
   std::map<int, cv::Mat> spared;

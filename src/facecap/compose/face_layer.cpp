@@ -20,6 +20,8 @@ cv::Mat layer_blend_mask(const FaceLayer& layer, int inset, double feather) {
   return feather_mask(layer.mask, inset, feather);
 }
 
+cv::Mat layer_share(const FaceLayer& layer) { return layer.share.empty() ? layer_blend_mask(layer) : layer.share; }
+
 void composite_layer(cv::Mat& frame, const FaceLayer& layer, int inset, double feather, int levels) {
   if (layer.box.area() == 0 || cv::countNonZero(layer.mask) == 0) return;
   cv::Mat window = frame(layer.box);

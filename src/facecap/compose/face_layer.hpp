@@ -11,6 +11,10 @@ struct FaceLayer {
   cv::Rect box;    // the window in the frame
   cv::Mat colour;  // BGR 8-bit, box-sized
   cv::Mat mask;    // 8-bit, box-sized, 255 where the layer replaces the frame
+  // 8-bit, box-sized: the new face's share of each pixel, for a matte, where
+  // it is not layer_blend_mask() (a swap's layer, whose mask is every pixel
+  // it changed, its warped background too); empty: layer_blend_mask().
+  cv::Mat share;
 };
 
 // A window around `content` (grown by `margin`, clipped to the frame) holding
@@ -21,6 +25,10 @@ FaceLayer make_layer(const cv::Mat& frame, cv::Rect content, int margin);
 // layer's eroded by `inset` pixels and feathered by `feather` pixels; the
 // pyramid then spreads each band over its own scale.
 cv::Mat layer_blend_mask(const FaceLayer& layer, int inset = 2, double feather = 3.0);
+
+// The new face's share of each pixel of the layer's box (8-bit): `share`,
+// or layer_blend_mask() where it has none.
+cv::Mat layer_share(const FaceLayer& layer);
 
 // Blends the layer into the frame in place: with layer_blend_mask() and a
 // Laplacian pyramid of `levels`.

@@ -39,6 +39,14 @@ void LayeredFrames::write_ready() {
       for (const auto& [face, layer] : e.layers) composite_(out, layer);
       composite_ms_ += ms_since(t0);
     }
+    if (matte_) {
+      cv::Mat matte(out.size(), CV_8U, cv::Scalar(0));
+      for (const auto& [face, layer] : e.layers) {
+        cv::Mat window = matte(layer.box);
+        cv::max(window, layer_share(layer), window);
+      }
+      matte_(matte, first->first, e.time);
+    }
     write_(out, first->first, e.time);
     ++written_;
     entries_.erase(first);

@@ -25,6 +25,10 @@ class LayeredFrames {
   // re-rendered face in; a swap's layer is already blended, and is copied).
   using Composite = std::function<void(cv::Mat& frame, const FaceLayer& layer)>;
   LayeredFrames(Write write, Composite composite) : write_(std::move(write)), composite_(std::move(composite)) {}
+  // Also hands on each frame's matte (8-bit, frame-sized: at each pixel the
+  // largest layer_share() of the faces' layers there), just before the frame.
+  // Set it before the first frame.
+  void on_matte(Write matte) { matte_ = std::move(matte); }
 
   // Frame `index` (frames come in increasing order), waiting for `faces`
   // faces' word; one waiting for none is handed on at once.
@@ -48,7 +52,7 @@ class LayeredFrames {
   };
   void write_ready();  // with mutex_ held
 
-  Write write_;
+  Write write_, matte_;
   Composite composite_;
   mutable std::mutex mutex_;
   std::map<int, Entry> entries_;

@@ -194,6 +194,7 @@ FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped) {
   cv::Mat channels[3];
   cv::split(difference, channels);
   layer.mask = (channels[0] | channels[1] | channels[2]) > 0;
+  swapped.alpha.convertTo(layer.share, CV_8U, 255.0);
   return layer;
 }
 
@@ -266,8 +267,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
 AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string& source_photo,
                                        const std::string& target, const fs::path& output, const SwapJobOptions& options,
                                        const AllFacesOptions& all) {
-  if (!options.gltf.empty() || !options.matte.empty())
-    throw Error("--gltf and --matte are for one face: they cannot be used with --all-faces");
+  if (!options.gltf.empty()) throw Error("--gltf is for one face: it cannot be used with --all-faces");
   for (const auto& [face, photo] : options.face_sources) {
     if (all.unedited.contains(face))
       throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given a source");
@@ -281,6 +281,8 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   SyntheticMark& mark = setup.mark;
   mark.parameters["faces"] = "all";
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
+  std::optional<MatteOutput> matte;
+  if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
 
   // Each face's changed pixels, laid over the frame as they are: each swap
   // has blended its face into the frame already.
@@ -290,6 +292,10 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
         if (options.on_output_frame) options.on_output_frame(index, image);
       },
       [](cv::Mat& frame, const FaceLayer& layer) { layer.colour.copyTo(frame(layer.box), layer.mask); });
+  if (matte)
+    frames.on_matte([&](const cv::Mat& image, int index, double time) {
+      matte->write(image, cv::Rect({0, 0}, image.size()), image.size(), output_time(info, index, time));
+    });
   // One stream per face swapped (by FoundFace::index), each on its thread.
   // Declared after `frames`, so that their threads end before it goes.
   std::map<int, std::unique_ptr<FaceSwapStream>> streams;
@@ -340,6 +346,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   writer.finish();
   mark.parameters["faces"] = std::to_string(streams.size());
   write_synthetic_sidecar(output, mark);
+  if (matte) matte->finish();
   return summary;
 }
 

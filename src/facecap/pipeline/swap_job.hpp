@@ -91,8 +91,9 @@ struct AllFacesSwapSummary {
 // one, on one pass, into one output: to replace everyone in a clip, as for
 // anonymising bystanders with a consenting person's face. Each face's swap
 // changes only its window of the frame; where two windows overlap, the face
-// found later is laid over. SwapJobOptions::gltf is for one face (an error
-// here, as is matte); capture.tracker.pick and on_frame are not used.
+// found later is laid over; the matte holds, at each pixel, the largest of
+// the faces' alphas. SwapJobOptions::gltf is for one face (an error here);
+// capture.tracker.pick and on_frame are not used.
 AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string& source_photo,
                                        const std::string& target, const std::filesystem::path& output,
                                        const SwapJobOptions& options, const AllFacesOptions& all = {});

@@ -157,8 +157,8 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
 AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const std::string& input,
                                                  const fs::path& output, const TransformJobOptions& options,
                                                  const AllFacesOptions& all) {
-  if (!options.gltf.empty() || !options.plot.empty() || !options.matte.empty())
-    throw Error("--gltf, --plot and --matte are for one face: they cannot be used with --all-faces");
+  if (!options.gltf.empty() || !options.plot.empty())
+    throw Error("--gltf and --plot are for one face: they cannot be used with --all-faces");
   for (const auto& [face, expression] : options.face_expressions) {
     if (all.unedited.contains(face))
       throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given an expression");
@@ -178,6 +178,13 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
         if (options.on_frame) options.on_frame(index, image);
       },
       [](cv::Mat& frame, const FaceLayer& layer) { composite_layer(frame, layer); });
+  std::optional<MatteOutput> matte;
+  if (!options.matte.empty()) {
+    matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
+    frames.on_matte([&](const cv::Mat& image, int index, double time) {
+      matte->write(image, cv::Rect({0, 0}, image.size()), image.size(), output_time(info, index, time));
+    });
+  }
   // One stream per face edited (by FoundFace::index), each on its thread;
   // the frames go to the output once every face in them is re-rendered.
   // Declared after `frames`, so that their threads end before it goes.
@@ -227,6 +234,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   writer.finish();
   mark.parameters["faces"] = std::to_string(faces.size());
   write_synthetic_sidecar(output, mark);
+  if (matte) matte->finish();
   return summary;
 }
 

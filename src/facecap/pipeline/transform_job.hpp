@@ -31,7 +31,8 @@ struct TransformJobOptions {
   std::filesystem::path gltf;
   // The re-rendered face's share of each output pixel (layer_blend_mask,
   // before the pyramid), as a greyscale video or image frame for frame with
-  // the output (matte_output.hpp), marked like it. Empty: none; one face's.
+  // the output (matte_output.hpp), marked like it; with every face, the
+  // largest of the faces' shares at each pixel. Empty: none.
   std::filesystem::path matte;
   std::string description;  // for the synthetic mark, e.g. "neutral to happiness"
   // --all-faces: faces (by index in the order found, as track --all-faces
