@@ -59,15 +59,13 @@ ExpressionRatio::ExpressionRatio(const TriangleMesh& skin, double mm_per_uv, Exp
   if (!(mm_per_uv > 0)) throw Error("expression ratio: the mesh has no UV extent");
   if (!(options_.texel_mm > 0 && options_.fine_mm > 0 && options_.coarse_mm > options_.fine_mm))
     throw Error("expression ratio: needs 0 < fine_mm < coarse_mm and a positive texel size");
-  MillimetreGrid grid = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
-  map_ = std::move(grid.map);
-  texels_per_mm_ = grid.texels_per_mm;
+  grid_ = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
 }
 
 FaceTexture ExpressionRatio::unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
                                      const ShCoeffs& lighting,
                                      const std::vector<std::vector<cv::Point>>& excluded) const {
-  FaceTexture t = unshade_face(frame, target_points, skin_.triangles, camera, lighting, map_, excluded);
+  FaceTexture t = unshade_face(frame, target_points, skin_.triangles, camera, lighting, grid_.map, excluded);
   drop_non_skin(t);
   return t;
 }
@@ -81,7 +79,7 @@ void ExpressionRatio::add_reference(const FaceTexture& texture) {
   accumulate(reference_sum_, texture);
   const FaceTexture reference = weighted_mean(reference_sum_);
   const int channels = options_.colour ? 3 : 1;
-  const double fine = options_.fine_mm * texels_per_mm_;
+  const double fine = options_.fine_mm * grid_.texels_per_mm;
   log_reference_ = log_colour(reference.albedo, channels);
   cv::Mat(reference.weight > 0).convertTo(seen_reference_, CV_32F, 1.0 / 255);
 
@@ -90,8 +88,8 @@ void ExpressionRatio::add_reference(const FaceTexture& texture) {
   // edge is more one of colour than of brightness).
   const cv::Mat smooth = weighted_blur(log_reference_, seen_reference_, blur(seen_reference_, fine), fine);
   cv::Mat gx, gy;
-  cv::Sobel(smooth, gx, CV_32F, 1, 0, 3, texels_per_mm_ / 8.0);
-  cv::Sobel(smooth, gy, CV_32F, 0, 1, 3, texels_per_mm_ / 8.0);
+  cv::Sobel(smooth, gx, CV_32F, 1, 0, 3, grid_.texels_per_mm / 8.0);
+  cv::Sobel(smooth, gy, CV_32F, 0, 1, 3, grid_.texels_per_mm / 8.0);
   std::vector<cv::Mat> per_channel;
   cv::split(gx.mul(gx) + gy.mul(gy), per_channel);
   cv::Mat gradient2 = per_channel[0];
@@ -106,7 +104,7 @@ void ExpressionRatio::add_reference(const FaceTexture& texture) {
 }
 
 cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
-  const int n = map_.size;
+  const int n = grid_.map.size;
   const int channels = options_.colour ? 3 : 1;
   cv::Mat ones(n, n, CV_32FC(channels), cv::Scalar::all(1));
   if (reference_sum_.empty() || frame.empty()) return ones;
@@ -114,7 +112,7 @@ cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
   cv::Mat weight = frame.weight.clone();
   weight.setTo(0, seen_reference_ <= 0);
   if (cv::countNonZero(weight) < 50) return ones;
-  const double fine = options_.fine_mm * texels_per_mm_, coarse = options_.coarse_mm * texels_per_mm_;
+  const double fine = options_.fine_mm * grid_.texels_per_mm, coarse = options_.coarse_mm * grid_.texels_per_mm;
 
   // The change, band-passed (at the fine scale less at the coarse scale),
   // faded where the fine window saw little (the edge of what this frame

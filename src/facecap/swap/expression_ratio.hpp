@@ -63,13 +63,12 @@ class ExpressionRatio {
   // for a frame unshaded by unshade(); all ones before any reference.
   cv::Mat gains(const FaceTexture& frame) const;
 
-  int grid_size() const { return map_.size; }
+  int grid_size() const { return grid_.map.size; }
 
  private:
   ExpressionRatioOptions options_;
   TriangleMesh skin_;
-  UvTexelMap map_;
-  double texels_per_mm_ = 0;
+  MillimetreGrid grid_;  // about options_.texel_mm per texel
   FaceTexture reference_sum_;
   // Of the reference so far (updated by add_reference): its log colour (or
   // luminance), where it was seen, and the edge gate it gives.

@@ -40,21 +40,19 @@ OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, Occlusi
   if (!(options_.texel_mm > 0 && options_.min_log_change > 0 && options_.slide_mm >= 0 && options_.min_extent_mm >= 0 &&
         options_.unseen_mm >= 0 && options_.margin_mm >= 0 && options_.feather_mm >= 0))
     throw Error("occlusion mask: needs a positive texel size and change, and no negative distance");
-  MillimetreGrid grid = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
-  map_ = std::move(grid.map);
-  texels_per_mm_ = grid.texels_per_mm;
+  grid_ = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
 }
 
 FaceTexture OcclusionMask::unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
                                    const ShCoeffs& lighting,
                                    const std::vector<std::vector<cv::Point>>& excluded) const {
-  return unshade_face(frame, target_points, skin_.triangles, camera, lighting, map_, excluded);
+  return unshade_face(frame, target_points, skin_.triangles, camera, lighting, grid_.map, excluded);
 }
 
 void OcclusionMask::clear_reference() { low_ = high_ = log_sum_ = weight_sum_ = cv::Mat(); }
 
 void OcclusionMask::add_reference(const FaceTexture& seen) {
-  const int n = map_.size;
+  const int n = grid_.map.size;
   if (low_.empty()) {
     low_ = cv::Mat(n, n, CV_32FC3, cv::Scalar::all(kNone));
     high_ = cv::Mat(n, n, CV_32FC3, cv::Scalar::all(-kNone));
@@ -68,7 +66,7 @@ void OcclusionMask::add_reference(const FaceTexture& seen) {
   cv::Mat low = log.clone(), high = log.clone();
   low.setTo(cv::Scalar::all(kNone), unseen);
   high.setTo(cv::Scalar::all(-kNone), unseen);
-  const int slide = texels(options_.slide_mm, texels_per_mm_);
+  const int slide = texels(options_.slide_mm, grid_.texels_per_mm);
   if (slide > 0) {
     cv::erode(low, low, disc(slide), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar::all(kNone));
     cv::dilate(high, high, disc(slide), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar::all(-kNone));
@@ -82,7 +80,7 @@ void OcclusionMask::add_reference(const FaceTexture& seen) {
 }
 
 cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
-  const int n = map_.size;
+  const int n = grid_.map.size;
   cv::Mat out(n, n, CV_32F, cv::Scalar(0));
   if (low_.empty() || seen.empty()) return out;
   const cv::Mat log = log_colour(seen.albedo);
@@ -129,17 +127,17 @@ cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
       if (outside > options_.min_log_change) f[x] = 255;
     }
   }
-  const int speck = texels(0.5f * options_.min_extent_mm, texels_per_mm_);
+  const int speck = texels(0.5f * options_.min_extent_mm, grid_.texels_per_mm);
   if (speck > 0) cv::morphologyEx(found, found, cv::MORPH_OPEN, disc(speck));
   if (cv::countNonZero(found) == 0) return out;
   // Gaps as wide as an edge's band, and what the frame does not see (turned
   // away at the chin, inside the mouth's outline) as far as unseen_mm from
   // a cover: the new face's outline differs from the target's, and may
   // show there.
-  const int band = texels(options_.slide_mm + 2.0f, texels_per_mm_);
+  const int band = texels(options_.slide_mm + 2.0f, grid_.texels_per_mm);
   if (band > 0) cv::morphologyEx(found, found, cv::MORPH_CLOSE, disc(band));
   const cv::Mat unseen = seen.weight <= 0;
-  for (int i = 0, reach = texels(options_.unseen_mm, texels_per_mm_); i < reach; ++i) {
+  for (int i = 0, reach = texels(options_.unseen_mm, grid_.texels_per_mm); i < reach; ++i) {
     cv::Mat grown;
     cv::dilate(found, grown, disc(1));
     found |= grown & unseen;
@@ -149,10 +147,10 @@ cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
   cv::copyMakeBorder(found, outside, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
   cv::floodFill(outside, cv::Point(0, 0), 128);
   found.setTo(255, outside(cv::Rect(1, 1, n, n)) == 0);
-  const int grow = texels(options_.margin_mm, texels_per_mm_);
+  const int grow = texels(options_.margin_mm, grid_.texels_per_mm);
   if (grow > 0) cv::dilate(found, found, disc(grow));
   found.convertTo(out, CV_32F, 1.0 / 255);
-  const double sigma = 0.5 * options_.feather_mm * texels_per_mm_;
+  const double sigma = 0.5 * options_.feather_mm * grid_.texels_per_mm;
   if (sigma > 0) cv::GaussianBlur(out, out, cv::Size(0, 0), sigma);
   return out;
 }

@@ -66,13 +66,12 @@ class OcclusionMask {
   // before any reference.
   cv::Mat covered(const FaceTexture& seen) const;
 
-  int grid_size() const { return map_.size; }
+  int grid_size() const { return grid_.map.size; }
 
  private:
   OcclusionOptions options_;
   TriangleMesh skin_;
-  UvTexelMap map_;
-  double texels_per_mm_ = 0;
+  MillimetreGrid grid_;  // about options_.texel_mm per texel
   // Over the appearance frames so far, per texel and channel, the least and
   // the most log colour seen within slide_mm (CV_32FC3; +-inf where none
   // was), and the weighted sums of the mean log colour.
