@@ -143,12 +143,13 @@ SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, 
   const auto t0 = std::chrono::steady_clock::now();
   s.source = reconstruct_source(model, source_photo, options.capture.quiet, options.source_frames, options.source_face);
   // Each other source once, however many faces take it.
-  std::map<std::string, const SourceReconstruction*> done;
+  std::map<std::string, SourceReconstruction> by_photo;
   for (const auto& [face, photo] : options.face_sources) {
-    const auto [known, fresh] = done.emplace(photo, nullptr);
-    s.face_sources[face] =
-        fresh ? reconstruct_source(model, photo, options.capture.quiet, options.source_frames) : *known->second;
-    known->second = &s.face_sources[face];
+    auto it = by_photo.find(photo);
+    if (it == by_photo.end())
+      it =
+          by_photo.emplace(photo, reconstruct_source(model, photo, options.capture.quiet, options.source_frames)).first;
+    s.face_sources[face] = it->second;
   }
   s.source_ms = ms_since(t0);
 
@@ -183,8 +184,9 @@ VideoWriterOptions marked_output(const InputInfo& info, const SwapJobOptions& op
 }
 
 // The pixels a swap changed, as a layer over the frame: its window, and
-// there the swapped pixels wherever they differ from the frame's.
-FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped) {
+// there the swapped pixels wherever they differ from the frame's; with
+// `share`, the new face's alpha too (for a matte).
+FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped, bool share) {
   FaceLayer layer;
   layer.box = swapped.window;
   if (layer.box.area() == 0) return layer;
@@ -194,7 +196,7 @@ FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped) {
   cv::Mat channels[3];
   cv::split(difference, channels);
   layer.mask = (channels[0] | channels[1] | channels[2]) > 0;
-  swapped.alpha.convertTo(layer.share, CV_8U, 255.0);
+  if (share) swapped.alpha.convertTo(layer.share, CV_8U, 255.0);
   return layer;
 }
 
@@ -306,12 +308,12 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
         const SourceReconstruction& source = own != summary.face_sources.end() ? own->second : summary.source;
         stream = std::make_unique<FaceSwapStream>(
             model, source.photo, source.face, options.swap,
-            [&frames, k = found.index](const CapturedFrame& f, const SwappedFrame* swapped) {
+            [&frames, k = found.index, share = matte.has_value()](const CapturedFrame& f, const SwappedFrame* swapped) {
               if (!swapped) {
                 frames.add_layer(f.index, k, nullptr);
                 return;
               }
-              const FaceLayer layer = changed_pixels(f.image, *swapped);
+              const FaceLayer layer = changed_pixels(f.image, *swapped, share);
               frames.add_layer(f.index, k, layer.box.area() > 0 ? &layer : nullptr);
             });
         return [stream = stream.get()](const CapturedFrame& f) { stream->push(f); };
