@@ -233,7 +233,11 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
         "transform " + video.string() + " --to happiness --init-frames 0 -o " + out,
         "transform " + video.string() + " --to happiness --gltf /proc/facecap-test/a.glb -o " + out,
-        "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out}) {
+        "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out,
+        "transform " + video.string() + " --all-faces --face-schedule 1=" + (dir.path() / "none.txt").string() +
+            " -o " + out,
+        "transform " + video.string() + " --to happiness --matte " + out + " -o " + out,
+        "transform " + video.string() + " --to happiness --matte /proc/facecap-test/m.mp4 -o " + out}) {
     const RunResult r = run(args);
     EXPECT_EQ(r.code, 1) << args << ": " << r.out;
     EXPECT_EQ(lines(r.out), 1) << r.out;
@@ -330,6 +334,16 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   EXPECT_EQ(lines(no_gltf.out), 1) << no_gltf.out;
   EXPECT_NE(no_gltf.out.find("/proc/facecap-test"), std::string::npos) << no_gltf.out;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // So do a face's own source that is missing, and a matte that cannot be
+  // written or that is the output.
+  for (const std::string& extra : {" --all-faces --face-source 1=" + (dir.path() / "missing.jpg").string(),
+                                   std::string(" --matte /proc/facecap-test/m.mp4"), " --matte " + out}) {
+    const RunResult bad =
+        run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + extra);
+    EXPECT_EQ(bad.code, 1) << extra << ": " << bad.out;
+    EXPECT_EQ(lines(bad.out), 1) << bad.out;
+    EXPECT_FALSE(std::filesystem::exists(out)) << extra;
+  }
   // A gain on the photo's detail outside [0, 1], or a residual shading
   // width outside [0, 100] mm, is refused by name before any work.
   for (const auto& [flag, value] : std::vector<std::pair<std::string, std::string>>{{"--photo-detail", "2"},
