@@ -366,6 +366,8 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
                 {"expression_weights_compared", r.expression_weights_compared},
                 {"seam_ratio", r.seam_ratio},
                 {"seam_ratio_target", r.seam_ratio_target},
+                {"hue_beyond_target_cool", r.hue_beyond_cool},
+                {"hue_beyond_target_warm", r.hue_beyond_warm},
                 {"covered_mean", r.covered_mean},
                 {"covered_max", r.covered_max}});
   });

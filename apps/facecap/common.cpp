@@ -221,6 +221,10 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
       "--no-occlusion", [&swap] { swap.keep_occluders = false; },
       "Paint the new face over whatever covers the target's face (a microphone, a cup, hair: covers of another "
       "colour than the skin; a hand in the same light is not found either way) rather than leave it in front");
+  cmd.add_flag_callback(
+      "--no-grade-match", [&swap] { swap.match_grade = false; },
+      "Keep the photo's range of skin hues where the target shows a narrower one (a desaturated or sepia grade); "
+      "by default the new face's hues are narrowed to the target face's spread, never widened");
 }
 
 }  // namespace facecap::cli

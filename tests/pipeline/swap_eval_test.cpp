@@ -50,6 +50,28 @@ TEST(SeamRatio, AHardEdgeOnTheOutlineStandsOutAndHolesDoNotCount) {
   EXPECT_NEAR(seam_ratio(hole_only, alpha), 1.0, 0.3);
 }
 
+TEST(HueBeyondTarget, CountsTheNewFacesColoursTheTargetsFaceDoesNotShow) {
+  cv::Mat alpha(100, 100, CV_32F, cv::Scalar(0));
+  alpha(cv::Rect(10, 10, 80, 80)).setTo(1.0f);  // 6400 face pixels
+  cv::Mat target(100, 100, CV_8UC3);
+  cv::RNG(5).fill(target, cv::RNG::UNIFORM, cv::Scalar(90, 110, 140), cv::Scalar(100, 120, 150));  // sepia skin
+  target(cv::Rect(10, 40, 80, 8)).setTo(cv::Scalar(25, 30, 40));  // and its own dark brown brows
+  cv::Mat output = target.clone();
+  EXPECT_EQ(hue_beyond_target(output, target, alpha).cool, 0.0);
+  EXPECT_EQ(hue_beyond_target(output, target, alpha).warm, 0.0);
+  // A dark brow gone blue (B over R), 640 pixels, and a redder cheek, 320.
+  output(cv::Rect(20, 20, 64, 10)).setTo(cv::Scalar(60, 45, 40));
+  output(cv::Rect(20, 60, 32, 10)).setTo(cv::Scalar(70, 100, 170));
+  const HueBeyond h = hue_beyond_target(output, target, alpha);
+  EXPECT_NEAR(h.cool, 0.10, 1e-9);
+  EXPECT_NEAR(h.warm, 0.05, 1e-9);
+  // The same brow dark but brown, as a reflectance keeps it: within the box.
+  output(cv::Rect(20, 20, 64, 10)).setTo(cv::Scalar(25, 30, 40));
+  EXPECT_EQ(hue_beyond_target(output, target, alpha).cool, 0.0);
+  // Too few face pixels: nothing measured.
+  EXPECT_EQ(hue_beyond_target(output, target, cv::Mat(100, 100, CV_32F, cv::Scalar(0))).warm, 0.0);
+}
+
 // Fig. 6.7's experiment: the video's first frame swapped into the rest,
 // with the bars (median <= 3, mean <= 6; the median is exact: the
 // errors are multiples of 1/3).
@@ -271,6 +293,35 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
     }
     EXPECT_GT(cv::countNonZero(grey > 128), 20000) << i;  // the face
   }
+}
+
+// A graded (sepia, desaturated) target: the source's warm skin is adapted to
+// it, its dark brows and eyes keep their own hue rather than turn to hues the
+// target never shows, and its range of hues is narrowed to the target's.
+// Per B, G, R channel, as the paper adapts, 3.5-6.0 % of the new face's
+// pixels lay beyond the target's colours toward blue or green in each of
+// these frames (the brows went blue); in brightness and hue, under 0.01 %.
+// Toward red, 48 % of them without the grade match, 23 % with it.
+TEST(SwapJob, AGradedTargetGetsNoHueItsFaceDoesNotShow) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "emotions_pexels_640x360.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
+  TempDir dir;
+  SwapJobOptions o = short_run(24);
+  double cool = 0, warm = 0;
+  int frames = 0;
+  o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& r) {
+    if (r.alpha.empty()) return;
+    const HueBeyond h = hue_beyond_target(r.image(r.window), target.image(r.window), r.alpha);
+    EXPECT_LT(h.cool, 0.01) << target.index;
+    cool += h.cool;
+    warm += h.warm;
+    ++frames;
+  };
+  run_swap(*model, photo.string(), video.string(), dir.path() / "graded.mp4", o);
+  ASSERT_EQ(frames, 24);
+  EXPECT_LT(cool / frames, 0.001);
+  EXPECT_LT(warm / frames, 0.3);
 }
 
 // `swap --gltf`: the source's face, placed as the swap places it (at the

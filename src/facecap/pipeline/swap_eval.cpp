@@ -116,6 +116,45 @@ double seam_ratio(const cv::Mat& image, const cv::Mat& alpha) {
   return within > 1e-6 ? on_edge / within : 0;
 }
 
+HueBeyond hue_beyond_target(const cv::Mat& output, const cv::Mat& target, const cv::Mat& alpha) {
+  constexpr int kMinPixels = 100;
+  constexpr float kMargin = 6.0f, kLowShare = 0.005f;
+  std::array<std::vector<float>, 2> target_opponents, output_opponents;
+  for (int y = 0; y < alpha.rows; ++y) {
+    const float* a = alpha.ptr<float>(y);
+    const auto* t = target.ptr<cv::Vec3b>(y);
+    const auto* o = output.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < alpha.cols; ++x) {
+      if (!(a[x] > 0.5f)) continue;
+      for (const auto& [pixel, into] : {std::pair{t[x], &target_opponents}, std::pair{o[x], &output_opponents}}) {
+        const float b = pixel[0], g = pixel[1], r = pixel[2];
+        (*into)[0].push_back(b - r);
+        (*into)[1].push_back(2 * g - r - b);
+      }
+    }
+  }
+  HueBeyond h;
+  const size_t n = target_opponents[0].size();
+  if (n < kMinPixels) return h;
+  std::vector<char> cool(n, 0), warm(n, 0);
+  for (int k = 0; k < 2; ++k) {
+    std::vector<float>& values = target_opponents[k];
+    const auto at = [&](float share) {
+      const auto nth = values.begin() + static_cast<std::ptrdiff_t>(share * (n - 1));
+      std::nth_element(values.begin(), nth, values.end());
+      return *nth;
+    };
+    const float low = at(kLowShare) - kMargin, high = at(1 - kLowShare) + kMargin;
+    for (size_t i = 0; i < n; ++i) {
+      cool[i] |= output_opponents[k][i] > high;
+      warm[i] |= output_opponents[k][i] < low;
+    }
+  }
+  h.cool = double(std::count(cool.begin(), cool.end(), 1)) / n;
+  h.warm = double(std::count(warm.begin(), warm.end(), 1)) / n;
+  return h;
+}
+
 SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video, const SwapJobOptions& options,
                                 int source_frames) {
   const TempDir temp("facecap-eval-swap");
@@ -196,6 +235,9 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
     if (result.alpha.empty()) return;
     seams += seam_ratio(result.image(result.window), result.alpha);
     seams_target += seam_ratio(target.image(result.window), result.alpha);
+    const HueBeyond hue = hue_beyond_target(result.image(result.window), target.image(result.window), result.alpha);
+    r.hue_beyond_cool += hue.cool;
+    r.hue_beyond_warm += hue.warm;
     ++seam_frames;
     r.covered_mean += result.covered;
     r.covered_max = std::max(r.covered_max, result.covered);
@@ -206,6 +248,8 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
   r.seam_ratio = seam_frames > 0 ? seams / seam_frames : 0;
   r.seam_ratio_target = seam_frames > 0 ? seams_target / seam_frames : 0;
   r.covered_mean = seam_frames > 0 ? r.covered_mean / seam_frames : 0;
+  r.hue_beyond_cool = seam_frames > 0 ? r.hue_beyond_cool / seam_frames : 0;
+  r.hue_beyond_warm = seam_frames > 0 ? r.hue_beyond_warm / seam_frames : 0;
 
   // Track the output again: whose face is it now, and does it do what the target did?
   std::vector<Eigen::VectorXf> output_weights;

@@ -73,6 +73,8 @@ struct SwapPairEval {
   double seam_ratio_target = 0;
   int faces_in_source = 0;
   double covered_mean = 0, covered_max = 0;  // SwappedFrame::covered over the frames swapped
+  // hue_beyond_target per frame, averaged over the frames swapped.
+  double hue_beyond_cool = 0, hue_beyond_warm = 0;
   SwapJobTimings timings;
 };
 
@@ -86,5 +88,17 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
 // target show through the face mesh by design) over that 6-10 px inside it;
 // 0 when either is empty.
 double seam_ratio(const cv::Mat& image, const cv::Mat& alpha);
+
+// Colours the new face shows that the target's face does not: over the
+// pixels where `alpha` > 0.5, the opponent colours (B - R, 2G - R - B) of
+// `target` span a box (their 0.5th to 99.5th percentiles, widened by 6 grey
+// levels); the shares of `output`'s pixels there beyond it toward blue or
+// green (cool) and toward red or magenta (warm). A graded video (sepia,
+// desaturated) spans a narrow box, and a colour transfer that shifts hue
+// shows at once. Zeros when fewer than 100 pixels count.
+struct HueBeyond {
+  double cool = 0, warm = 0;
+};
+HueBeyond hue_beyond_target(const cv::Mat& output, const cv::Mat& target, const cv::Mat& alpha);
 
 }  // namespace facecap

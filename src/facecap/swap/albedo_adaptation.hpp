@@ -10,6 +10,9 @@
 // loop): the rims of the eye and mouth holes are left free, since the
 // target's colour there is the eye or the mouth interior, not skin; and
 // outliers along the outline (hair, a collar) take the outline's median.
+//
+// The rows are adapted independently: the swap passes each albedo as its
+// brightness and hue (brightness_hue.hpp) rather than as B, G, R.
 #include <memory>
 #include <vector>
 

@@ -18,6 +18,8 @@
 #include "facecap/render/uv_raster.hpp"
 #include "facecap/swap/albedo_adaptation.hpp"
 #include "facecap/swap/background_warp.hpp"
+#include "facecap/swap/brightness_hue.hpp"
+#include "facecap/swap/chroma_spread.hpp"
 #include "facecap/swap/expression_ratio.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/light_colour.hpp"
@@ -299,9 +301,14 @@ struct FaceSwapper::Impl {
     target_vertex_seen = seen_t;
     // Where none of the face's outline was seen in the target yet (a head
     // turned far away), the source albedo stays as it is until one is.
-    Positions h = Positions::Zero(3, skin.num_vertices);
+    // The adaptation's offset is taken on the albedos' brightness and hue
+    // (brightness_hue.hpp), the source's hues first narrowed to the target's
+    // grade (chroma_spread.hpp).
+    const Positions source_yc = to_brightness_hue(source_vertex_albedo), target_yc = to_brightness_hue(tgt);
+    const ChromaSpread grade = options.match_grade ? ChromaSpread(source_yc, target_yc, known) : ChromaSpread();
+    Positions offset = Positions::Zero(3, skin.num_vertices);
     try {
-      h = AlbedoAdaptation(skin.triangles, skin.num_vertices, known).offset(source_vertex_albedo, tgt);
+      offset = AlbedoAdaptation(skin.triangles, skin.num_vertices, known).offset(grade.narrow(source_yc), target_yc);
     } catch (const Error&) {
     }
     // Noise: the photo's fine residual, histogram-matched to the first target frame's.
@@ -320,10 +327,11 @@ struct FaceSwapper::Impl {
             auto* out = texture.ptr<cv::Vec4f>(y);
             for (int x = 0; x < map.size; ++x) {
               const int i = map.index(x, y);
-              Vec3f offset = Vec3f::Zero();
-              if (map.triangle[i] >= 0) offset = map.interpolate(skin.triangles, h, i);
+              Vec3f yc = grade.narrow(to_brightness_hue(Vec3f(sm[x][0], sm[x][1], sm[x][2])));
+              if (map.triangle[i] >= 0) yc += map.interpolate(skin.triangles, offset, i);
+              const Vec3f adapted = from_brightness_hue(yc);
               cv::Vec4f v;
-              for (int c = 0; c < 3; ++c) v[c] = std::max(0.0f, sm[x][c] + offset[c] + nm[x][c]);
+              for (int c = 0; c < 3; ++c) v[c] = std::max(0.0f, adapted[c] + nm[x][c]);
               v[3] = al[x];
               out[x] = v;
             }

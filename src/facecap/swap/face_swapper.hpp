@@ -93,6 +93,10 @@ struct SwapOptions {
   // front of the new face (occlusion_mask.hpp); off: the new face is laid
   // over it, as in the paper (`swap --no-occlusion`).
   bool keep_occluders = true;
+  // Narrow the photo's range of skin hues to the target's (chroma_spread.hpp)
+  // before the albedo adaptation: a graded, desaturated video shows less
+  // colour in its faces than a photo (`swap --no-grade-match`: off).
+  bool match_grade = true;
 };
 
 // The source portrait, reconstructed.
