@@ -3,29 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "facecap/core/error.hpp"
+#include "swap/square_grid.hpp"
 
 namespace facecap {
 
-namespace {
-
-// A square grid of (n+1)^2 vertices, two triangles per cell.
-std::vector<Triangle> grid(int n) {
-  std::vector<Triangle> t;
-  for (int y = 0; y < n; ++y) {
-    for (int x = 0; x < n; ++x) {
-      const int a = y * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
-      t.push_back({a, b, d});
-      t.push_back({a, d, c});
-    }
-  }
-  return t;
-}
-
-}  // namespace
-
 TEST(AlbedoAdaptation, BoundaryTakesTheTargetInteriorKeepsSourceGradients) {
   const int n = 12, count = (n + 1) * (n + 1);
-  const auto tris = grid(n);
+  const auto tris = test::square_grid(n);
   const AlbedoAdaptation adapt(tris, count, std::vector<bool>(count, true));
   EXPECT_EQ(adapt.boundary_count(), 4 * n);
   Positions source(3, count), target(3, count);
@@ -53,7 +37,7 @@ TEST(AlbedoAdaptation, BoundaryTakesTheTargetInteriorKeepsSourceGradients) {
 
 TEST(AlbedoAdaptation, AConstantShiftIsReproducedEverywhere) {
   const int n = 8, count = (n + 1) * (n + 1);
-  const auto tris = grid(n);
+  const auto tris = test::square_grid(n);
   Positions source = Positions::Random(3, count) * 0.1f + Positions::Constant(3, count, 0.5f);
   const Positions target = source + Positions::Constant(3, count, -0.2f);
   const Positions h = AlbedoAdaptation(tris, count, std::vector<bool>(count, true)).offset(source, target);
@@ -62,7 +46,7 @@ TEST(AlbedoAdaptation, AConstantShiftIsReproducedEverywhere) {
 
 TEST(AlbedoAdaptation, OutliersOnTheOutlineTakeTheMedian) {
   const int n = 10, count = (n + 1) * (n + 1);
-  const auto tris = grid(n);
+  const auto tris = test::square_grid(n);
   const Positions source = Positions::Constant(3, count, 0.5f);
   Positions target = Positions::Constant(3, count, 0.4f);
   target.col(3) = Vec3f(1.0f, 1.0f, 1.0f);  // a white collar on the outline
@@ -71,7 +55,7 @@ TEST(AlbedoAdaptation, OutliersOnTheOutlineTakeTheMedian) {
 }
 
 TEST(AlbedoAdaptation, NothingSeenOnTheOutlineIsAnError) {
-  const auto tris = grid(4);
+  const auto tris = test::square_grid(4);
   EXPECT_THROW(AlbedoAdaptation(tris, 25, std::vector<bool>(25, false)), Error);
 }
 

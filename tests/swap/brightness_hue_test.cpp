@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "facecap/swap/albedo_adaptation.hpp"
+#include "swap/square_grid.hpp"
 
 namespace facecap {
 
@@ -27,14 +28,7 @@ TEST(BrightnessHue, RoundTripsAnAlbedo) {
 // G, R channel, as the paper writes it, the brow turns blue.
 TEST(BrightnessHue, AdaptingInItKeepsADarkFeaturesHueAndContrast) {
   const int n = 12, count = (n + 1) * (n + 1), brow = 6 * (n + 1) + 6;
-  std::vector<Triangle> grid;
-  for (int y = 0; y < n; ++y) {
-    for (int x = 0; x < n; ++x) {
-      const int a = y * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
-      grid.push_back({a, b, d});
-      grid.push_back({a, d, c});
-    }
-  }
+  const std::vector<Triangle> grid = test::square_grid(n);
   const Vec3f skin(0.35f, 0.45f, 0.65f), dark(0.06f, 0.08f, 0.12f);  // BGR: warm skin, dark brown brow
   const Vec3f graded(0.50f, 0.52f, 0.56f);                           // the target's skin: nearly grey
   Positions source = skin.replicate(1, count);

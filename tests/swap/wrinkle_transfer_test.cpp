@@ -4,23 +4,13 @@
 
 #include <cmath>
 
+#include "swap/square_grid.hpp"
+
 namespace facecap {
 
 namespace {
 
 constexpr int kN = 24;  // grid cells per side
-
-std::vector<Triangle> grid() {
-  std::vector<Triangle> t;
-  for (int y = 0; y < kN; ++y) {
-    for (int x = 0; x < kN; ++x) {
-      const int a = y * (kN + 1) + x, b = a + 1, c = a + kN + 1, d = c + 1;
-      t.push_back({a, b, d});
-      t.push_back({a, d, c});
-    }
-  }
-  return t;
-}
 
 // A gently curved sheet; `bump` adds a furrow along x in the middle.
 Positions sheet(float curvature, float bump) {
@@ -38,14 +28,14 @@ Positions sheet(float curvature, float bump) {
 }  // namespace
 
 TEST(CoatingTransfer, NoCoatingGivesTheBase) {
-  const CoatingTransfer t(grid(), (kN + 1) * (kN + 1));
+  const CoatingTransfer t(test::square_grid(kN), (kN + 1) * (kN + 1));
   const Positions base = sheet(2.0f, 0.0f);
   const Positions out = t.solve(base, Positions::Zero(3, base.cols()));
   EXPECT_LT((out - base).cwiseAbs().maxCoeff(), 1e-4f);
 }
 
 TEST(CoatingTransfer, AFurrowMovesOntoAnotherShape) {
-  const CoatingTransfer t(grid(), (kN + 1) * (kN + 1), 1e-7);  // next to no anchor: eq. 6.1 exactly
+  const CoatingTransfer t(test::square_grid(kN), (kN + 1) * (kN + 1), 1e-7);  // next to no anchor: eq. 6.1 exactly
   // The target's furrow, as the coating of its fine mesh over its coarse one...
   const Positions coating = t.coating(sheet(1.0f, -0.3f), sheet(1.0f, 0.0f));
   // ...laid on a differently curved source face.
