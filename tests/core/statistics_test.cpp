@@ -22,4 +22,13 @@ TEST(PearsonCorrelation, AConstantOrEmptySampleGivesZero) {
   EXPECT_EQ(pearson_correlation({}, {}), 0.0);
 }
 
+TEST(Quantile, PicksTheValueThatShareOfTheWayUpWithoutInterpolating) {
+  std::vector<float> v{5, 1, 4, 2, 3, 9, 8, 7, 6, 10, 11};  // 1..11
+  EXPECT_EQ(quantile(v, 0.0f), 1.0f);
+  EXPECT_EQ(quantile(v, 0.5f), 6.0f);
+  EXPECT_EQ(quantile(v, 0.1f), 2.0f);
+  EXPECT_EQ(quantile(v, 0.95f), 10.0f);  // 9.5 places up, rounded down
+  EXPECT_EQ(quantile(v, 1.0f), 11.0f);
+}
+
 }  // namespace facecap

@@ -24,4 +24,10 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+float quantile(std::vector<float>& values, float share) {
+  const auto nth = values.begin() + static_cast<std::ptrdiff_t>(share * float(values.size() - 1));
+  std::nth_element(values.begin(), nth, values.end());
+  return *nth;
+}
+
 }  // namespace facecap

@@ -139,12 +139,7 @@ HueBeyond hue_beyond_target(const cv::Mat& output, const cv::Mat& target, const 
   std::vector<char> cool(n, 0), warm(n, 0);
   for (int k = 0; k < 2; ++k) {
     std::vector<float>& values = target_opponents[k];
-    const auto at = [&](float share) {
-      const auto nth = values.begin() + static_cast<std::ptrdiff_t>(share * (n - 1));
-      std::nth_element(values.begin(), nth, values.end());
-      return *nth;
-    };
-    const float low = at(kLowShare) - kMargin, high = at(1 - kLowShare) + kMargin;
+    const float low = quantile(values, kLowShare) - kMargin, high = quantile(values, 1 - kLowShare) + kMargin;
     for (size_t i = 0; i < n; ++i) {
       cool[i] |= output_opponents[k][i] > high;
       warm[i] |= output_opponents[k][i] < low;

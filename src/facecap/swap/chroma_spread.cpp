@@ -3,18 +3,14 @@
 #include <algorithm>
 #include <array>
 
+#include "facecap/core/statistics.hpp"
+
 namespace facecap {
 
 namespace {
 
 constexpr int kMinVertices = 50;
 constexpr float kLow = 0.10f, kHigh = 0.90f;
-
-float quantile(std::vector<float>& values, float share) {
-  const auto nth = values.begin() + static_cast<std::ptrdiff_t>(share * float(values.size() - 1));
-  std::nth_element(values.begin(), nth, values.end());
-  return *nth;
-}
 
 }  // namespace
 
