@@ -22,6 +22,15 @@ TEST(PearsonCorrelation, AConstantOrEmptySampleGivesZero) {
   EXPECT_EQ(pearson_correlation({}, {}), 0.0);
 }
 
+TEST(Median, TakesTheUpperMiddleOfAnEvenCountCopiedOrInPlace) {
+  EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 3.0);
+  EXPECT_EQ(median({}), 0.0);
+  std::vector<float> odd{3, 1, 2}, even{4, 1, 3, 2};
+  EXPECT_EQ(median_in_place(odd), 2.0f);
+  EXPECT_EQ(median_in_place(even), 3.0f);
+}
+
 TEST(Quantile, PicksTheValueThatShareOfTheWayUpWithoutInterpolating) {
   std::vector<float> v{5, 1, 4, 2, 3, 9, 8, 7, 6, 10, 11};  // 1..11
   EXPECT_EQ(quantile(v, 0.0f), 1.0f);

@@ -24,6 +24,12 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+float median_in_place(std::vector<float>& values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 float quantile(std::vector<float>& values, float share) {
   const auto nth = values.begin() + static_cast<std::ptrdiff_t>(share * float(values.size() - 1));
   std::nth_element(values.begin(), nth, values.end());

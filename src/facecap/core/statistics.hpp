@@ -11,6 +11,10 @@ double pearson_correlation(const std::vector<double>& a, const std::vector<doubl
 // The middle value (the upper one of an even count); 0 for an empty sample.
 double median(std::vector<double> values);
 
+// The same for a sample the caller may have reordered: no copy is made.
+// `values` must not be empty.
+float median_in_place(std::vector<float>& values);
+
 // The value a share (0 to 1) of the way up the sorted sample, without
 // interpolation; reorders `values`, which must not be empty.
 float quantile(std::vector<float>& values, float share);

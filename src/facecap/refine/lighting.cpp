@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "facecap/core/statistics.hpp"
 #include "facecap/render/shading.hpp"
 
 namespace facecap {
@@ -55,9 +56,7 @@ ShCoeffs estimate_lighting(const VertexSamples& samples, const Positions& normal
       for (int c = 0; c < 3; ++c) e += std::abs(albedo(c, i) * s - samples.colour(c, i));
       residual[r] = e / 3.0;
     }
-    std::vector<double> sorted = residual;
-    std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
-    const double scale = std::max(1e-4, 1.5 * sorted[n / 2]);
+    const double scale = std::max(1e-4, 1.5 * median(residual));
     for (int r = 0; r < n; ++r) weight[r] = residual[r] <= scale ? 1.0 : scale / residual[r];
   }
   return l;

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/statistics.hpp"
 
 namespace facecap {
 
@@ -114,13 +115,9 @@ Positions AlbedoAdaptation::offset(const Positions& source, const Positions& tar
   for (int c = 0; c < 3; ++c) {
     std::vector<float> values;
     for (int v : m.boundary) values.push_back(h(c, v));
-    auto median = [](std::vector<float> x) {
-      std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
-      return x[x.size() / 2];
-    };
-    const float mid = median(values);
+    const float mid = median_in_place(values);
     for (float& x : values) x = std::abs(x - mid);
-    const float spread = 1.4826f * median(values) + 1e-3f;  // MAD as a standard deviation
+    const float spread = 1.4826f * median_in_place(values) + 1e-3f;  // MAD as a standard deviation
     for (int v : m.boundary) {
       if (std::abs(h(c, v) - mid) > 2.5f * spread) h(c, v) = mid;
     }

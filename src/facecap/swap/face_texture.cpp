@@ -7,6 +7,7 @@
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
+#include "facecap/core/statistics.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/swap/noise_matching.hpp"
@@ -80,11 +81,7 @@ int drop_non_skin(FaceTexture& texture, float max_chroma, float max_log_brightne
     }
   }
   if (cb.empty()) return 0;
-  auto median = [](std::vector<float>& v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  const float mb = median(cb), mg = median(cg), ml = median(lum);
+  const float mb = median_in_place(cb), mg = median_in_place(cg), ml = median_in_place(lum);
   int dropped = 0;
   for (int y = 0; y < texture.albedo.rows; ++y) {
     const auto* a = texture.albedo.ptr<cv::Vec3f>(y);

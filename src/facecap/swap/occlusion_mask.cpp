@@ -7,6 +7,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/image_sampling.hpp"
+#include "facecap/core/statistics.hpp"
 
 namespace facecap {
 
@@ -104,10 +105,7 @@ cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
         for (int k = 0; k < 3; ++k) values[k].push_back(l[x][k] - s[x][k] / w[x]);
       }
     }
-    for (int k = 0; k < 3; ++k) {
-      std::nth_element(values[k].begin(), values[k].begin() + values[k].size() / 2, values[k].end());
-      shift[k] = values[k][values[k].size() / 2];
-    }
+    for (int k = 0; k < 3; ++k) shift[k] = median_in_place(values[k]);
   }
   // Outside the envelope by more than min_log_change in some channel.
   cv::Mat found(n, n, CV_8U, cv::Scalar(0));
