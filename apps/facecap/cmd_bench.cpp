@@ -135,6 +135,19 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
                      {"displacement_ms_per_level", per_level},
                      {"total_ms_per_frame", stage->refine_ms() / n},
                      {"device", to_string(a->refine_options.device)}};
+      // Whether the two stages overlap: the stage's thread idles until
+      // capture's start-up (the identity solve over the first frames) hands
+      // it the first frame, and from then on either waits for frames (capture
+      // is the bottleneck) or makes capture wait in push() (it is).
+      const RefineStageTimings& st = stage->timings();
+      const double m = std::max(1, stage->frames());
+      j["refine_stage"] = {{"frames", stage->frames()},
+                           {"startup_ms", st.startup_ms},
+                           {"coarse_face_ms_per_frame", st.coarse_ms / m},
+                           {"consumer_ms_per_frame", st.consumer_ms / m},
+                           {"idle_ms_per_frame", st.idle_ms / m},
+                           {"capture_blocked_ms_per_frame", st.push_wait_ms / m},
+                           {"fps_after_startup", st.first_to_last_ms > 0 ? 1000.0 * m / st.first_to_last_ms : 0.0}};
       j["fps_with_refine"] =
           (wall - s.timings.setup_ms / 1000) > 0 ? s.frames / (wall - s.timings.setup_ms / 1000) : 0.0;
     }

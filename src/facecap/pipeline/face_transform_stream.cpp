@@ -71,8 +71,8 @@ void FaceTransformStream::emit(const std::vector<TransformedFrame>& done) {
     if (t.valid) {
       const auto t0 = std::chrono::steady_clock::now();
       const PinholeCamera cam = PinholeCamera::centered(p.frame.fit.focal, width_, height_);
-      const Positions changed = to_camera(
-          model_.evaluate(p.frame.identity.identity.cast<float>(), t.weights, regions::kFace), p.frame.fit.pose);
+      const Positions changed =
+          to_camera(face_shape_.evaluate(p.frame.identity.identity.cast<float>(), t.weights), p.frame.fit.pose);
       layer = reshade_face(p.frame.image, p.coarse, changed, skin_, p.lighting, cam);
       warp_mouth(p.frame.image, project_vertices(p.coarse, inner_lips_, cam),
                  project_vertices(changed, inner_lips_, cam), *layer);

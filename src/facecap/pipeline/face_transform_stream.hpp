@@ -14,6 +14,7 @@
 
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/expr/expression_transform.hpp"
+#include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 
@@ -69,6 +70,7 @@ class FaceTransformStream {
   void emit(const std::vector<TransformedFrame>& done);
 
   const FaceModel& model_;
+  FaceShapeCache face_shape_{model_, regions::kFace};  // used on the stage's thread
   int width_, height_;
   Output output_;
   ExpressionTransformer transformer_;

@@ -12,6 +12,7 @@
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/core/statistics.hpp"
+#include "facecap/model/face_shape_cache.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/render/uv_bake.hpp"
@@ -282,6 +283,7 @@ RefineVideoResult evaluate_refine_video(const FaceModel& model, const std::strin
   const TriangleMesh face = model.region_mesh(regions::kFace);
   const std::vector<Triangle> skin = masked_triangles(face.triangles, face_skin_mask());
   Refiner refiner = make_face_refiner(model, refine);
+  FaceShapeCache face_shape(model, regions::kFace);
   RefineVideoResult r;
   double refine_ms = 0;
   CaptureOptions c = capture;
@@ -290,7 +292,7 @@ RefineVideoResult evaluate_refine_video(const FaceModel& model, const std::strin
     if (f.status == TrackStatus::kLost) return;
     const PinholeCamera cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
     const Positions coarse =
-        to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
+        to_camera(face_shape.evaluate(f.identity.identity.cast<float>(), f.fit.expression), f.fit.pose);
     const auto t0 = std::chrono::steady_clock::now();
     const Refinement ref = refiner.refine(f.image, coarse, cam);
     refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

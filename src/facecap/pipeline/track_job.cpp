@@ -16,6 +16,7 @@
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
+#include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/livelink_streamer.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
@@ -482,8 +483,7 @@ struct TrackOutput::Impl {
     Positions coarse;
     PinholeCamera cam;
     if (f.status != TrackStatus::kLost) {
-      coarse =
-          to_camera(model.evaluate(f.identity.identity.cast<float>(), f.fit.expression, regions::kFace), f.fit.pose);
+      coarse = to_camera(face_shape.evaluate(f.identity.identity.cast<float>(), f.fit.expression), f.fit.pose);
       cam = PinholeCamera::centered(f.fit.focal, info.width, info.height);
     }
     writer.write(f, nullptr, coarse, cam);
@@ -494,6 +494,7 @@ struct TrackOutput::Impl {
   const std::string input;
   const TrackOptions options;
   FrameWriter writer;
+  FaceShapeCache face_shape{model, regions::kFace};
   std::unique_ptr<RefineStage> stage;
 };
 
