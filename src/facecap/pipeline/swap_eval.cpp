@@ -118,35 +118,45 @@ double seam_ratio(const cv::Mat& image, const cv::Mat& alpha) {
 
 HueBeyond hue_beyond_target(const cv::Mat& output, const cv::Mat& target, const cv::Mat& alpha) {
   constexpr int kMinPixels = 100;
-  constexpr float kMargin = 6.0f, kLowShare = 0.005f;
-  std::array<std::vector<float>, 2> target_opponents, output_opponents;
+  constexpr float kMinLevel = 16.0f, kMargin = 0.05f, kLowShare = 0.005f;
+  // Opponent colours over the pixel's level: a darker pixel of the same hue
+  // has the same ones (in grey levels, B - R and 2G - R - B shrink toward 0
+  // as a pixel darkens, so a deeper shadow would read as a bluer one).
+  const auto opponents = [](const cv::Vec3b& pixel) -> std::optional<std::array<float, 2>> {
+    const float b = pixel[0], g = pixel[1], r = pixel[2], level = (b + g + r) / 3;
+    if (level < kMinLevel) return std::nullopt;  // too dark to have a hue
+    return std::array<float, 2>{(b - r) / level, (2 * g - r - b) / level};
+  };
+  std::array<std::vector<float>, 2> target_opponents;
+  std::vector<std::array<float, 2>> output_opponents;
+  size_t face_pixels = 0;
   for (int y = 0; y < alpha.rows; ++y) {
     const float* a = alpha.ptr<float>(y);
     const auto* t = target.ptr<cv::Vec3b>(y);
     const auto* o = output.ptr<cv::Vec3b>(y);
     for (int x = 0; x < alpha.cols; ++x) {
       if (!(a[x] > 0.5f)) continue;
-      for (const auto& [pixel, into] : {std::pair{t[x], &target_opponents}, std::pair{o[x], &output_opponents}}) {
-        const float b = pixel[0], g = pixel[1], r = pixel[2];
-        (*into)[0].push_back(b - r);
-        (*into)[1].push_back(2 * g - r - b);
+      ++face_pixels;
+      if (const auto c = opponents(t[x])) {
+        for (int k = 0; k < 2; ++k) target_opponents[k].push_back((*c)[k]);
       }
+      if (const auto c = opponents(o[x])) output_opponents.push_back(*c);
     }
   }
   HueBeyond h;
-  const size_t n = target_opponents[0].size();
-  if (n < kMinPixels) return h;
-  std::vector<char> cool(n, 0), warm(n, 0);
+  if (target_opponents[0].size() < kMinPixels) return h;
+  std::array<float, 2> low, high;
   for (int k = 0; k < 2; ++k) {
-    std::vector<float>& values = target_opponents[k];
-    const float low = quantile(values, kLowShare) - kMargin, high = quantile(values, 1 - kLowShare) + kMargin;
-    for (size_t i = 0; i < n; ++i) {
-      cool[i] |= output_opponents[k][i] > high;
-      warm[i] |= output_opponents[k][i] < low;
-    }
+    low[k] = quantile(target_opponents[k], kLowShare) - kMargin;
+    high[k] = quantile(target_opponents[k], 1 - kLowShare) + kMargin;
   }
-  h.cool = double(std::count(cool.begin(), cool.end(), 1)) / n;
-  h.warm = double(std::count(warm.begin(), warm.end(), 1)) / n;
+  size_t cool = 0, warm = 0;
+  for (const auto& c : output_opponents) {
+    cool += c[0] > high[0] || c[1] > high[1];
+    warm += c[0] < low[0] || c[1] < low[1];
+  }
+  h.cool = double(cool) / face_pixels;
+  h.warm = double(warm) / face_pixels;
   return h;
 }
 

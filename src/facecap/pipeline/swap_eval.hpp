@@ -90,12 +90,15 @@ SwapPairEval evaluate_swap_pair(const FaceModel& model, const std::string& photo
 double seam_ratio(const cv::Mat& image, const cv::Mat& alpha);
 
 // Colours the new face shows that the target's face does not: over the
-// pixels where `alpha` > 0.5, the opponent colours (B - R, 2G - R - B) of
-// `target` span a box (their 0.5th to 99.5th percentiles, widened by 6 grey
-// levels); the shares of `output`'s pixels there beyond it toward blue or
-// green (cool) and toward red or magenta (warm). A graded video (sepia,
-// desaturated) spans a narrow box, and a colour transfer that shifts hue
-// shows at once. Zeros when fewer than 100 pixels count.
+// pixels where `alpha` > 0.5, the opponent colours of `target` relative to
+// each pixel's level ((B - R) / Y, (2G - R - B) / Y, Y the mean of B, G, R)
+// span a box (their 0.5th to 99.5th percentiles, widened by 0.05); the
+// shares of `output`'s face pixels beyond it toward blue or green (cool) and
+// toward red or magenta (warm). Pixels with Y under 16 have no hue to speak
+// of and count as neither. A graded video (sepia, desaturated) spans a narrow
+// box, and a colour transfer that shifts hue shows at once, whether the
+// pixel is a bright cheek or a dark brow. Zeros when fewer than 100 target
+// pixels count.
 struct HueBeyond {
   double cool = 0, warm = 0;
 };
