@@ -7,8 +7,13 @@ namespace facecap {
 
 namespace {
 
-// Vertices per block of the albedo PCG's parallel passes.
-constexpr int kBlock = 1024;
+// Vertices per block of the albedo PCG's parallel passes. The coarsest level
+// has about 9.4k vertices, and each pass is a few tens of microseconds of
+// work: in blocks of 1024, handing them out cost more than the second core
+// gave (`refine_bench` BM_AlbedoPhase on this 2-core VM, alternating runs:
+// 1402-1480 ms in blocks of 1024, 1069-1127 ms in blocks of 4096, 1240-1290 ms
+// on one thread in a slower spell).
+constexpr int kBlock = 4096;
 
 // Per channel c, the sum over the vertices i of entry(i, c, q), q = 3 i + c
 // (the entry's index in row-major n x 3 data); entry may also write there.
@@ -87,7 +92,7 @@ void AlbedoEstimator::laplacian_normal(const Channels& x, Channels& lx, Channels
               inv_degree_[i] > 0 ? Eigen::RowVector3d(x.row(i) - sum * inv_degree_[i]) : Eigen::RowVector3d::Zero();
         }
       },
-      1024);
+      kBlock);
   parallel_for(
       n,
       [&](int b, int e) {
@@ -100,7 +105,7 @@ void AlbedoEstimator::laplacian_normal(const Channels& x, Channels& lx, Channels
           out.row(i) = lx.row(i) - sum;
         }
       },
-      1024);
+      kBlock);
 }
 
 AlbedoEstimator::Channels AlbedoEstimator::solve_channels(const Eigen::VectorXd& d, const Channels& b, double w,
