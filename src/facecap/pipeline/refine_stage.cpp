@@ -1,5 +1,6 @@
 #include "facecap/pipeline/refine_stage.hpp"
 
+#include "facecap/core/stopwatch.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 
 namespace facecap {
@@ -16,14 +17,6 @@ RefineStage::~RefineStage() {
   queue_.close();
   if (worker_.joinable()) worker_.join();
 }
-
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 void RefineStage::push(const CapturedFrame& frame) {
   if (error_) std::rethrow_exception(error_);
