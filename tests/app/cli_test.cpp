@@ -466,6 +466,41 @@ TEST(Cli, ProbeDescribesAVideoAsJson) {
   EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
 }
 
+// dlib's face detector is decoded once (0.3 s) and kept in the cache folder
+// in dlib's plain form (read back in 2-3 ms): later runs find the same faces;
+// a damaged cache file is decoded again and rewritten; a cache folder that
+// cannot be written costs only the time.
+TEST(Cli, TheFaceDetectorIsKeptInTheCacheAndADamagedCopyIsRebuilt) {
+  FACECAP_REQUIRE_DATA(image, "lfpw_image_0010.png");
+  TempDir dir;
+  const fs::path cache = dir.path() / "cache";
+  const auto probe = [&](const fs::path& cache_dir) {
+    return test::run_command("FACECAP_CACHE_DIR=" + cache_dir.string() + " " + std::string(FACECAP_BINARY) +
+                             " -q probe " + image.string() + " 2>&1");
+  };
+  const RunResult first = probe(cache);
+  ASSERT_EQ(first.code, 0) << first.out;
+  EXPECT_NE(first.out.find("\"faces\": 1"), std::string::npos) << first.out;
+  std::vector<fs::path> kept;
+  for (const auto& e : fs::directory_iterator(cache))
+    if (e.path().filename().string().starts_with("dlib-frontal-face-detector-")) kept.push_back(e.path());
+  ASSERT_EQ(kept.size(), 1u);
+  const auto size = fs::file_size(kept[0]);
+  EXPECT_GT(size, 10000u);
+  const RunResult second = probe(cache);
+  EXPECT_EQ(second.code, 0);
+  EXPECT_EQ(second.out, first.out);
+  fs::resize_file(kept[0], 100);  // a truncated copy
+  const RunResult third = probe(cache);
+  EXPECT_EQ(third.code, 0);
+  EXPECT_EQ(third.out, first.out);
+  EXPECT_EQ(fs::file_size(kept[0]), size);
+  std::ofstream(dir.path() / "not_a_folder") << "x";
+  const RunResult unwritable = probe(dir.path() / "not_a_folder");
+  EXPECT_EQ(unwritable.code, 0);
+  EXPECT_EQ(unwritable.out, first.out);
+}
+
 // A wide shot: Obama's portrait at a quarter of its size on a grey 1280x720
 // frame, his face about 90 px wide (36 px between the outer eye corners),
 // half what the detector finds in a frame downscaled to 640 px. Both probe
