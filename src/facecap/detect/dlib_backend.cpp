@@ -40,6 +40,8 @@ cv::Mat to_grey(const cv::Mat& image) {
 // is missing, unreadable or damaged only costs the decoding again (and is
 // rewritten). Loaded once per process; each FaceDetector keeps a copy (the
 // detector's call is not const, so instances cannot share one).
+namespace {
+
 dlib::frontal_face_detector load_frontal_face_detector() {
   const std::filesystem::path cached =
       cache_dir() / ("dlib-frontal-face-detector-" + std::to_string(DLIB_MAJOR_VERSION) + "." +
@@ -67,6 +69,8 @@ const dlib::frontal_face_detector& decoded_frontal_face_detector() {
   static const dlib::frontal_face_detector detector = load_frontal_face_detector();
   return detector;
 }
+
+}  // namespace
 
 struct FaceDetector::Impl {
   dlib::frontal_face_detector detector = decoded_frontal_face_detector();
