@@ -46,13 +46,14 @@ void RefineStage::run() {
       RefinedFrame out;
       out.frame = std::move(*f);
       out.starts_shot = out.frame.shot != shot_;
-      auto t0 = Clock::now();
       if (out.starts_shot) {
+        const auto t0 = Clock::now();
         if (shot_end_) shot_end_();
+        timings_.consumer_ms += ms_since(t0);
         refiner_.start_shot();
         shot_ = out.frame.shot;
       }
-      timings_.consumer_ms += ms_since(t0);
+      Clock::time_point t0;
       if (out.frame.status != TrackStatus::kLost && !out.frame.image.empty()) {
         t0 = Clock::now();
         out.camera = PinholeCamera::centered(out.frame.fit.focal, out.frame.image.cols, out.frame.image.rows);
