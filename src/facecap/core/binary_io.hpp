@@ -71,6 +71,7 @@ class ByteReader {
     return s;
   }
   bool done() const { return data_.empty(); }
+  size_t remaining() const { return data_.size(); }
   [[noreturn]] void corrupt() const { throw Error(what_ + " is corrupt: " + path_.string()); }
 
  private:

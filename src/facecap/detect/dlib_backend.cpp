@@ -6,10 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <opencv2/imgproc.hpp>
+#include <span>
 #include <string>
 
 #include "facecap/core/atomic_file.hpp"
@@ -17,6 +22,7 @@
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/detect/landmark_detector.hpp"
+#include "facecap/detect/regression_cascade.hpp"
 
 namespace facecap {
 
@@ -127,20 +133,21 @@ std::filesystem::path default_landmark_model_path() {
   return "/usr/share/dlib/shape_predictor_68_face_landmarks.dat";
 }
 
-// dlib::shape_predictor, read field by field from its serialised form so that
-// the landmarks keep their sub-pixel positions: dlib's own operator() rounds
-// every point to whole pixels (full_object_detection holds integer points),
-// which would add about 0.3 px of quantisation noise to each coordinate.
-// The cascade below is the same computation as shape_predictor::operator().
-struct LandmarkDetector::Impl {
+// dlib's shape_predictor file, read field by field into the flat layout of
+// RegressionCascade (detect/regression_cascade.hpp), which also evaluates the
+// trees, so that the landmarks keep their sub-pixel positions: dlib's own
+// operator() rounds every point to whole pixels (full_object_detection holds
+// integer points), which would add about 0.3 px of quantisation noise to
+// each coordinate. Throws facecap::Error naming the file.
+namespace {
+
+RegressionCascade read_dlib_shape_predictor(const std::filesystem::path& model_path) {
   dlib::matrix<float, 0, 1> initial_shape;
   std::vector<std::vector<dlib::impl::regression_tree>> forests;
   std::vector<std::vector<unsigned long>> anchor_idx;
   std::vector<std::vector<dlib::vector<float, 2>>> deltas;
-
-  unsigned long num_parts() const { return initial_shape.size() / 2; }
-
-  void read(std::istream& in) {
+  try {
+    std::ifstream in(model_path, std::ios::binary);
     int version = 0;
     dlib::deserialize(version, in);
     if (version != 1) throw dlib::serialization_error("unexpected shape_predictor version");
@@ -148,20 +155,129 @@ struct LandmarkDetector::Impl {
     dlib::deserialize(forests, in);
     dlib::deserialize(anchor_idx, in);
     dlib::deserialize(deltas, in);
+  } catch (const std::exception&) {
+    throw Error("cannot read landmark model " + model_path.string() + ": not a dlib shape predictor or truncated");
   }
+  const auto inconsistent = [&]() {
+    return Error("cannot read landmark model " + model_path.string() + ": its trees are inconsistent");
+  };
+  if (anchor_idx.size() != forests.size() || deltas.size() != forests.size()) throw inconsistent();
+  const size_t dims = size_t(initial_shape.size());
+  std::vector<CascadeLevel> levels(forests.size());
+  std::vector<uint32_t> tree_split_begin{0};
+  std::vector<RegressionSplit> splits;
+  std::vector<float> leaves;
+  for (size_t l = 0; l < forests.size(); ++l) {
+    CascadeLevel& level = levels[l];
+    level.anchor_idx.assign(anchor_idx[l].begin(), anchor_idx[l].end());
+    for (const auto& d : deltas[l]) level.deltas.insert(level.deltas.end(), {d.x(), d.y()});
+    level.first_tree = uint32_t(tree_split_begin.size() - 1);
+    level.num_trees = uint32_t(forests[l].size());
+    for (const dlib::impl::regression_tree& tree : forests[l]) {
+      if (tree.leaf_values.size() != tree.splits.size() + 1) throw inconsistent();
+      for (const auto& s : tree.splits) splits.push_back({uint32_t(s.idx1), uint32_t(s.idx2), s.thresh});
+      for (const auto& leaf : tree.leaf_values) {
+        if (size_t(leaf.size()) != dims) throw inconsistent();
+        leaves.insert(leaves.end(), leaf.begin(), leaf.end());
+      }
+      tree_split_begin.push_back(uint32_t(splits.size()));
+    }
+  }
+  try {
+    return RegressionCascade(std::vector<float>(initial_shape.begin(), initial_shape.end()), std::move(levels),
+                             std::move(tree_split_begin), std::move(splits), std::move(leaves));
+  } catch (const Error&) {
+    throw inconsistent();
+  }
+}
 
+// Decoding dlib's file takes about half a second (its floats are stored as
+// variable-length mantissas and exponents); mapping the flat copy that the
+// first run keeps in the cache folder takes a few milliseconds. The copy
+// carries the source file's fingerprint (path, size, modification time) and
+// a checksum; a missing, stale or damaged one costs the decoding again and is
+// rewritten, an unwritable cache folder only the time.
+uint64_t predictor_fingerprint(const std::filesystem::path& canonical) {
+  std::error_code ec;
+  const std::string key = "facecap-landmark-cache-v1:" + canonical.string() + ":" +
+                          std::to_string(std::filesystem::file_size(canonical, ec)) + ":" +
+                          std::to_string(std::filesystem::last_write_time(canonical, ec).time_since_epoch().count());
+  return std::hash<std::string>{}(key);
+}
+
+RegressionCascade load_regression_cascade(const std::filesystem::path& canonical) {
+  const uint64_t fingerprint = predictor_fingerprint(canonical);
+  char name[64];
+  std::snprintf(name, sizeof(name), "dlib-shape-predictor-%016llx.fclm",
+                static_cast<unsigned long long>(std::hash<std::string>{}(canonical.string())));
+  const std::filesystem::path cached = cache_dir() / name;
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(cached, ec)) {
+    try {
+      return RegressionCascade::load(cached, fingerprint);
+    } catch (const Error&) {
+    }
+  }
+  RegressionCascade cascade = read_dlib_shape_predictor(canonical);
+  try {
+    cascade.save(cached, fingerprint);
+  } catch (const std::exception&) {
+  }
+  return cascade;
+}
+
+// The cascade and the per-level feature offsets in dlib's types, as its
+// feature extraction takes them. Immutable once built; every detector of the
+// process that reads the same file shares one.
+struct LandmarkPredictor {
+  RegressionCascade cascade;
+  dlib::matrix<float, 0, 1> initial_shape;
+  std::vector<std::vector<unsigned long>> anchor_idx;
+  std::vector<std::vector<dlib::vector<float, 2>>> deltas;
+
+  explicit LandmarkPredictor(RegressionCascade c) : cascade(std::move(c)) {
+    const std::vector<float>& s = cascade.initial_shape();
+    initial_shape.set_size(long(s.size()));
+    std::copy(s.begin(), s.end(), initial_shape.begin());
+    for (const CascadeLevel& level : cascade.levels()) {
+      anchor_idx.emplace_back(level.anchor_idx.begin(), level.anchor_idx.end());
+      auto& d = deltas.emplace_back(level.num_features());
+      for (size_t i = 0; i < d.size(); ++i) d[i] = dlib::vector<float, 2>(level.deltas[2 * i], level.deltas[2 * i + 1]);
+    }
+  }
+};
+
+std::shared_ptr<const LandmarkPredictor> shared_landmark_predictor(const std::filesystem::path& model_path) {
+  std::error_code ec;
+  std::filesystem::path canonical = std::filesystem::canonical(model_path, ec);
+  if (ec) canonical = model_path;
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, std::weak_ptr<const LandmarkPredictor>> loaded;
+  const std::lock_guard lock(mutex);
+  if (auto p = loaded[canonical].lock()) return p;
+  auto p = std::make_shared<const LandmarkPredictor>(load_regression_cascade(canonical));
+  loaded[canonical] = p;
+  return p;
+}
+
+}  // namespace
+
+struct LandmarkDetector::Impl {
+  std::shared_ptr<const LandmarkPredictor> predictor;
+
+  // The cascade of dlib's shape_predictor::operator(), without its rounding.
   template <typename Image>
   std::vector<dlib::vector<double, 2>> predict(const Image& img, const dlib::rectangle& rect) const {
-    dlib::matrix<float, 0, 1> shape = initial_shape;
+    const LandmarkPredictor& p = *predictor;
+    dlib::matrix<float, 0, 1> shape = p.initial_shape;
     std::vector<float> feature_pixel_values;
-    for (unsigned long iter = 0; iter < forests.size(); ++iter) {
-      dlib::impl::extract_feature_pixel_values(img, rect, shape, initial_shape, anchor_idx[iter], deltas[iter],
+    for (size_t level = 0; level < p.cascade.levels().size(); ++level) {
+      dlib::impl::extract_feature_pixel_values(img, rect, shape, p.initial_shape, p.anchor_idx[level], p.deltas[level],
                                                feature_pixel_values);
-      unsigned long leaf_idx = 0;
-      for (const auto& tree : forests[iter]) shape += tree(feature_pixel_values, leaf_idx);
+      p.cascade.add_level(level, feature_pixel_values, std::span(&shape(0), size_t(shape.size())));
     }
     const dlib::point_transform_affine to_image = dlib::impl::unnormalizing_tform(rect);
-    std::vector<dlib::vector<double, 2>> parts(num_parts());
+    std::vector<dlib::vector<double, 2>> parts(p.cascade.num_parts());
     for (unsigned long i = 0; i < parts.size(); ++i) parts[i] = to_image(dlib::impl::location(shape, i));
     return parts;
   }
@@ -172,15 +288,10 @@ LandmarkDetector::LandmarkDetector(const std::filesystem::path& model_path) : im
   if (!std::filesystem::is_regular_file(model_path, ec)) {
     throw Error("landmark model not found: " + model_path.string() + " (install the Debian package libdlib-data)");
   }
-  try {
-    std::ifstream in(model_path, std::ios::binary);
-    impl_->read(in);
-  } catch (const std::exception&) {
-    throw Error("cannot read landmark model " + model_path.string() + ": not a dlib shape predictor or truncated");
-  }
-  if (impl_->num_parts() != kNumLandmarks) {
-    throw Error("landmark model " + model_path.string() + " predicts " + std::to_string(impl_->num_parts()) +
-                " points, expected 68");
+  impl_->predictor = shared_landmark_predictor(model_path);
+  if (impl_->predictor->cascade.num_parts() != kNumLandmarks) {
+    throw Error("landmark model " + model_path.string() + " predicts " +
+                std::to_string(impl_->predictor->cascade.num_parts()) + " points, expected 68");
   }
 }
 LandmarkDetector::~LandmarkDetector() = default;
