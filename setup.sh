@@ -14,7 +14,7 @@ PACKAGES=(
   build-essential cmake pkg-config git
   libeigen3-dev libopencv-dev libdlib-dev libdlib-data libceres-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
-  ffmpeg libavformat-dev libavcodec-dev libavutil-dev zlib1g-dev
+  ffmpeg libavformat-dev libavcodec-dev libavutil-dev libswscale-dev libpng-dev libjpeg62-turbo-dev zlib1g-dev
   libtorch-dev
   blender python3-numpy  # tests only: Blender's own importer opens the animated glTF output
 )

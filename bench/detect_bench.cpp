@@ -6,11 +6,11 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_detector.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 
 namespace facecap {

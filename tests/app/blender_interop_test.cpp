@@ -5,13 +5,13 @@
 // (io/glb_reader.hpp, itself checked against the tracker in
 // face_animation_test.cpp).
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -26,6 +26,18 @@ namespace facecap {
 namespace fs = std::filesystem;
 
 namespace {
+
+// A PNG with its alpha channel, as 8-bit BGRA (facecap's own reader keeps
+// only colour); empty when it cannot be read.
+cv::Mat read_png_bgra(const fs::path& file) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, file.c_str())) return {};
+  image.format = PNG_FORMAT_BGRA;
+  cv::Mat bgra(int(image.height), int(image.width), CV_8UC4);
+  if (!png_image_finish_read(&image, nullptr, bgra.data, png_int_32(bgra.step), nullptr)) return {};
+  return bgra;
+}
 
 // Where the file's primitives cover the image at `key`, seen through its
 // camera (looking down -z, y up; pixel centres at integers).
@@ -103,7 +115,7 @@ TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView
   EXPECT_EQ(size_t(mesh["shape_key_keys"]), times.size());
 
   // Blender's render through the imported camera covers what the file says.
-  const cv::Mat render = cv::imread(render_path.string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat render = read_png_bgra(render_path);
   ASSERT_EQ(render.type(), CV_8UC4);
   ASSERT_EQ(render.size(), cv::Size(width, height));
   cv::Mat alpha, seen;

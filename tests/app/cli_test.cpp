@@ -13,11 +13,11 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "app/command.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/marked_image.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/refine/compute_device.hpp"
@@ -388,10 +388,10 @@ TEST(Cli, SwapTakesItsSourceFromAVideo) {
   const RunResult extracted = test::run_command("ffmpeg -nostdin -v error -y -i " + source.string() + " -frames:v 1 " +
                                                 (photos / "1.png").string() + " 2>&1");
   ASSERT_EQ(extracted.code, 0) << extracted.out;
-  const cv::Mat photo = cv::imread((photos / "1.png").string());
+  const cv::Mat photo = facecap::read_image((photos / "1.png").string());
   cv::Mat mirrored;
   cv::flip(photo, mirrored, 1);
-  ASSERT_TRUE(cv::imwrite((photos / "2.png").string(), mirrored));
+  facecap::write_image((photos / "2.png").string(), mirrored);
   const RunResult folder =
       run("swap --source " + photos.string() + " --target " + target.string() + " --max-frames 2 -o " + out);
   ASSERT_EQ(folder.code, 0) << folder.out;
@@ -417,7 +417,7 @@ TEST(Cli, EditsOfAPhotoWriteAMarkedPhoto) {
   FACECAP_REQUIRE_DATA(target, "portrait_obama.jpg");
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   TempDir dir;
-  const cv::Mat input = cv::imread(target.string());
+  const cv::Mat input = facecap::read_image(target.string());
   ASSERT_FALSE(input.empty());
   const cv::Rect corner(0, 0, 120, 120);  // curtain and flag, far from the face
   auto face_change = [&](const cv::Mat& out) {
@@ -433,7 +433,7 @@ TEST(Cli, EditsOfAPhotoWriteAMarkedPhoto) {
   const auto swap_tags = read_image_tags(swapped);
   EXPECT_EQ(swap_tags.at("facecap_edit"), "face-swap");
   EXPECT_NE(swap_tags.at("comment").find("The face in this image was replaced"), std::string::npos);
-  const cv::Mat swap_out = cv::imread(swapped.string());
+  const cv::Mat swap_out = facecap::read_image(swapped.string());
   ASSERT_EQ(swap_out.size(), input.size());
   EXPECT_GT(face_change(swap_out), 10.0);                                                  // another face
   EXPECT_LT(cv::norm(swap_out(corner), input(corner), cv::NORM_L1) / corner.area(), 3.0);  // JPEG's own
@@ -443,7 +443,7 @@ TEST(Cli, EditsOfAPhotoWriteAMarkedPhoto) {
   ASSERT_EQ(t.code, 0) << t.out;
   EXPECT_TRUE(carries_synthetic_marks(smiling));
   EXPECT_EQ(read_image_tags(smiling).at("facecap_edit"), "expression-transform");
-  const cv::Mat smile_out = cv::imread(smiling.string());
+  const cv::Mat smile_out = facecap::read_image(smiling.string());
   ASSERT_EQ(smile_out.size(), input.size());
   EXPECT_GT(face_change(smile_out), 5.0);
   EXPECT_EQ(cv::norm(smile_out(corner), input(corner), cv::NORM_INF), 0.0);  // PNG: exactly the input
@@ -508,7 +508,7 @@ TEST(Cli, TheFaceDetectorIsKeptInTheCacheAndADamagedCopyIsRebuilt) {
 TEST(Cli, ProbeAndTrackFindAFaceInAWideShot) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(portrait, "portrait_obama.jpg");
-  const cv::Mat photo = cv::imread(portrait.string());
+  const cv::Mat photo = facecap::read_image(portrait.string());
   ASSERT_FALSE(photo.empty());
   cv::Mat small;
   cv::resize(photo, small, cv::Size(), 0.25, 0.25, cv::INTER_AREA);
@@ -516,7 +516,7 @@ TEST(Cli, ProbeAndTrackFindAFaceInAWideShot) {
   small.copyTo(wide(cv::Rect(700, 300, small.cols, small.rows)));
   TempDir dir;
   const auto image = dir.path() / "wide.png";
-  ASSERT_TRUE(cv::imwrite(image.string(), wide));
+  facecap::write_image(image.string(), wide);
   RunResult r = run("probe " + image.string());
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
@@ -590,7 +590,7 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
   FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
-  cv::Mat left = cv::imread(obama.string()), right = cv::imread(biden.string());
+  cv::Mat left = facecap::read_image(obama.string()), right = facecap::read_image(biden.string());
   ASSERT_FALSE(left.empty() || right.empty());
   cv::resize(right(cv::Rect(0, 0, right.cols, 800)), right, cv::Size(), 0.7, 0.7, cv::INTER_AREA);
   cv::resize(left, left, cv::Size(left.cols * right.rows / left.rows, right.rows), 0, 0, cv::INTER_AREA);
@@ -598,7 +598,7 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   cv::hconcat(left, right, both);
   TempDir dir;
   const auto image = dir.path() / "two.png";
-  ASSERT_TRUE(cv::imwrite(image.string(), both));
+  facecap::write_image(image.string(), both);
   const RunResult r = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                         (dir.path() / "out").string() + " 2>&1 >/dev/null");
   ASSERT_EQ(r.code, 0) << r.out;
@@ -651,7 +651,7 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   EXPECT_NE(happy.out.find("face 4 (--face-to, --face-schedule) was not found: the input showed 2 face(s)"),
             std::string::npos)
       << happy.out;
-  const cv::Mat changed = cv::imread(smiles.string());
+  const cv::Mat changed = facecap::read_image(smiles.string());
   ASSERT_EQ(changed.size(), both.size());
   EXPECT_TRUE(fs::exists(smiles.string() + ".json"));
   const cv::Rect left_part(0, 0, left.cols, left.rows), right_part(left.cols, 0, right.cols, right.rows);
@@ -667,7 +667,7 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   EXPECT_NE(swap.out.find("face 1 (from frame 0): frames 1, swapped 1, lost 0 (the face from " + obama.string() + ")"),
             std::string::npos)
       << swap.out;
-  const cv::Mat swapped_image = cv::imread(swapped.string());
+  const cv::Mat swapped_image = facecap::read_image(swapped.string());
   ASSERT_EQ(swapped_image.size(), both.size());
   EXPECT_GT(cv::norm(swapped_image(left_part), both(left_part), cv::NORM_INF), 40.0);
   EXPECT_GT(cv::norm(swapped_image(right_part), both(right_part), cv::NORM_INF), 40.0);

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
 
@@ -16,6 +16,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/detect/landmark_detector.hpp"
+#include "facecap/io/image_file.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -49,6 +50,13 @@ void flip_byte(const fs::path& file, std::streamoff at) {
   c = char(c ^ 0x10);
   f.seekp(at);
   f.write(&c, 1);
+}
+
+cv::Mat grey_image(const fs::path& file) {
+  const cv::Mat bgr = read_image(file);
+  cv::Mat grey;
+  if (!bgr.empty()) cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  return grey;
 }
 
 std::string read_bytes(const fs::path& file) {
@@ -127,7 +135,7 @@ TEST(RegressionCascade, ASavedCascadeLoadsBackAndADamagedOrForeignFileIsRefused)
 // damaged copy is decoded again and rewritten.
 TEST(LandmarkDetector, ItsCachedPredictorGivesTheSameLandmarksAndADamagedOneIsRebuilt) {
   FACECAP_REQUIRE_DATA(image, "lfpw_image_0010.png");
-  const cv::Mat grey = cv::imread(image.string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat grey = grey_image(image);
   ASSERT_FALSE(grey.empty());
   const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
   ASSERT_FALSE(faces.empty());
@@ -160,7 +168,7 @@ TEST(LandmarkDetector, ItsCachedPredictorGivesTheSameLandmarksAndADamagedOneIsRe
 // ours on every landmark.
 TEST(LandmarkDetector, FindsWhatDlibsShapePredictorFindsBeforeItsRounding) {
   FACECAP_REQUIRE_DATA(image, "lfpw_image_0010.png");
-  const cv::Mat grey = cv::imread(image.string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat grey = grey_image(image);
   ASSERT_FALSE(grey.empty());
   const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
   ASSERT_FALSE(faces.empty());

@@ -3,12 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
+#include <tuple>
 #include <vector>
 
 #include "app/command.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -62,7 +63,7 @@ TEST(Input, WebcamClipHasNoAudio) {
 TEST(Input, StillImageAndImageFolder) {
   TempDir dir;
   const cv::Mat img(60, 80, CV_8UC3, cv::Scalar(10, 20, 30));
-  for (const char* name : {"b.png", "a.png", "c.jpg"}) cv::imwrite((dir.path() / name).string(), img);
+  for (const char* name : {"b.png", "a.png", "c.jpg"}) facecap::write_image((dir.path() / name).string(), img);
   std::ofstream(dir.path() / "notes.txt") << "ignored";
   auto still = open_input((dir.path() / "a.png").string());
   EXPECT_EQ(still->info().kind, InputKind::kImage);
@@ -82,10 +83,10 @@ TEST(Input, StillImageAndImageFolder) {
 // does not decode, is a frame without an image and a reason.
 TEST(Input, AFoldersImagesOfAnotherSizeOrCorruptAreFramesWithAReason) {
   TempDir dir;
-  cv::imwrite((dir.path() / "a.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(10, 20, 30)));
-  cv::imwrite((dir.path() / "b.png").string(), cv::Mat(80, 60, CV_8UC3, cv::Scalar(10, 20, 30)));
+  facecap::write_image((dir.path() / "a.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(10, 20, 30)));
+  facecap::write_image((dir.path() / "b.png").string(), cv::Mat(80, 60, CV_8UC3, cv::Scalar(10, 20, 30)));
   std::ofstream(dir.path() / "c.png") << "this is not an image\n";
-  cv::imwrite((dir.path() / "d.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(10, 20, 30)));
+  facecap::write_image((dir.path() / "d.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(10, 20, 30)));
   auto folder = open_input(dir.path().string());
   std::vector<Frame> frames;
   for (Frame f; folder->read(f);) frames.push_back(f);
@@ -146,6 +147,8 @@ TEST(Input, BadInputsGetOneClearMessage) {
   std::ofstream(dir.path() / "text.png") << "this is not an image\n";
   EXPECT_NE(open_error((dir.path() / "text.png").string()).find("cannot decode image"), std::string::npos);
   EXPECT_NE(open_error("cam:x").find("cam:N"), std::string::npos);
+  // No camera 99: libavdevice's input names it (or says the library is missing).
+  EXPECT_NE(open_error("cam:99").find("camera 99"), std::string::npos) << open_error("cam:99");
   EXPECT_NE(open_error("").find("no input"), std::string::npos);
 }
 
@@ -199,6 +202,53 @@ TEST(Input, AStartPastTheEndOrWithoutATimelineIsAClearError) {
   EXPECT_NE(open_error(image.string(), 1).find("only a video file"), std::string::npos);
   EXPECT_NE(open_error(image.parent_path().string(), 1).find("only a video file"), std::string::npos);
   EXPECT_EQ(open_error(image.string(), 0), "");  // no start: any input
+}
+
+// Every frame of three clips decodes to exactly what OpenCV's FFmpeg back-end
+// gave before it was replaced (it is no longer linked): the sums of their
+// channels over the whole clip, measured with OpenCV 4.6's VideoCapture.
+TEST(Input, ClipsDecodeToWhatOpenCvsBackEndGave) {
+  const std::vector<std::tuple<std::string, int, cv::Scalar>> expected = {
+      {"address_720p_a.mp4", 144, cv::Scalar(7733607356., 9736959717., 14061497345.)},
+      {"talking_webcam_400x300.mp4", 1337, cv::Scalar(18936911417., 22246652366., 24373590295.)},
+      {"emotions_pexels_640x360.mp4", 472, cv::Scalar(6135924949., 6619518388., 7889616137.)}};
+  for (const auto& [name, frames, sums] : expected) {
+    FACECAP_REQUIRE_DATA(video, name);
+    auto source = open_input(video.string());
+    cv::Scalar ours;
+    int count = 0;
+    for (Frame f; source->read(f); ++count) ours += cv::sum(f.image);
+    EXPECT_EQ(count, frames) << name;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(ours[c], sums[c]) << name << " channel " << c;
+  }
+}
+
+// A phone's portrait clip stores landscape frames and a display matrix;
+// its frames come out turned upright, as players show them.
+TEST(Input, ARotatedClipsFramesComeOutUpright) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  auto plain = open_input(webcam.string());
+  std::vector<cv::Mat> originals;
+  for (Frame f; originals.size() < 5 && plain->read(f);) originals.push_back(f.image.clone());
+  for (const auto& [degrees, rotation] : std::vector<std::pair<int, int>>{
+           {90, cv::ROTATE_90_CLOCKWISE}, {180, cv::ROTATE_180}, {270, cv::ROTATE_90_COUNTERCLOCKWISE}}) {
+    const fs::path turned = dir.path() / ("turned" + std::to_string(degrees) + ".mp4");
+    const test::CommandResult made = test::run_command("ffmpeg -hide_banner -loglevel error -y -i " + webcam.string() +
+                                                       " -t 1 -c copy -metadata:s:v rotate=" + std::to_string(degrees) +
+                                                       " " + turned.string() + " 2>&1");
+    ASSERT_EQ(made.code, 0) << made.out;
+    auto source = open_input(turned.string());
+    EXPECT_EQ(source->info().width, degrees == 180 ? 400 : 300) << degrees;
+    for (const cv::Mat& original : originals) {
+      Frame f;
+      ASSERT_TRUE(source->read(f));
+      cv::Mat expected;
+      cv::rotate(original, expected, rotation);
+      ASSERT_EQ(f.image.size(), expected.size()) << degrees;
+      EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0) << degrees;
+    }
+  }
 }
 
 }  // namespace facecap

@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 
 namespace facecap {
@@ -40,7 +40,7 @@ TEST(MarkedImage, PngAndJpegCarryTheSyntheticMarks) {
   for (const char* name : {"out.png", "out.JPG", "out.jpeg"}) {
     const fs::path path = dir.path() / name;
     write_marked_image(path, image, tags);
-    const cv::Mat back = cv::imread(path.string());
+    const cv::Mat back = facecap::read_image(path.string());
     ASSERT_EQ(back.size(), image.size()) << name;
     const double diff = cv::norm(back, image, cv::NORM_INF);
     if (path.extension() == ".png") {
@@ -63,7 +63,7 @@ TEST(MarkedImage, PngAndJpegCarryTheSyntheticMarks) {
 TEST(MarkedImage, AnImageWithoutMarksOrAnotherFileHasNoTags) {
   TempDir dir;
   const fs::path plain = dir.path() / "plain.png";
-  ASSERT_TRUE(cv::imwrite(plain.string(), test_image()));
+  facecap::write_image(plain.string(), test_image());
   EXPECT_TRUE(read_image_tags(plain).empty());
   std::ofstream(dir.path() / "text.jpg") << "not an image";
   EXPECT_TRUE(read_image_tags(dir.path() / "text.jpg").empty());

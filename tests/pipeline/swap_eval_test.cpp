@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/model/regions.hpp"
@@ -235,7 +235,7 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
       if (i >= kCoverFrom) cv::circle(image, cover_centre(i), kRadius, cv::Scalar(96, 48, 32), cv::FILLED);
       char name[32];
       std::snprintf(name, sizeof name, "frame_%03d.png", i);
-      ASSERT_TRUE(cv::imwrite((dir.path() / "covered" / name).string(), image));
+      facecap::write_image((dir.path() / "covered" / name).string(), image);
       input.push_back(image);
     }
   }
@@ -388,7 +388,8 @@ TEST(SwapJob, TheGltfIsTheSourceFacePerformingTheTargetsKeys) {
       g.doc["textures"][int(g.doc["materials"][material]["pbrMetallicRoughness"]["baseColorTexture"]["index"])]
            ["source"];
   const std::string png = g.image_bytes(image);
-  const cv::Mat texture = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  const cv::Mat texture =
+      facecap::decode_image(std::span(reinterpret_cast<const unsigned char*>(png.data()), png.size()));
   ASSERT_EQ(texture.rows, 1024);
   ASSERT_EQ(texture.cols, 1024);
   // Filled everywhere (the mirror completion and the fill), skin-coloured
@@ -408,7 +409,7 @@ TEST(SwapJob, APhotoWithoutAFaceIsAClearErrorAndWritesNothing) {
   TempDir dir;
   cv::Mat wall(480, 640, CV_8UC3, cv::Scalar(90, 120, 140));
   cv::rectangle(wall, cv::Rect(100, 100, 200, 150), cv::Scalar(30, 30, 30), -1);
-  cv::imwrite((dir.path() / "wall.png").string(), wall);
+  facecap::write_image((dir.path() / "wall.png").string(), wall);
   std::ofstream(dir.path() / "broken.jpg") << "not a jpeg";
   for (const char* name : {"wall.png", "broken.jpg", "missing.jpg"}) {
     try {
@@ -426,13 +427,13 @@ TEST(SwapJob, SeveralFacesInThePhotoUseTheLargestOrThePickedOne) {
   FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
   FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
   TempDir dir;
-  cv::Mat a = cv::imread(obama.string()), b = cv::imread(biden.string());
+  cv::Mat a = facecap::read_image(obama.string()), b = facecap::read_image(biden.string());
   cv::resize(b, b, cv::Size(), 0.45 * a.rows / b.rows * 2, 0.45 * a.rows / b.rows * 2);  // a smaller second face
   b = b(cv::Rect(0, 0, b.cols, std::min(b.rows, a.rows)));
   cv::Mat pair(a.rows, a.cols + b.cols, CV_8UC3, cv::Scalar(255, 255, 255));
   a.copyTo(pair(cv::Rect(0, 0, a.cols, a.rows)));
   b.copyTo(pair(cv::Rect(a.cols, 0, b.cols, b.rows)));
-  cv::imwrite((dir.path() / "two.jpg").string(), pair);
+  facecap::write_image((dir.path() / "two.jpg").string(), pair);
   const SourceReconstruction r = reconstruct_source(*model, (dir.path() / "two.jpg").string(), true);
   EXPECT_EQ(r.faces_found, 2);
   // The face used is Obama's (the larger, on the left): his nose tip projects there.
@@ -457,7 +458,7 @@ TEST(SwapJob, APhotoAndAVideoOfOneFaceReachNearbyIdentities) {
   ASSERT_TRUE(input->read(first));
   ASSERT_FALSE(first.image.empty());
   const fs::path photo = dir.path() / "first_frame.png";
-  ASSERT_TRUE(cv::imwrite(photo.string(), first.image));
+  facecap::write_image(photo.string(), first.image);
   const SourceReconstruction still = reconstruct_source(*model, photo.string(), true);
   auto again = open_input(video.string());
   CaptureOptions capture;

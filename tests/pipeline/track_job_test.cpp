@@ -8,13 +8,13 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "app/command.hpp"
 #include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/livelink_face.hpp"
 #include "facecap/io/synthetic_mark.hpp"
@@ -252,7 +252,7 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
     const double yfov = g.doc["cameras"][0]["perspective"]["yfov"];
     EXPECT_NEAR(360.0 / std::tan(yfov / 2), double(id["shots"][shot]["focal_px"]), 0.01) << shot;
     const fs::path albedo = jd / (shot == 0 ? "albedo.png" : "albedo_shot1.png");
-    const cv::Mat texture = cv::imread(albedo.string());
+    const cv::Mat texture = facecap::read_image(albedo.string());
     ASSERT_FALSE(texture.empty()) << albedo;
     EXPECT_GT(cv::mean(texture)[2], 20.0) << albedo;  // skin, not the restarted refiner's nothing
     const auto& view = g.doc["bufferViews"][int(g.doc["images"][0]["bufferView"])];
@@ -386,7 +386,7 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   EXPECT_EQ(list["faces"][1]["folder"], "face_1");
   EXPECT_EQ(list["faces"][1]["found_in_frame"], entered);
   // faces.png shows who is who: each face where it was found.
-  const cv::Mat sheet = cv::imread((out / "faces.png").string());
+  const cv::Mat sheet = facecap::read_image((out / "faces.png").string());
   ASSERT_EQ(sheet.cols, 2 * FoundFace::kThumbnailSize);
   for (int k = 0; k < 2; ++k) {
     const cv::Mat tile = sheet(cv::Rect(k * FoundFace::kThumbnailSize, 0, FoundFace::kThumbnailSize / 2,
@@ -426,7 +426,7 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
 
   // An input with no face is an error, and nothing is written.
   const fs::path grey = dir.path() / "grey.png";
-  cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  facecap::write_image(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
   EXPECT_THROW(run_track_each_face(*model, grey.string(), dir.path() / "none", o), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none"));
 }
@@ -523,7 +523,7 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   EXPECT_FALSE(fs::exists(dir.path() / "left.mp4"));
   // No face anywhere: an error, and nothing is written.
   const fs::path grey = dir.path() / "grey.png";
-  cv::imwrite(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  facecap::write_image(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
   o.on_frame = nullptr;
   EXPECT_THROW(run_transform_all_faces(*model, grey.string(), dir.path() / "none.png", o), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none.png"));
@@ -900,7 +900,7 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
     std::snprintf(name, sizeof(name), "f%03d.png", i);
     cv::Mat img = f.image;
     if (i == 31) img = cv::Mat(img.size(), img.type(), cv::Scalar(60, 60, 60));
-    cv::imwrite((frames.path() / name).string(), img);
+    facecap::write_image((frames.path() / name).string(), img);
   }
   TempDir out;
   TrackOptions o;
@@ -946,7 +946,7 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   EXPECT_EQ(count_fields(csv[0]), 14 + 53 + 9 + 9 + 1);  // lighting, then gaze, then the shot
   EXPECT_NE(csv[0].find(",l8,gaze_yaw_deg,"), std::string::npos);
   for (size_t i = 1; i < csv.size(); ++i) EXPECT_EQ(csv[i].find("nan"), std::string::npos);
-  const cv::Mat albedo = cv::imread((dir.path() / "albedo.png").string());
+  const cv::Mat albedo = facecap::read_image((dir.path() / "albedo.png").string());
   ASSERT_FALSE(albedo.empty());
   // The animated glTF carries the same albedo as its texture.
   const test::Glb g = test::Glb::read(dir.path() / "animation.glb");

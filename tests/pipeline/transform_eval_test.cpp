@@ -5,10 +5,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "io/glb_reader.hpp"
@@ -84,7 +84,8 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   // The face is textured with the albedo the lighting was estimated against.
   ASSERT_TRUE(g.doc.contains("images"));
   const std::string png = g.image_bytes(0);
-  const cv::Mat albedo = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  const cv::Mat albedo =
+      facecap::decode_image(std::span(reinterpret_cast<const unsigned char*>(png.data()), png.size()));
   EXPECT_EQ(albedo.size(), cv::Size(1024, 1024));
   EXPECT_EQ(g.doc["materials"][int(g.doc["meshes"][0]["primitives"][0]["material"])]["pbrMetallicRoughness"]
                  ["baseColorTexture"]["index"],

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/videoio.hpp>
 #include <vector>
 
 #include "facecap/core/error.hpp"
+#include "facecap/io/image_file.hpp"
+#include "facecap/io/video_decoder.hpp"
 
 namespace facecap {
 
@@ -55,11 +55,6 @@ void FrameSource::seek(double seconds) {
 }
 
 namespace {
-
-cv::Mat read_image(const fs::path& path) {
-  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  return image;
-}
 
 class ImageSource final : public FrameSource {
  public:
@@ -136,68 +131,35 @@ class FolderSource final : public FrameSource {
 class VideoSource final : public FrameSource {
  public:
   // `info` from the container probe (file) or filled here (camera).
-  VideoSource(cv::VideoCapture capture, InputInfo info) : capture_(std::move(capture)), info_(std::move(info)) {
+  VideoSource(VideoDecoder decoder, InputInfo info) : decoder_(std::move(decoder)), info_(std::move(info)) {
     // Decode the first frame now: a file that opens but cannot decode fails here, not mid-run.
-    if (!capture_.read(first_) || first_.empty()) {
+    if (!decoder_.read(first_) || first_.empty()) {
       throw Error("cannot decode " + info_.spec + ": no frame could be decoded (corrupt or unsupported video)");
     }
     first_time_ = frame_time(0, true);
     info_.width = first_.cols;
     info_.height = first_.rows;
-    if (info_.fps <= 0) info_.fps = capture_.get(cv::CAP_PROP_FPS);
+    if (info_.fps <= 0) info_.fps = decoder_.nominal_fps();
     if (info_.fps <= 0 || info_.fps > 1000) info_.fps = 30.0;
   }
   const InputInfo& info() const override { return info_; }
 
+  // The first frame whose time is at or after `seconds`, with its index in
+  // display order (video_decoder.hpp): the same pixels, index and time as a
+  // read from the start gives there, at a constant rate or not.
   void seek(double seconds) override {
     if (seconds == 0) return;
     if (info_.kind != InputKind::kVideo) FrameSource::seek(seconds);
     if (!std::isfinite(seconds) || seconds < 0) throw Error("a start time must be 0 or more seconds");
     if (index_ != 0 || first_.empty()) throw Error("cannot seek " + info_.spec + " after reading from it");
-    // The first frame whose time is at or after `seconds`: index / fps where
-    // the rate is constant, found from there by the timestamps where not.
-    const int target = int(std::ceil(seconds * info_.fps - 1e-6));
     const std::string past_end =
         "cannot start " + info_.spec + " at " + seconds_text(seconds) + ": " +
         (info_.duration > 0 ? "it is " + seconds_text(info_.duration) + " long" : std::string("it ends before then"));
-    if (info_.frames > 0 && target >= info_.frames) throw Error(past_end);
-    // OpenCV's FFmpeg backend seeks to the keyframe before and decodes on to
-    // the frame: the same pixels as a read from the start, on every clip of
-    // ../shared/data at every 9th of its first 160 frames (and on a corrupted and a rotated one).
-    // Decodes the next frame, or frame `at`, into first_; its time.
-    const auto decode_next = [&](int index) {
-      if (!capture_.read(first_) || first_.empty()) throw Error(past_end);
-      return frame_time(index, true);
-    };
-    const auto decode_at = [&](int at) {
-      capture_.set(cv::CAP_PROP_POS_FRAMES, at);
-      return decode_next(at);
-    };
-    int index = target;
-    double time = 0;
-    if (target == 0) {
-      time = frame_time(0, true);  // the frame decoded on opening is the one
-    } else {
-      first_.release();
-      time = target > 1 ? decode_at(target) : decode_next(target);
-    }
-    const double tolerance = 1e-6;
-    if (time > seconds + 0.5 / info_.fps && index > 0) {
-      // A variable-rate video: the mean rate's guess is late (frames came
-      // faster before it). Its timestamps grow with the index, so the first
-      // frame at or after `seconds` lies in (0, index]: halve that.
-      int earlier = 0;
-      while (index - earlier > 1) {
-        const int middle = (earlier + index) / 2;
-        (decode_at(middle) >= seconds - tolerance ? index : earlier) = middle;
-      }
-      time = decode_at(index);
-    }
-    // Early (frames came slower before it): decode on to the first at or after.
-    while (time < seconds - tolerance) time = decode_next(++index);
+    const int index = decoder_.seek(seconds);
+    if (index < 0 || !decoder_.read(first_) || first_.empty()) throw Error(past_end);
     index_ = index;
     info_.first_frame = index;
-    first_time_ = info_.first_time = time;
+    first_time_ = info_.first_time = frame_time(index, true);
   }
 
   bool read(Frame& frame) override {
@@ -207,7 +169,7 @@ class VideoSource final : public FrameSource {
       image = first_;
       first_.release();
       time = first_time_;
-    } else if (!capture_.read(image) || image.empty()) {
+    } else if (!decoder_.read(image) || image.empty()) {
       return false;
     } else {
       time = frame_time(index_, false);
@@ -220,19 +182,18 @@ class VideoSource final : public FrameSource {
 
  private:
   // The time of the frame just decoded, index `index`: a file's timestamp
-  // (OpenCV's FFmpeg backend gives the frame's pts from the stream's start),
-  // unless it is missing or, after the first frame read, does not move
-  // forward (broken timestamps), where the frame is taken to follow the last
-  // by 1 / fps; a camera's index / fps.
+  // from the stream's start, unless it is missing or, after the first frame
+  // read, does not move forward (broken timestamps), where the frame is taken
+  // to follow the last by 1 / fps; a camera's index / fps.
   double frame_time(int index, bool first) const {
     const double nominal = index / info_.fps;
     if (info_.kind != InputKind::kVideo) return nominal;
-    const double pts = capture_.get(cv::CAP_PROP_POS_MSEC) / 1000.0;
+    const double pts = decoder_.time();
     if (std::isfinite(pts) && pts >= 0 && (first || pts > previous_time_)) return pts;
     return first ? nominal : previous_time_ + 1.0 / info_.fps;
   }
 
-  cv::VideoCapture capture_;
+  VideoDecoder decoder_;
   InputInfo info_;
   cv::Mat first_;
   double first_time_ = 0;
@@ -249,13 +210,12 @@ std::unique_ptr<FrameSource> open_source(const std::string& spec) {
     } catch (const std::exception&) {
       throw Error("bad camera input '" + spec + "': use cam:N with N a camera number");
     }
-    cv::VideoCapture capture(id);
-    if (!capture.isOpened()) throw Error("cannot open camera " + std::to_string(id) + " (" + spec + ")");
+    VideoDecoder camera = VideoDecoder::open_camera(id);
     InputInfo info;
     info.spec = spec;
     info.kind = InputKind::kCamera;
-    info.fps = capture.get(cv::CAP_PROP_FPS);
-    return std::make_unique<VideoSource>(std::move(capture), info);
+    info.fps = camera.nominal_fps();
+    return std::make_unique<VideoSource>(std::move(camera), info);
   }
   const fs::path path(spec);
   std::error_code ec;
@@ -266,10 +226,7 @@ std::unique_ptr<FrameSource> open_source(const std::string& spec) {
   if (fs::file_size(path, ec) == 0) throw Error("input is empty (0 bytes): " + spec);
   if (is_image_path(path)) return std::make_unique<ImageSource>(path);
   InputInfo info = probe_video_file(path);
-  cv::VideoCapture capture(path.string(), cv::CAP_FFMPEG);
-  if (!capture.isOpened()) throw Error("cannot decode " + spec + ": not a video OpenCV's FFmpeg backend can read");
-  quiet_ffmpeg_log();
-  return std::make_unique<VideoSource>(std::move(capture), info);
+  return std::make_unique<VideoSource>(VideoDecoder::open_file(path), info);
 }
 
 }  // namespace

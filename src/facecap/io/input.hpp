@@ -78,6 +78,8 @@ InputInfo probe_video_file(const std::filesystem::path& path);
 // macroblock ("error while decoding MB ...") between facecap's own lines.
 // Such frames still decode (with their damage) and are tracked or lost.
 void quiet_ffmpeg_log();
+// FFmpeg's words for one of its error codes (AVERROR(...)).
+std::string av_error_text(int code);
 
 // The container's metadata tags (mp4 udta/ilst), keys as FFmpeg names them.
 std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path);

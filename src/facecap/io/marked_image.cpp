@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <fstream>
 #include <iterator>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/io/image_file.hpp"
 
 namespace facecap {
 
@@ -252,9 +252,7 @@ void write_marked_image(const fs::path& path, const cv::Mat& bgr, const std::map
     throw Error("cannot write an image to " + path.string() + ": its name must end in .png, .jpg or .jpeg");
   if (bgr.empty()) throw Error("no image to write to " + path.string());
   const bool jpeg = is_jpeg_path(path);
-  Bytes encoded;
-  const std::vector<int> params = jpeg ? std::vector<int>{cv::IMWRITE_JPEG_QUALITY, 95} : std::vector<int>{};
-  if (!cv::imencode(jpeg ? ".jpg" : ".png", bgr, encoded, params)) throw Error("cannot encode " + path.string());
+  const Bytes encoded = jpeg ? encode_jpeg(bgr, 95) : encode_png(bgr);
   const Bytes marked = jpeg ? marked_jpeg(encoded, tags) : marked_png(encoded, tags);
   write_binary_file(path, marked.data(), marked.size());
 }

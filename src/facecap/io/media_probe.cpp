@@ -17,18 +17,12 @@ struct FormatCloser {
   void operator()(AVFormatContext* ctx) const { avformat_close_input(&ctx); }
 };
 
-std::string av_message(int code) {
-  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
-  av_strerror(code, buf, sizeof(buf));
-  return buf;
-}
-
 std::unique_ptr<AVFormatContext, FormatCloser> open_container(const std::filesystem::path& path) {
   quiet_ffmpeg_log();
   AVFormatContext* raw = nullptr;
   const int open_code = avformat_open_input(&raw, path.c_str(), nullptr, nullptr);
   if (open_code < 0) {
-    throw Error("cannot read " + path.string() + ": not a video file or corrupt (" + av_message(open_code) + ")");
+    throw Error("cannot read " + path.string() + ": not a video file or corrupt (" + av_error_text(open_code) + ")");
   }
   return std::unique_ptr<AVFormatContext, FormatCloser>(raw);
 }
@@ -36,6 +30,12 @@ std::unique_ptr<AVFormatContext, FormatCloser> open_container(const std::filesys
 }  // namespace
 
 void quiet_ffmpeg_log() { av_log_set_level(AV_LOG_QUIET); }
+
+std::string av_error_text(int code) {
+  char text[AV_ERROR_MAX_STRING_SIZE] = {0};
+  av_strerror(code, text, sizeof(text));
+  return text;
+}
 
 std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path) {
   const auto ctx = open_container(path);
@@ -49,7 +49,7 @@ InputInfo probe_video_file(const std::filesystem::path& path) {
   const auto ctx = open_container(path);
   const int info_code = avformat_find_stream_info(ctx.get(), nullptr);
   if (info_code < 0) {
-    throw Error("cannot read " + path.string() + ": corrupt or truncated video (" + av_message(info_code) + ")");
+    throw Error("cannot read " + path.string() + ": corrupt or truncated video (" + av_error_text(info_code) + ")");
   }
   // A file cut short after its index (mp4 with the moov box first) opens
   // fine but its samples point past the end of the file.

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <utility>
 
@@ -12,6 +11,7 @@
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/core/statistics.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
@@ -148,8 +148,7 @@ std::vector<uint8_t> face_albedo_png(const FaceModel& model, const Refiner& refi
   std::vector<uint8_t> png;
   if (!refiner.initialised()) return png;
   const cv::Mat texture = bake_uv_texture(model.region_mesh(regions::kFace), refiner.coarse_albedo());
-  if (!cv::imencode(".png", texture, png)) throw Error("cannot encode the albedo texture");
-  return png;
+  return encode_png(texture);
 }
 
 RefineOptions lighting_only_refinement() {

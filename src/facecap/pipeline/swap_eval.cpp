@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <span>
@@ -13,6 +12,7 @@
 #include "facecap/core/rigid_alignment.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 
 namespace facecap {
@@ -81,7 +81,7 @@ double shape_distance_mm(const Positions& a, const Positions& b) { return 10.0 *
 // The identity of one frame fitted as a photo (as the source is), or nothing
 // when no face is found in it.
 std::optional<Eigen::VectorXf> photo_identity(const FaceModel& model, const cv::Mat& image, const fs::path& file) {
-  if (!cv::imwrite(file.string(), image)) throw Error("cannot write " + file.string());
+  write_image(file, image);
   try {
     return reconstruct_source(model, file.string(), true, 1).face.identity;
   } catch (const Error&) {
@@ -177,7 +177,7 @@ SwapSelfEval evaluate_swap_self(const FaceModel& model, const std::string& video
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", i);
     const fs::path file = folder / name;
-    if (!cv::imwrite(file.string(), frame.image)) throw Error("cannot write " + file.string());
+    write_image(file, frame.image);
   }
   const fs::path source = source_frames > 1 ? folder : folder / "frame_000000.png";
 

@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/matte_output.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
@@ -98,8 +98,7 @@ GltfAnimatedMesh swapped_animation(const FaceModel& model, const FaceSwapper& sw
   }
   GltfAnimatedMesh glb = face_animation(model, rest, keys, camera);
   const cv::Mat texture = swapper.harmonised_texture();
-  if (!texture.empty() && !cv::imencode(".png", texture, glb.primitives.front().base_colour_png))
-    throw Error("cannot encode the swapped face's texture");
+  if (!texture.empty()) glb.primitives.front().base_colour_png = encode_png(texture);
   glb.asset_extras["model"] =
       "ICT Face Model Light (ICT-FaceKit, MIT): face region, mouth and eyes, the source's identity";
   glb.asset_extras.merge(synthetic_metadata(mark));

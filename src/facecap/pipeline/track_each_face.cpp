@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string_view>
@@ -12,6 +11,7 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
+#include "facecap/io/image_file.hpp"
 
 namespace facecap {
 
@@ -91,8 +91,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
                     {"frames", summary.runs.back().capture.frames},
                     {"lost", summary.runs.back().capture.lost}});
   }
-  std::vector<uint8_t> sheet;
-  if (!cv::imencode(".png", faces_contact_sheet(summary.faces), sheet)) throw Error("cannot encode faces.png");
+  const std::vector<uint8_t> sheet = encode_png(faces_contact_sheet(summary.faces));
   write_binary_file(output_dir / "faces.png", sheet.data(), sheet.size());
   write_text_file(output_dir / "faces.json", nlohmann::json{{"input", input},
                                                             {"start_seconds", options.capture.start_seconds},

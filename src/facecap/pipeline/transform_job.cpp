@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_layer.hpp"
@@ -12,6 +11,7 @@
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/matte_output.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
@@ -284,9 +284,7 @@ void write_weight_plot(const fs::path& path, const std::vector<TransformedFrame>
       }
     }
   }
-  AtomicFile file(path);
-  if (!cv::imwrite(file.temp_path().string(), img)) throw Error("cannot write " + path.string());
-  file.commit();
+  write_image(path, img);
 }
 
 }  // namespace facecap

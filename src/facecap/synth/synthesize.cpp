@@ -1,11 +1,11 @@
 #include "facecap/synth/synthesize.hpp"
 
 #include <chrono>
-#include <opencv2/imgcodecs.hpp>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/progress.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/synth/synth_renderer.hpp"
@@ -57,9 +57,7 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
 
   cv::Mat albedo8;
   renderer.appearance().face_texture.convertTo(albedo8, CV_8UC3, 255.0);
-  AtomicFile albedo_file(result.albedo);
-  if (!cv::imwrite(albedo_file.temp_path().string(), albedo8)) throw Error("cannot write " + result.albedo.string());
-  albedo_file.commit();
+  write_image(result.albedo, albedo8);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

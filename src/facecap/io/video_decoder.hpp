@@ -1,0 +1,50 @@
+#pragma once
+// A video stream decoded with libavformat and libavcodec and converted to
+// 8-bit BGR as OpenCV's FFmpeg back-end converts it (bicubic libswscale to
+// BGR24 at the coded size, cropped to the picture, turned upright by the
+// stream's display matrix), so the same pixels, without linking OpenCV's
+// videoio: its GStreamer, gPhoto2, DC1394 and image-codec dependencies cost
+// every facecap process about 0.2 s of dynamic loading before main().
+#include <filesystem>
+#include <memory>
+
+#include <opencv2/core.hpp>
+
+namespace facecap {
+
+class VideoDecoder {
+ public:
+  // Throws facecap::Error naming the file when it cannot be opened or holds
+  // no video stream that libavcodec can decode.
+  static VideoDecoder open_file(const std::filesystem::path& path);
+  // /dev/videoN through libavdevice's video4linux2 input; libavdevice is
+  // loaded only here, the first time a camera is opened.
+  static VideoDecoder open_camera(int index);
+
+  ~VideoDecoder();
+  VideoDecoder(VideoDecoder&&) noexcept;
+  VideoDecoder& operator=(VideoDecoder&&) noexcept;
+
+  // The next frame in display order; false at the end of the stream. A
+  // damaged packet is skipped (its frame is lost, or decoded with its
+  // damage concealed), not the end.
+  bool read(cv::Mat& bgr);
+  // The time of the frame read last, in seconds from the stream's start, or
+  // NaN where it carries no timestamp.
+  double time() const;
+  // The frame rate the container gives (average, else nominal), or 0.
+  double nominal_fps() const;
+  // Makes the next read() give the first frame whose time is at or after
+  // `seconds`, and returns its index in display order (the number of frames
+  // before it), or -1 where the stream ends before. The timestamps of the
+  // packets, read without decoding, say which frame that is; decoding starts
+  // at the keyframe before it.
+  int seek(double seconds);
+
+ private:
+  struct Impl;
+  explicit VideoDecoder(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace facecap
