@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cstring>
-#include <iterator>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
