@@ -108,13 +108,19 @@ struct VideoDecoder::Impl {
     return double(timestamp - start) * av_q2d(video()->time_base);
   }
 
-  // Decodes the next frame into `frame`; false at the end.
+  // Decodes the next frame into `frame`; false at the end. A packet the
+  // decoder refuses, or a frame it fails on, is passed over, up to
+  // kMaxFruitlessPackets in a row.
   bool decode_next() {
     int fruitless = 0;
     while (true) {
       const int received = avcodec_receive_frame(codec, frame);
       if (received == 0) return true;
-      if (received != AVERROR(EAGAIN) || flushing) return false;
+      if (received == AVERROR_EOF || (received == AVERROR(EAGAIN) && flushing)) return false;
+      if (received != AVERROR(EAGAIN)) {
+        if (++fruitless > kMaxFruitlessPackets) return false;
+        continue;
+      }
       if (av_read_frame(format, packet) < 0) {
         flushing = true;
         avcodec_send_packet(codec, nullptr);  // drain the frames the decoder holds
@@ -156,7 +162,7 @@ struct VideoDecoder::Impl {
 
   double frame_time() const { return seconds_of(frame->best_effort_timestamp); }
 
-  // Back to before the first packet, with the decoder emptied.
+  // Back to the keyframe at or before `timestamp`, the decoder emptied.
   void rewind_to(int64_t timestamp) {
     av_seek_frame(format, stream, timestamp, AVSEEK_FLAG_BACKWARD);
     avcodec_flush_buffers(codec);
