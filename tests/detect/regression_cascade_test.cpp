@@ -52,11 +52,21 @@ void flip_byte(const fs::path& file, std::streamoff at) {
   f.write(&c, 1);
 }
 
-cv::Mat grey_image(const fs::path& file) {
-  const cv::Mat bgr = read_image(file);
+// An image in grey and the box of the first face the detector finds in it
+// (a box of width 0 where there is none).
+struct FaceInGrey {
   cv::Mat grey;
-  if (!bgr.empty()) cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
-  return grey;
+  Box box{};
+};
+
+FaceInGrey first_face_in_grey(const fs::path& file) {
+  FaceInGrey face;
+  const cv::Mat bgr = read_image(file);
+  if (bgr.empty()) return face;
+  cv::cvtColor(bgr, face.grey, cv::COLOR_BGR2GRAY);
+  const std::vector<FaceDetection> faces = FaceDetector().detect(face.grey);
+  if (!faces.empty()) face.box = faces.front().box;
+  return face;
 }
 
 std::string read_bytes(const fs::path& file) {
@@ -135,13 +145,11 @@ TEST(RegressionCascade, ASavedCascadeLoadsBackAndADamagedOrForeignFileIsRefused)
 // damaged copy is decoded again and rewritten.
 TEST(LandmarkDetector, ItsCachedPredictorGivesTheSameLandmarksAndADamagedOneIsRebuilt) {
   FACECAP_REQUIRE_DATA(image, "lfpw_image_0010.png");
-  const cv::Mat grey = grey_image(image);
-  ASSERT_FALSE(grey.empty());
-  const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
-  ASSERT_FALSE(faces.empty());
+  const FaceInGrey face = first_face_in_grey(image);
+  ASSERT_GT(face.box.width, 0.0f);
   TempDir dir;
   const CacheDirOverride cache(dir.path());
-  const auto landmarks = [&]() { return LandmarkDetector().detect(grey, faces.front().box); };
+  const auto landmarks = [&]() { return LandmarkDetector().detect(face.grey, face.box); };
   const Landmarks decoded = landmarks();
   std::vector<fs::path> kept;
   for (const auto& e : fs::directory_iterator(dir.path()))
@@ -168,11 +176,10 @@ TEST(LandmarkDetector, ItsCachedPredictorGivesTheSameLandmarksAndADamagedOneIsRe
 // ours on every landmark.
 TEST(LandmarkDetector, FindsWhatDlibsShapePredictorFindsBeforeItsRounding) {
   FACECAP_REQUIRE_DATA(image, "lfpw_image_0010.png");
-  const cv::Mat grey = grey_image(image);
-  ASSERT_FALSE(grey.empty());
-  const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
-  ASSERT_FALSE(faces.empty());
-  const Box& box = faces.front().box;
+  const FaceInGrey face = first_face_in_grey(image);
+  ASSERT_GT(face.box.width, 0.0f);
+  const cv::Mat& grey = face.grey;
+  const Box& box = face.box;
   const Landmarks ours = LandmarkDetector().detect(grey, box);
   dlib::shape_predictor dlib_predictor;
   dlib::deserialize(default_landmark_model_path().string()) >> dlib_predictor;
