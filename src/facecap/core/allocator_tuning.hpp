@@ -1,7 +1,5 @@
 #pragma once
 
-#include <cstddef>
-
 namespace facecap {
 
 // Keeps large heap blocks inside the process instead of returning them to the
@@ -12,12 +10,5 @@ namespace facecap {
 // cv::Mat::convertTo of a 175k-pixel face window 7-14 ms before, 0.35 ms after.
 // Call once at program start, before worker threads allocate.
 void keep_large_allocations_resident();
-
-// Asks the kernel to back the 2 MiB-aligned interior of a large, not yet
-// written block with transparent huge pages (where the kernel offers them
-// on request: /sys/kernel/mm/transparent_hugepage/enabled is "madvise" on
-// Debian 12): one fault per 2 MiB instead of 512. Only a hint; nothing
-// happens where huge pages are off or the block is small.
-void prefer_huge_pages(void* block, size_t bytes);
 
 }  // namespace facecap

@@ -15,6 +15,7 @@ extern "C" {
 #include <limits>
 #include <opencv2/core.hpp>
 #include <string>
+#include <thread>
 
 #include "facecap/core/error.hpp"
 #include "facecap/io/input.hpp"
@@ -90,7 +91,9 @@ struct VideoDecoder::Impl {
     codec = avcodec_alloc_context3(decoder);
     if (codec == nullptr || avcodec_parameters_to_context(codec, video()->codecpar) < 0)
       throw Error("cannot decode " + name + ": its video stream's parameters are unusable");
-    codec->thread_count = 0;  // as many as libavcodec sees fit
+    // One decoding thread a core, as OpenCV's back-end used (libavcodec's own
+    // choice, one more than the cores, competed with capture on the 2-core VM).
+    codec->thread_count = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
     code = avcodec_open2(codec, decoder, nullptr);
     if (code < 0) throw Error("cannot decode " + name + ": " + av_error_text(code));
     if (const auto* matrix =

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <string_view>
 
-#include "facecap/core/allocator_tuning.hpp"
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/binary_io.hpp"
 #include "facecap/core/error.hpp"
@@ -151,8 +150,6 @@ FaceModel read_model_cache(const fs::path& path, uint64_t expected_fingerprint) 
   m.neutral.resize(static_cast<Eigen::Index>(n3));
   m.identity_basis.resize(static_cast<Eigen::Index>(n3), header.num_identity);
   m.expression_basis.resize(static_cast<Eigen::Index>(n3), header.num_expressions);
-  prefer_huge_pages(m.identity_basis.data(), m.identity_basis.size() * sizeof(float));
-  prefer_huge_pages(m.expression_basis.data(), m.expression_basis.size() * sizeof(float));
   r.floats(m.neutral.data(), m.neutral.size());
   r.floats(m.identity_basis.data(), m.identity_basis.size());
   r.floats(m.expression_basis.data(), m.expression_basis.size());
