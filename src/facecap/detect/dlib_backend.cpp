@@ -19,6 +19,7 @@
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/fingerprint.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/detect/landmark_detector.hpp"
@@ -197,19 +198,11 @@ RegressionCascade read_dlib_shape_predictor(const std::filesystem::path& model_p
 // carries the source file's fingerprint (path, size, modification time) and
 // a checksum; a missing, stale or damaged one costs the decoding again and is
 // rewritten, an unwritable cache folder only the time.
-uint64_t predictor_fingerprint(const std::filesystem::path& canonical) {
-  std::error_code ec;
-  const std::string key = "facecap-landmark-cache-v1:" + canonical.string() + ":" +
-                          std::to_string(std::filesystem::file_size(canonical, ec)) + ":" +
-                          std::to_string(std::filesystem::last_write_time(canonical, ec).time_since_epoch().count());
-  return std::hash<std::string>{}(key);
-}
-
 RegressionCascade load_regression_cascade(const std::filesystem::path& canonical) {
-  const uint64_t fingerprint = predictor_fingerprint(canonical);
+  const uint64_t fingerprint = fnv1a(file_stamp(canonical, canonical.string()), fnv1a("facecap-landmark-cache-v1"));
   char name[64];
   std::snprintf(name, sizeof(name), "dlib-shape-predictor-%016llx.fclm",
-                static_cast<unsigned long long>(std::hash<std::string>{}(canonical.string())));
+                static_cast<unsigned long long>(fnv1a(canonical.string())));
   const std::filesystem::path cached = cache_dir() / name;
   std::error_code ec;
   if (std::filesystem::is_regular_file(cached, ec)) {

@@ -10,6 +10,7 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/binary_io.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/fingerprint.hpp"
 #include "facecap/core/mapped_file.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/model/ict_loader.hpp"
@@ -37,32 +38,18 @@ struct CacheHeader {
 };
 #pragma pack(pop)
 
-uint64_t fnv1a(uint64_t h, std::string_view s) {
-  for (const unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 }  // namespace
 
 uint64_t model_source_fingerprint(const fs::path& model_dir) {
-  uint64_t h = 14695981039346656037ull;
-  h = fnv1a(h, "facecap-model-v" + std::to_string(kModelCacheVersion));
-  for (const fs::path& f : ict_source_files(model_dir)) {
-    std::error_code ec;
-    const auto size = fs::file_size(f, ec);
-    const auto mtime = fs::last_write_time(f, ec).time_since_epoch().count();
-    h = fnv1a(h, f.filename().string() + ":" + std::to_string(size) + ":" + std::to_string(mtime));
-  }
+  uint64_t h = fnv1a("facecap-model-v" + std::to_string(kModelCacheVersion));
+  for (const fs::path& f : ict_source_files(model_dir)) h = fnv1a(file_stamp(f, f.filename().string()), h);
   return h;
 }
 
 fs::path model_cache_path(const fs::path& model_dir) {
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(model_dir, ec);
-  const uint64_t h = fnv1a(14695981039346656037ull, (ec ? model_dir : canonical).string());
+  const uint64_t h = fnv1a((ec ? model_dir : canonical).string());
   char name[64];
   std::snprintf(name, sizeof(name), "ict-model-%016llx.fcm", static_cast<unsigned long long>(h));
   return cache_dir() / name;
