@@ -73,10 +73,10 @@ std::unique_ptr<FrameSource> open_input(const std::string& spec, double start_se
 // (via libavformat); throws facecap::Error when the file is not a readable video.
 InputInfo probe_video_file(const std::filesystem::path& path);
 
-// Silences libav's own log, which OpenCV's FFmpeg backend turns back on when
-// it opens a video: a damaged stream would print a line per broken
-// macroblock ("error while decoding MB ...") between facecap's own lines.
-// Such frames still decode (with their damage) and are tracked or lost.
+// Silences libav's own log, set before each video or image is opened: a
+// damaged stream would print a line per broken macroblock ("error while
+// decoding MB ...") between facecap's own lines. Such frames still decode
+// (with their damage) and are tracked or lost.
 void quiet_ffmpeg_log();
 // FFmpeg's words for one of its error codes (AVERROR(...)).
 std::string av_error_text(int code);
