@@ -61,8 +61,7 @@ struct VideoDecoder::Impl {
   int rotation = 0;  // clockwise degrees that turn a decoded frame upright
   bool flushing = false;
   double last_time = std::numeric_limits<double>::quiet_NaN();
-  cv::Mat pending;  // the frame seek() decoded, given by the next read()
-  double pending_time = 0;
+  bool holding = false;  // `frame` is the one seek() found, for the next read()
 
   ~Impl() {
     sws_freeContext(sws);
@@ -170,7 +169,7 @@ struct VideoDecoder::Impl {
     av_seek_frame(format, stream, timestamp, AVSEEK_FLAG_BACKWARD);
     avcodec_flush_buffers(codec);
     flushing = false;
-    pending.release();
+    holding = false;
   }
 
   int64_t first_timestamp() const { return video()->start_time == AV_NOPTS_VALUE ? 0 : video()->start_time; }
@@ -202,13 +201,11 @@ VideoDecoder VideoDecoder::open_camera(int index) {
 
 bool VideoDecoder::read(cv::Mat& bgr) {
   Impl& d = *impl_;
-  if (!d.pending.empty()) {
-    bgr = d.pending;
-    d.pending.release();
-    d.last_time = d.pending_time;
-    return true;
+  if (d.holding) {
+    d.holding = false;
+  } else if (!d.decode_next()) {
+    return false;
   }
-  if (!d.decode_next()) return false;
   bgr = d.to_bgr();
   d.last_time = d.frame_time();
   return true;
@@ -257,8 +254,7 @@ int VideoDecoder::seek(double seconds) {
     for (int index = 0; d.decode_next(); ++index) {
       const double shown = std::isfinite(d.frame_time()) || fps <= 0 ? d.frame_time() : index / fps;
       if (!(shown < seconds - kTolerance)) {
-        d.pending = d.to_bgr();
-        d.pending_time = d.frame_time();
+        d.holding = true;
         return index;
       }
     }
@@ -269,8 +265,7 @@ int VideoDecoder::seek(double seconds) {
   d.rewind_to(target);
   while (d.decode_next()) {
     if (d.frame_time() >= target_seconds - kTolerance) {
-      d.pending = d.to_bgr();
-      d.pending_time = d.frame_time();
+      d.holding = true;
       return before;
     }
   }
