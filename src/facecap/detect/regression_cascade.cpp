@@ -1,6 +1,7 @@
 #include "facecap/detect/regression_cascade.hpp"
 
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -147,10 +148,16 @@ void RegressionCascade::save(const fs::path& path, uint64_t source_fingerprint) 
   header.source_fingerprint = source_fingerprint;
   header.payload_bytes = payload.size();
   header.payload_hash = content_hash(std::as_bytes(std::span(payload.data(), payload.size())));
-  std::string file(sizeof(header), '\0');
-  std::memcpy(file.data(), &header, sizeof(header));
-  file += payload;
-  write_binary_file(path, file.data(), file.size());
+  // Header and payload written one after the other (as the model cache is),
+  // not joined first into a second 67 MB string.
+  AtomicFile file(path);
+  {
+    std::ofstream out(file.temp_path(), std::ios::binary);
+    out.write(reinterpret_cast<const char*>(&header), sizeof(header));
+    out.write(payload.data(), std::streamsize(payload.size()));
+    if (!out.flush()) throw Error("cannot write " + path.string());
+  }
+  file.commit();
 }
 
 RegressionCascade RegressionCascade::load(const fs::path& path, uint64_t source_fingerprint) {
