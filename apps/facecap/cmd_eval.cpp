@@ -13,6 +13,8 @@ namespace facecap::cli {
 
 namespace {
 
+constexpr const char* kFacePhotoNeedsSynthetic = "--face-photo needs --synthetic: it is the skin of the renders";
+
 // The per-region NME keys both landmark evaluations print.
 nlohmann::json region_json(const RegionNme& r) {
   return {
@@ -27,18 +29,21 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
     std::string image, pts;
     int synthetic = 0;
     uint64_t seed = 1;
+    std::string face_photo;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("IMAGE", a->image, "Image file");
   cmd->add_option("PTS", a->pts, "iBUG .pts annotation (1-based coordinates)");
   cmd->add_option("--synthetic", a->synthetic, "Render N synthetic frames instead and score against their truth");
   cmd->add_option("--seed", a->seed, "Seed of the synthetic performance")->capture_default_str();
+  add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
     if (a->synthetic > 0) {
       const FaceModel model = load_model(global);
       SynthOptions o;
       o.frames = a->synthetic;
       o.seed = a->seed;
+      use_face_photo(model, a->face_photo, o);
       const SynthLandmarkEval r = evaluate_synthetic_landmarks(model, o, global.quiet);
       nlohmann::json j = {
           {"frames", r.frames},         {"detected", r.detected}, {"detection_rate", r.detection_rate},
@@ -47,6 +52,7 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
       print_json(j);
       return;
     }
+    if (!a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
     if (a->image.empty() || a->pts.empty()) throw Error("eval landmarks needs IMAGE and PTS, or --synthetic N");
     const LandmarkEvalResult r = evaluate_landmarks(a->image, a->pts);
     nlohmann::json j = {{"image", a->image},
@@ -70,6 +76,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     std::string size = "1280x720";
     bool true_focal = false;
     bool map_size = false;
+    std::string face_photo;
     TrackEvalOptions options;
   };
   auto a = std::make_shared<Args>();
@@ -96,10 +103,12 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
+  add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     if (!a->video.empty()) {
+      if (!a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
       const VideoEvalResult r = evaluate_track_video(model, a->video, a->options.capture);
       const StageTimings& t = r.summary.timings;
       print_json({{"video", a->video},
@@ -117,6 +126,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     if (a->synthetic <= 0) throw Error("eval track needs --synthetic N or --video PATH");
     a->options.frames = a->synthetic;
     parse_size(a->size, a->options.synth.width, a->options.synth.height);
+    use_face_photo(model, a->face_photo, a->options.synth);
     a->options.landmarks = a->landmarks == "dlib" ? LandmarkSource::kDlib : LandmarkSource::kTruth;
     if (a->true_focal) {
       a->options.capture.fit.focal_known = true;
@@ -169,6 +179,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
     RefineEvalOptions options;
     CaptureOptions capture;
     std::string save_problems;
+    std::string face_photo;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--synthetic", a->synthetic, "Render and refine N synthetic frames");
@@ -185,9 +196,11 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
   cmd->add_flag("--true-shading", a->options.true_shading,
                 "--synthetic: solve the displacements with the render's true lighting and albedo (the estimates "
                 "are still made and reported), to measure the displacement solve alone");
+  add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
     if (!a->video.empty() && a->options.true_shading)
       throw Error("--true-shading needs --synthetic: real footage has no true shading");
+    if (!a->video.empty() && !a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
     if (!a->save_problems.empty()) {
       if (a->video.empty()) throw Error("--save-problems needs --video");
       ensure_writable_dir(a->save_problems);
@@ -216,6 +229,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
     if (a->synthetic <= 0) throw Error("eval refine needs --synthetic N or --video PATH");
     a->options.frames = a->synthetic;
     parse_size(a->size, a->options.width, a->options.height);
+    a->options.face_texture = face_photo_texture(model, a->face_photo);
     a->options.quiet = global.quiet;
     const RefineEvalResult r = evaluate_refine_synthetic(model, a->options);
     print_json({{"frames", r.frames},

@@ -14,6 +14,7 @@ void register_synth(CLI::App& app, GlobalOptions& global) {
     std::string out;
     std::string size = "640x480";
     SynthOptions options;
+    std::string face_photo;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("-o,--output", a->out, "Output folder")->required();
@@ -26,10 +27,12 @@ void register_synth(CLI::App& app, GlobalOptions& global) {
   cmd->add_flag("--still", a->options.still, "Hold pose and expression (for jitter measurements)");
   cmd->add_flag("--detail", a->options.detail, "Add wrinkle-like displacements along the normals");
   cmd->add_option("--noise", a->options.noise_sigma, "Sensor noise sigma, grey levels")->capture_default_str();
+  add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
     parse_size(a->size, a->options.width, a->options.height);
     a->options.check();
     const FaceModel model = load_model(global);
+    use_face_photo(model, a->face_photo, a->options);
     const SynthJobResult r = synthesize(model, a->options, a->out, global.quiet);
     print_json({{"video", r.video.string()},
                 {"truth", r.truth.string()},

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -19,6 +20,7 @@ namespace facecap {
 struct FacePick;
 struct AllFacesOptions;
 struct AllFacesSummary;
+struct SynthOptions;
 }  // namespace facecap
 
 namespace facecap::cli {
@@ -89,6 +91,13 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
 // --device cpu|cuda: where the refinement's sampling and displacement solve run (default:
 // cuda when this build has it and a GPU answers, else cpu).
 void add_device_option(CLI::App& cmd, ComputeDevice& device);
+// --face-photo PHOTO: give the synthetic face that portrait's skin rather
+// than a painted one (SynthOptions::face_texture).
+void add_face_photo_option(CLI::App& cmd, std::string& photo);
+// --face-photo's texture (face_texture_from_photo); empty when `photo` is.
+cv::Mat face_photo_texture(const FaceModel& model, const std::string& photo);
+// Puts it and its source into `synth` (nothing when `photo` is empty).
+void use_face_photo(const FaceModel& model, const std::string& photo, SynthOptions& synth);
 
 void register_probe(CLI::App& app, GlobalOptions& global);
 void register_model(CLI::App& app, GlobalOptions& global);

@@ -12,6 +12,8 @@
 #include "facecap/model/model_cache.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/identity_file.hpp"
+#include "facecap/pipeline/photo_face_texture.hpp"
+#include "facecap/synth/performance.hpp"
 
 namespace facecap::cli {
 
@@ -225,6 +227,23 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
       "--no-grade-match", [&swap] { swap.match_grade = false; },
       "Keep the photo's range of skin hues where the target shows a narrower one (a desaturated or sepia grade); "
       "by default the new face's hues are narrowed to the target face's spread, never widened");
+}
+
+void add_face_photo_option(CLI::App& cmd, std::string& photo) {
+  cmd.add_option("--face-photo", photo,
+                 "Give the synthetic face the skin of the largest face in this portrait (unshaded into the face "
+                 "model's texture layout) instead of a painted one: brows, lids, lips and skin as a detector trained "
+                 "on photos expects them. The output is marked as showing a real person's skin");
+}
+
+cv::Mat face_photo_texture(const FaceModel& model, const std::string& photo) {
+  return photo.empty() ? cv::Mat() : face_texture_from_photo(model, photo);
+}
+
+void use_face_photo(const FaceModel& model, const std::string& photo, SynthOptions& synth) {
+  if (photo.empty()) return;
+  synth.face_texture = face_photo_texture(model, photo);
+  synth.face_texture_source = photo;
 }
 
 }  // namespace facecap::cli

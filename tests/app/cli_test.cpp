@@ -457,6 +457,44 @@ TEST(Cli, EditsOfAPhotoWriteAMarkedPhoto) {
   EXPECT_FALSE(fs::exists(still));
 }
 
+// A synthetic render given a real portrait's skin says so in its marks, and
+// a portrait that cannot be used is one line, before anything is written.
+TEST(Cli, SynthWithAPortraitsSkinSaysSoInItsMarks) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(portrait, "portrait_obama.jpg");
+  TempDir dir;
+  const fs::path out = dir.path() / "render";
+  const RunResult r = run("synth -o " + out.string() + " --frames 2 --size 320x240 --face-photo " + portrait.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(carries_synthetic_marks(out / "video.mp4"));
+  const nlohmann::json mark = nlohmann::json::parse(test::read_file(sidecar_path(out / "video.mp4")));
+  EXPECT_EQ(mark.at("parameters").at("face_texture"), "portrait_obama.jpg");
+  EXPECT_EQ(mark.at("sources"), nlohmann::json::array({portrait.string()}));
+  EXPECT_NE(mark.at("description").get<std::string>().find("a real person"), std::string::npos);
+  // The painted skin says no real person is shown.
+  const fs::path painted = dir.path() / "painted";
+  ASSERT_EQ(run("synth -o " + painted.string() + " --frames 1 --size 320x240").code, 0);
+  const nlohmann::json painted_mark = nlohmann::json::parse(test::read_file(sidecar_path(painted / "video.mp4")));
+  EXPECT_FALSE(painted_mark.at("parameters").contains("face_texture"));
+  EXPECT_NE(painted_mark.at("description").get<std::string>().find("no real person"), std::string::npos);
+
+  const fs::path missing = dir.path() / "missing.jpg", none = dir.path() / "none";
+  const RunResult bad = run("synth -o " + none.string() + " --frames 2 --face-photo " + missing.string());
+  EXPECT_EQ(bad.code, 1) << bad.out;
+  EXPECT_EQ(lines(bad.out), 1) << bad.out;
+  EXPECT_NE(bad.out.find(missing.string()), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(none));
+  // Real footage has a skin of its own.
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  for (const std::string& eval : {"eval track --video " + video.string(), "eval refine --video " + video.string(),
+                                  "eval landmarks " + portrait.string() + " none.pts"}) {
+    const RunResult refused = run(eval + " --face-photo " + portrait.string());
+    EXPECT_EQ(refused.code, 1) << eval << ": " << refused.out;
+    EXPECT_EQ(lines(refused.out), 1) << refused.out;
+    EXPECT_NE(refused.out.find("--face-photo needs --synthetic"), std::string::npos) << refused.out;
+  }
+}
+
 TEST(Cli, ProbeDescribesAVideoAsJson) {
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   const RunResult r = run("probe " + video.string());

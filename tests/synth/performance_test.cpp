@@ -72,6 +72,14 @@ TEST(SynthPerformance, BadOptionsAreRejectedByName) {
   o = SynthOptions{};
   o.width = 10;
   EXPECT_THROW(o.check(), Error);
+  // A face texture must be a square colour texture of floats.
+  for (const cv::Mat& bad : {cv::Mat(64, 32, CV_32FC3), cv::Mat(64, 64, CV_8UC3), cv::Mat(8, 8, CV_32FC3)}) {
+    o = SynthOptions{};
+    o.face_texture = bad;
+    EXPECT_THROW(o.check(), Error);
+  }
+  o.face_texture = cv::Mat(64, 64, CV_32FC3, cv::Scalar::all(0.5));
+  EXPECT_NO_THROW(o.check());
 }
 
 }  // namespace facecap

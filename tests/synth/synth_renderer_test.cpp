@@ -125,6 +125,42 @@ TEST(SkinAlbedo, BrowsHangBelowTheirLandmarkVertices) {
   }
 }
 
+// A given texture (a real portrait's skin, SynthOptions::face_texture) is
+// the face's skin: each face vertex takes the texel at its UV (checked on a
+// texture whose colour encodes the UV, so a flipped or shifted lookup
+// fails), and the rest of the head takes the face's mean colour rather than
+// the painted tone, so no seam is drawn where the face region ends.
+TEST(SkinAlbedo, AGivenTextureIsTheFacesSkin) {
+  FACECAP_REQUIRE_MODEL(model);
+  const int given = 512, size = 256;
+  cv::Mat texture(given, given, CV_32FC3);
+  for (int y = 0; y < given; ++y)
+    for (int x = 0; x < given; ++x) {
+      const float u = float(x) / (given - 1), v = 1.0f - float(y) / (given - 1);
+      texture.at<cv::Vec3f>(y, x) = cv::Vec3f(0.2f + 0.6f * u, 0.2f + 0.6f * v, 0.5f);  // BGR
+    }
+  const Vec3f painted_tone(0.9f, 0.1f, 0.1f);
+  const SynthAppearance a = paint_appearance(*model, painted_tone, 1, size, texture);
+  ASSERT_EQ(a.face_texture.rows, size);
+  const std::vector<Vec2f> uv = per_vertex_uvs(model->region_mesh(regions::kFace));
+  float worst = 0;
+  for (int v = 0; v < regions::kFace.num_vertices(); ++v) {
+    const Vec3f expected(0.5f, 0.2f + 0.6f * uv[v].y(), 0.2f + 0.6f * uv[v].x());  // RGB
+    worst = std::max(worst, (a.vertex_albedo.col(v) - expected).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 0.01f);  // within the resampling of a linear ramp
+  const Vec3f face_mean = a.vertex_albedo.leftCols(regions::kNarrowFace.num_vertices()).rowwise().mean();
+  const Vec3f head = a.vertex_albedo.col(regions::kHeadAndNeck.first_vertex);
+  EXPECT_LT((head - face_mean).norm(), 1e-5f);
+  EXPECT_GT((head - painted_tone).norm(), 0.3f);
+  // Out-of-range texels are clamped to what an albedo can be.
+  cv::Mat bright(64, 64, CV_32FC3, cv::Scalar(1.5, -0.2, 0.5));
+  const SynthAppearance b = paint_appearance(*model, painted_tone, 1, 64, bright);
+  EXPECT_NEAR(b.vertex_albedo(0, 0), 0.5f, 1e-6f);  // R
+  EXPECT_NEAR(b.vertex_albedo(1, 0), 0.0f, 1e-6f);  // G
+  EXPECT_NEAR(b.vertex_albedo(2, 0), 1.0f, 1e-6f);  // B
+}
+
 TEST(SynthRenderer, DetailDisplacesTheSurfaceAlongItsNormals) {
   FACECAP_REQUIRE_MODEL(model);
   SynthOptions o = small_options();

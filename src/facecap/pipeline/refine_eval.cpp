@@ -165,6 +165,7 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
   so.width = o.width;
   so.height = o.height;
   so.detail = true;
+  so.face_texture = o.face_texture;
   const SynthPerformance perf = make_performance(model, so);
   const SynthRenderer renderer(model, perf);
   const TriangleMesh face = model.region_mesh(regions::kFace);

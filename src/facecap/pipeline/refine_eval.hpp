@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/refine/refiner.hpp"
 
@@ -25,6 +27,8 @@ struct RefineEvalOptions {
   // Solve the displacements with the render's own lighting and albedo (the
   // estimates are still made and reported): the solver's accuracy alone.
   bool true_shading = false;
+  // The renders' skin (SynthOptions::face_texture); empty: painted.
+  cv::Mat face_texture;
   bool quiet = false;
 };
 

@@ -28,28 +28,12 @@
 #include "facecap/swap/occlusion_mask.hpp"
 #include "facecap/swap/residual_shading.hpp"
 #include "facecap/swap/size_match.hpp"
+#include "facecap/swap/skin_texture.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 
 namespace facecap {
 
 namespace {
-
-// The skin of the face region (the narrow face of FACTS.md) with its UVs.
-TriangleMesh skin_mesh(const FaceModel& model) {
-  const TriangleMesh face = model.region_mesh(regions::kFace);
-  TriangleMesh skin;
-  skin.uvs = face.uvs;
-  skin.num_vertices = face.num_vertices;
-  for (size_t t = 0; t < face.triangles.size(); ++t) {
-    const Triangle& tri = face.triangles[t];
-    if (tri[0] > regions::kNarrowFace.last_vertex || tri[1] > regions::kNarrowFace.last_vertex ||
-        tri[2] > regions::kNarrowFace.last_vertex)
-      continue;
-    skin.triangles.push_back(tri);
-    skin.triangle_uvs.push_back(face.triangle_uvs[t]);
-  }
-  return skin;
-}
 
 // Per-vertex weighted means of a texture (each texel feeds its triangle's
 // corners by its barycentric weights); `seen` receives each vertex's weight.
@@ -75,21 +59,6 @@ Positions vertex_means(const UvTexelMap& map, const std::vector<Triangle>& trian
     if (seen[v] > 0) sum.col(v) /= seen[v];
   }
   return sum;
-}
-
-// The image polygons of what the skin mesh does not model: the eyes
-// (landmarks 36-41, 42-47) and the mouth interior (inner lips 60-67).
-std::vector<std::vector<cv::Point>> feature_holes(const FaceModel& model, const Positions& points,
-                                                  const PinholeCamera& camera) {
-  std::vector<std::vector<cv::Point>> holes;
-  for (const auto& [first, last] : {std::pair{36, 41}, std::pair{42, 47}, std::pair{60, 67}}) {
-    std::vector<int> vertices(model.landmarks.vertices.begin() + first, model.landmarks.vertices.begin() + last + 1);
-    std::vector<cv::Point> polygon;
-    for (const cv::Point2f& q : project_vertices(points, vertices, camera))
-      polygon.emplace_back(cvRound(q.x), cvRound(q.y));
-    holes.push_back(std::move(polygon));
-  }
-  return holes;
 }
 
 // `seen` (per vertex) with the vertices under a cover (any part of the
@@ -193,10 +162,8 @@ struct FaceSwapper::Impl {
         skin(skin_mesh(m)),
         map(rasterize_uv(skin, o.texture_size)),
         source_identity_shape(m.identity_shape(source.identity, regions::kFace)) {
-    FaceTexture t = unshade_face(photo, source.camera_points, skin.triangles, source.camera, source.lighting, map,
-                                 feature_holes(m, source.camera_points, source.camera));
-    drop_non_skin(t);
-    if (options.mirror_source) complete_from_mirror(t, options.mirror_low_pass_texels);
+    const FaceTexture t = unshade_photo(m, photo, source.camera_points, source.camera, source.lighting, skin, map,
+                                        options.mirror_source ? options.mirror_low_pass_texels : 0.0);
     const cv::Mat source_albedo = fill_unseen(t.albedo, t.weight);
     std::vector<float> seen;
     source_vertex_albedo =

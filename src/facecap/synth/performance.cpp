@@ -56,6 +56,9 @@ void SynthOptions::check() const {
   require(face_height > 0.05 && face_height < 1.5, "face height share must be in (0.05, 1.5)");
   require(identity_modes >= 0 && identity_modes <= 100, "identity modes must be in [0, 100]");
   require(noise_sigma >= 0 && noise_sigma <= 50, "noise sigma must be in [0, 50]");
+  require(face_texture.empty() ||
+              (face_texture.type() == CV_32FC3 && face_texture.rows == face_texture.cols && face_texture.rows >= 16),
+          "a face texture must be square, 3-channel float and at least 16 texels wide");
 }
 
 SynthPerformance make_performance(const FaceModel& model, const SynthOptions& options) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "facecap/core/camera.hpp"
 #include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/model/face_model.hpp"
@@ -27,6 +29,13 @@ struct SynthOptions {
   bool detail = false;        // wrinkle-like displacements along the normals
   int identity_modes = 50;    // random identity on the leading modes, N(0, 1)
   double noise_sigma = 1.5;   // sensor noise, 0-255 grey levels
+  // The face's skin: a texture in the ICT face UV layout (BGR CV_32FC3 in
+  // [0, 1], square, row 0 at v = 1), such as face_texture_from_photo()
+  // makes of a real portrait; empty: skin painted from the seed
+  // (skin_albedo.hpp). `face_texture_source`: the file it came from, which
+  // the output's marks name.
+  cv::Mat face_texture;
+  std::string face_texture_source;
 
   // Throws facecap::Error naming the bad option.
   void check() const;

@@ -12,12 +12,10 @@ namespace {
 
 cv::Scalar bgr(const Vec3f& rgb) { return cv::Scalar(rgb.z(), rgb.y(), rgb.x()); }
 
-}  // namespace
-
-SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint64_t seed, int size) {
-  SynthAppearance out;
-  const TriangleMesh face = model.region_mesh(regions::kFace);
-  const std::vector<Vec2f> uv = per_vertex_uvs(face);
+// The painted skin: a base tone with darker brows, lips, lid lines and
+// nostrils placed from the UVs of the landmark vertices.
+cv::Mat painted_skin(const FaceModel& model, const std::vector<Vec2f>& uv, const Vec3f& tone, std::mt19937_64& rng,
+                     int size) {
   auto to_px = [&](int vertex) {
     const Vec2f t = uv[vertex];
     return cv::Point2f(t.x() * (size - 1), (1.0f - t.y()) * (size - 1));
@@ -26,7 +24,6 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
 
   // Base tone with gentle low-frequency variation.
   cv::Mat tex(size, size, CV_32FC3, bgr(tone));
-  std::mt19937_64 rng(seed ^ 0x5eed5eedull);
   cv::Mat variation(size / 32, size / 32, CV_32F);
   std::normal_distribution<float> normal(0.0f, 1.0f);
   for (int y = 0; y < variation.rows; ++y)
@@ -84,7 +81,26 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   polyline(42, 47, true, lid, 0.025f * eye_px);
   for (int n : {31, 35}) cv::circle(tex, landmark_px(n), int(0.03f * eye_px), bgr(tone * 0.35f), -1, cv::LINE_AA);
   cv::GaussianBlur(tex, tex, cv::Size(0, 0), std::max(0.8, size / 700.0));
-  out.face_texture = tex;
+  return tex;
+}
+
+// A given skin texture at `size` texels, clamped to [0, 1].
+cv::Mat given_skin(const cv::Mat& texture, int size) {
+  cv::Mat tex;
+  cv::resize(texture, tex, cv::Size(size, size), 0, 0, texture.cols > size ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return cv::min(cv::max(tex, 0.0f), 1.0f);
+}
+
+}  // namespace
+
+SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& painted_tone, uint64_t seed, int size,
+                                 const cv::Mat& face_texture) {
+  SynthAppearance out;
+  const TriangleMesh face = model.region_mesh(regions::kFace);
+  const std::vector<Vec2f> uv = per_vertex_uvs(face);
+  std::mt19937_64 rng(seed ^ 0x5eed5eedull);
+  out.face_texture =
+      face_texture.empty() ? painted_skin(model, uv, painted_tone, rng, size) : given_skin(face_texture, size);
 
   // Per-vertex albedo of the whole head.
   out.vertex_albedo = Positions(3, model.num_vertices);
@@ -93,7 +109,12 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& tone, uint
   auto paint_range = [&](const Region& r, const Vec3f& c) {
     for (int v = r.first_vertex; v <= r.last_vertex; ++v) out.vertex_albedo.col(v) = c;
   };
-  for (int v = 0; v < regions::kFace.num_vertices(); ++v) out.vertex_albedo.col(v) = sample_uv_rgb(tex, uv[v]);
+  for (int v = 0; v < regions::kFace.num_vertices(); ++v)
+    out.vertex_albedo.col(v) = sample_uv_rgb(out.face_texture, uv[v]);
+  // A given texture's head and neck take the mean colour of its narrow face.
+  const Vec3f tone = face_texture.empty()
+                         ? painted_tone
+                         : Vec3f(out.vertex_albedo.leftCols(regions::kNarrowFace.num_vertices()).rowwise().mean());
   paint_range(regions::kHeadAndNeck, tone);
   paint_range(regions::kMouthSocket, Vec3f(0.25f, 0.08f, 0.08f));
   paint_range(regions::kEyeSocketLeft, tone * 0.3f);

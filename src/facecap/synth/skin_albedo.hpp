@@ -1,7 +1,8 @@
 #pragma once
 // A procedural albedo for synthetic faces: skin painted in the ICT face UV
 // layout (darker brows, lips, lid lines and nostrils, placed from the UVs of
-// the landmark vertices), plus flat colours for eyes, teeth and mouth.
+// the landmark vertices) or taken from a given texture, plus flat colours
+// for eyes, teeth and mouth.
 #include <cstdint>
 
 #include <opencv2/core.hpp>
@@ -16,7 +17,10 @@ struct SynthAppearance {
   std::vector<bool> drawn;  // which vertices belong to rendered regions (eye overlays are not)
 };
 
-SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& skin_tone_rgb, uint64_t seed,
-                                 int texture_size = 1024);
+// `face_texture` (SynthOptions::face_texture), when given, is the face's
+// skin instead of the painted one, and its mean colour over the face that of
+// the rest of the head; `painted_tone_rgb` then goes unused.
+SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& painted_tone_rgb, uint64_t seed,
+                                 int texture_size = 1024, const cv::Mat& face_texture = {});
 
 }  // namespace facecap

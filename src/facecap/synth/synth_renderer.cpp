@@ -11,7 +11,8 @@ namespace facecap {
 SynthRenderer::SynthRenderer(const FaceModel& model, const SynthPerformance& performance)
     : model_(model),
       performance_(performance),
-      appearance_(paint_appearance(model, performance.skin_tone, performance.options.seed)),
+      appearance_(paint_appearance(model, performance.skin_tone, performance.options.seed, 1024,
+                                   performance.options.face_texture)),
       contour_(build_jaw_contour(model)),
       eyes_(eyeball_geometry(model, performance.identity.cast<double>())) {
   const TriangleMesh face = model.region_mesh(regions::kFace);

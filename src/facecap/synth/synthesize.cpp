@@ -30,10 +30,23 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
 
   SyntheticMark mark;
   mark.kind = "synthetic-render";
-  mark.description = "A face rendered from the ICT face model with known parameters; no real person.";
   mark.parameters = {{"seed", std::to_string(options.seed)},
                      {"frames", std::to_string(options.frames)},
                      {"detail", options.detail ? "true" : "false"}};
+  if (options.face_texture.empty()) {
+    mark.description = "A face rendered from the ICT face model with known parameters; no real person.";
+  } else {
+    // The shape and motion are drawn, but the skin is a real person's.
+    mark.description =
+        "A face rendered from the ICT face model with known parameters, its skin texture taken from a photo of a "
+        "real person.";
+    if (options.face_texture_source.empty()) {
+      mark.parameters["face_texture"] = "given";
+    } else {
+      mark.sources.push_back(options.face_texture_source);
+      mark.parameters["face_texture"] = std::filesystem::path(options.face_texture_source).filename().string();
+    }
+  }
   VideoWriterOptions vo;
   vo.width = options.width;
   vo.height = options.height;
