@@ -83,6 +83,56 @@ TEST(Iris, TheSameEyeAtAnotherScaleGivesTheSameAnswer) {
   EXPECT_LT((found->centre - Vec2d(163.2, 101.1)).norm(), 0.25);
 }
 
+// A frame's eyes kept without the frame (eye_crop, searched with its
+// origin) give what the whole frame gives, to the last bit: in the middle
+// of the image, where the crop is cut by the image's edge, and where the
+// resampled patch reaches past that edge.
+TEST(Iris, AnEyeCropFindsWhatTheWholeImageGives) {
+  struct Case {
+    double width, opening;
+    Vec2d shift;  // of both eyes' landmarks and the drawn eye (in whole pixels)
+  };
+  // The eye's box with its margin spans x 121-199, y 80-120 before the
+  // shift: shifted to x 0 or y 0 the crop is cut by the image's edge; to
+  // x 319 or y 199 (the last pixels) the patch's last samples fall past it.
+  int found = 0;
+  for (const Case& c : {Case{60, 22, {0, 0}}, Case{24, 9, {0, 0}}, Case{60, 22, {-121, 0}}, Case{60, 22, {120, 0}},
+                        Case{60, 22, {0, -80}}, Case{60, 22, {0, 79}}}) {
+    const Vec2d iris = Vec2d(163.4, 101.2) + c.shift;
+    DrawnEye eye = draw_eye(Vec2d(163.4, 101.2), 0.2 * c.width, c.width, c.opening);
+    // Texture, so that where each sample falls matters.
+    cv::Mat noise(eye.grey.size(), CV_8U);
+    cv::RNG(7).fill(noise, cv::RNG::UNIFORM, 0, 25);
+    eye.grey += noise;
+    const cv::Matx23d move(1, 0, c.shift.x(), 0, 1, c.shift.y());
+    cv::warpAffine(eye.grey, eye.grey, move, eye.grey.size(), cv::INTER_NEAREST, cv::BORDER_REPLICATE);
+    for (int k = 36; k < 48; ++k) eye.landmarks[k] += c.shift.cast<float>();
+    const cv::Rect crop = eye_crop(eye.grey.size(), eye.landmarks);
+    ASSERT_FALSE(crop.empty());
+    EXPECT_LT(crop.area(), eye.grey.size().area() / 3);
+    const cv::Mat eyes_only = eye.grey(crop).clone();
+    for (const IrisExpectation& expected : {IrisExpectation{}, IrisExpectation{0.2 * c.width, 0.8}}) {
+      const auto whole = locate_iris(eye.grey, eye.landmarks, 0, expected);
+      const auto cropped = locate_iris(eyes_only, eye.landmarks, 0, expected, {}, crop.tl());
+      ASSERT_TRUE(whole.has_value()) << c.shift.transpose();
+      ASSERT_TRUE(cropped.has_value()) << c.shift.transpose();
+      ++found;
+      EXPECT_LT((whole->centre - iris).norm(), 1.0) << c.shift.transpose();
+      EXPECT_EQ(whole->centre, cropped->centre) << c.shift.transpose();
+      EXPECT_EQ(whole->radius, cropped->radius);
+      EXPECT_EQ(whole->score, cropped->score);
+    }
+    // One pixel further, the eye is cut off in both.
+    for (int k = 36; k < 48; ++k) eye.landmarks[k] += (c.shift / std::max(1.0, c.shift.norm())).cast<float>();
+    if (c.shift.norm() > 0) {
+      const cv::Rect past = eye_crop(eye.grey.size(), eye.landmarks);
+      EXPECT_FALSE(locate_iris(eye.grey, eye.landmarks, 0).has_value()) << c.shift.transpose();
+      EXPECT_FALSE(locate_iris(eye.grey(past).clone(), eye.landmarks, 0, {}, {}, past.tl()).has_value());
+    }
+  }
+  EXPECT_EQ(found, 12);
+}
+
 TEST(Iris, AClosedBlankTinyOrCutOffEyeGivesNothing) {
   const DrawnEye closed = draw_eye(Vec2d(160, 100), 11.0, 60.0, 6.0);  // opening 0.1 of the width
   EXPECT_FALSE(locate_iris(closed.grey, closed.landmarks, 0).has_value());

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+#include <random>
+
 #include "facecap/model/regions.hpp"
+#include "facecap/synth/synth_renderer.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -125,6 +129,35 @@ TEST(Gaze, AnIrisWhereNoEyeCouldLookGivesNoGaze) {
   const GazeEstimate near = estimate_gaze(eyes, pose, camera, {iris_at(0, -12, 0), iris_at(1, 12, 0)});
   EXPECT_TRUE(near.eyes[0] && near.eyes[1]);
   EXPECT_FALSE(estimate_gaze(eyes, pose, camera, {}).valid());
+}
+
+// A frame's iris search waits for the tracker's pose (for the first frames,
+// until the identity solve): it keeps a copy of the eyes, not the frame,
+// and finds there what the whole frame gives.
+TEST(Gaze, AnIrisSearchKeepsTheEyesNotTheFrame) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o;
+  o.frames = 1;
+  o.still = true;
+  const SynthPerformance perf = make_performance(*model, o);
+  const SynthRenderer renderer(*model, perf);
+  const SynthFrame& frame = perf.frames[0];
+  std::mt19937_64 noise(3);
+  cv::Mat grey;
+  cv::cvtColor(renderer.render(frame, noise), grey, cv::COLOR_BGR2GRAY);
+  const Landmarks landmarks = renderer.landmarks(frame);
+  const auto expected = expected_irises(renderer.eyeballs(), frame.pose, perf.camera);
+
+  const IrisSearch search = iris_search(grey, landmarks);
+  EXPECT_EQ(grey.u->refcount, 1);  // nothing but `grey` holds the frame
+  const IrisPair found = search(expected);
+  for (int eye = 0; eye < 2; ++eye) {
+    const auto whole = locate_iris(grey, landmarks, eye, expected[eye]);
+    ASSERT_TRUE(whole.has_value()) << eye;
+    ASSERT_TRUE(found[eye].has_value()) << eye;
+    EXPECT_EQ(found[eye]->centre, whole->centre);
+    EXPECT_LT((whole->centre - renderer.iris_centre(frame, eye)).norm(), 2.0);
+  }
 }
 
 // The iris's expected size is its 11.7 mm at the eye's depth, and a head

@@ -27,7 +27,18 @@ struct EyePatch {
   double x0 = 0, y0 = 0, scale = 1;
 };
 
-std::optional<EyePatch> resample_eye(const cv::Mat& grey, const std::array<Vec2d, 6>& p) {
+// Where an eye's patch comes from: the box about its six landmarks with a
+// margin of 0.15 of its width (to hi: the far corner, which must lie inside
+// the image), starting at the whole pixel (x0, y0), resampled to `size`.
+struct EyeWindow {
+  double x0 = 0, y0 = 0, scale = 1;
+  Vec2d hi = Vec2d::Zero();
+  cv::Size size;
+  // The image point of the patch's last pixel (it may pass `hi` by a pixel of the patch).
+  Vec2d last() const { return Vec2d(x0 + (size.width - 1) / scale, y0 + (size.height - 1) / scale); }
+};
+
+EyeWindow eye_window(const std::array<Vec2d, 6>& p) {
   const double width = (p[3] - p[0]).norm();
   Vec2d lo = p[0], hi = p[0];
   for (const Vec2d& q : p) {
@@ -35,14 +46,34 @@ std::optional<EyePatch> resample_eye(const cv::Mat& grey, const std::array<Vec2d
     hi = hi.cwiseMax(q);
   }
   const double margin = 0.15 * width;
+  EyeWindow w;
+  w.x0 = std::floor(lo.x() - margin);
+  w.y0 = std::floor(lo.y() - margin);
+  w.hi = hi + Vec2d(margin, margin);
+  w.scale = kEyeWidthPx / width;
+  w.size = cv::Size(static_cast<int>(std::ceil((w.hi.x() - w.x0) * w.scale)) + 1,
+                    static_cast<int>(std::ceil((w.hi.y() - w.y0) * w.scale)) + 1);
+  return w;
+}
+
+std::array<Vec2d, 6> eye_points(const Landmarks& landmarks, int eye) {
+  std::array<Vec2d, 6> p;
+  for (int k = 0; k < 6; ++k) p[k] = landmarks[36 + 6 * eye + k].cast<double>();
+  return p;
+}
+
+// `origin`: where grey's first pixel lies in the image `p` is in.
+std::optional<EyePatch> resample_eye(const cv::Mat& grey, const cv::Point& origin, const std::array<Vec2d, 6>& p) {
+  const EyeWindow w = eye_window(p);
+  if (w.x0 < origin.x || w.y0 < origin.y || w.hi.x() > origin.x + grey.cols - 1 || w.hi.y() > origin.y + grey.rows - 1)
+    return std::nullopt;
   EyePatch e;
-  e.x0 = std::floor(lo.x() - margin);
-  e.y0 = std::floor(lo.y() - margin);
-  if (e.x0 < 0 || e.y0 < 0 || hi.x() + margin > grey.cols - 1 || hi.y() + margin > grey.rows - 1) return std::nullopt;
-  e.scale = kEyeWidthPx / width;
-  const cv::Size size(static_cast<int>(std::ceil((hi.x() + margin - e.x0) * e.scale)) + 1,
-                      static_cast<int>(std::ceil((hi.y() + margin - e.y0) * e.scale)) + 1);
-  const cv::Matx23d to_eye(e.scale, 0, -e.scale * e.x0, 0, e.scale, -e.scale * e.y0);
+  e.x0 = w.x0;
+  e.y0 = w.y0;
+  e.scale = w.scale;
+  const cv::Size size = w.size;
+  // x0 and the origin are whole pixels: the same samples as from the whole image.
+  const cv::Matx23d to_eye(e.scale, 0, -e.scale * (e.x0 - origin.x), 0, e.scale, -e.scale * (e.y0 - origin.y));
   cv::warpAffine(grey, e.image, to_eye, size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   e.image.convertTo(e.image, CV_32F);
 
@@ -158,16 +189,16 @@ Disc darkest_disc(const EyePatch& e, const std::vector<double>& radii, double as
 }  // namespace
 
 std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks& landmarks, int eye,
-                                           const IrisExpectation& expected, const IrisOptions& options) {
+                                           const IrisExpectation& expected, const IrisOptions& options,
+                                           const cv::Point& origin) {
   if (grey.empty() || grey.type() != CV_8UC1 || (eye != 0 && eye != 1)) return std::nullopt;
-  std::array<Vec2d, 6> p;
-  for (int k = 0; k < 6; ++k) p[k] = landmarks[36 + 6 * eye + k].cast<double>();
+  const std::array<Vec2d, 6> p = eye_points(landmarks, eye);
   const double width = (p[3] - p[0]).norm();
   if (!(width >= options.min_eye_width_px)) return std::nullopt;
   const double opening = 0.5 * ((p[1] - p[5]).norm() + (p[2] - p[4]).norm());
   if (opening < options.min_opening * width) return std::nullopt;
 
-  const std::optional<EyePatch> patch = resample_eye(grey, p);
+  const std::optional<EyePatch> patch = resample_eye(grey, origin, p);
   if (!patch) return std::nullopt;
   std::vector<double> radii;
   if (expected.radius_px > 0.0) {
@@ -183,6 +214,21 @@ std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks&
   out.radius = disc.radius / patch->scale;
   out.score = disc.score;
   return out;
+}
+
+cv::Rect eye_crop(const cv::Size& image, const Landmarks& landmarks) {
+  cv::Rect crop;
+  for (int eye = 0; eye < 2; ++eye) {
+    const EyeWindow w = eye_window(eye_points(landmarks, eye));
+    const Vec2d last = w.last();
+    if (!std::isfinite(last.x()) || !std::isfinite(last.y())) continue;
+    // From a pixel before the patch's first to two past its last: the
+    // bilinear samples' neighbours, whatever way they round.
+    const cv::Point from(static_cast<int>(w.x0) - 1, static_cast<int>(w.y0) - 1);
+    const cv::Point to(static_cast<int>(std::floor(last.x())) + 3, static_cast<int>(std::floor(last.y())) + 3);
+    crop |= cv::Rect(from, to);
+  }
+  return crop & cv::Rect(cv::Point(0, 0), image);
 }
 
 }  // namespace facecap

@@ -58,8 +58,18 @@ struct IrisExpectation {
 
 // Eye 0: the subject's right eye (iBUG 36-41, on the image's left for a face
 // seen from the front); eye 1: the subject's left (42-47). `grey`: 8-bit.
+// `origin`: where grey's first pixel lies in the image the landmarks are in,
+// when grey is a crop of it (eye_crop()); what is found is in the image's
+// pixels either way, and the same as in the whole image.
 std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks& landmarks, int eye,
-                                           const IrisExpectation& expected = {}, const IrisOptions& options = {});
+                                           const IrisExpectation& expected = {}, const IrisOptions& options = {},
+                                           const cv::Point& origin = {});
+
+// The part of `grey` locate_iris reads for either eye of `landmarks` (with
+// a pixel to spare, within the image), for keeping a frame's eyes without
+// the frame: searched with its top-left as the origin, it finds what the
+// whole image gives.
+cv::Rect eye_crop(const cv::Size& image, const Landmarks& landmarks);
 
 using IrisPair = std::array<std::optional<IrisObservation>, 2>;
 

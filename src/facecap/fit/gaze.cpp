@@ -76,11 +76,15 @@ std::array<IrisExpectation, 2> expected_irises(const EyeballGeometry& eyes, cons
   return out;
 }
 
-IrisSearch iris_search(cv::Mat grey, const Landmarks& observed) {
-  return [grey = std::move(grey), observed](const std::array<IrisExpectation, 2>& expected) {
+IrisSearch iris_search(const cv::Mat& grey, const Landmarks& observed) {
+  // A copy of the eyes alone: a search may wait for the identity solve, a
+  // second of frames (30 whole 4K frames would be 250 MB).
+  const cv::Rect crop = eye_crop(grey.size(), observed);
+  return [eyes = crop.empty() ? cv::Mat() : grey(crop).clone(), origin = crop.tl(),
+          observed](const std::array<IrisExpectation, 2>& expected) {
     IrisPair out;
     for (int eye = 0; eye < 2; ++eye)
-      if (expected[eye].radius_px > 0.0) out[eye] = locate_iris(grey, observed, eye, expected[eye]);
+      if (expected[eye].radius_px > 0.0) out[eye] = locate_iris(eyes, observed, eye, expected[eye], {}, origin);
     return out;
   };
 }

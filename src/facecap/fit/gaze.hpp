@@ -66,6 +66,7 @@ std::array<IrisExpectation, 2> expected_irises(const EyeballGeometry& eyes, cons
 // starting pose for the frame.
 using IrisSearch = std::function<IrisPair(const std::array<IrisExpectation, 2>& expected)>;
 // locate_iris in each eye of `grey` (8-bit) inside the detector's landmarks.
-IrisSearch iris_search(cv::Mat grey, const Landmarks& observed);
+// It keeps a copy of the eyes' part of `grey` (eye_crop), not the image.
+IrisSearch iris_search(const cv::Mat& grey, const Landmarks& observed);
 
 }  // namespace facecap
