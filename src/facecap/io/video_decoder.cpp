@@ -146,6 +146,30 @@ struct VideoDecoder::Impl {
     sws = sws_getCachedContext(sws, width, height, AVPixelFormat(frame->format), width, height, AV_PIX_FMT_BGR24,
                                SWS_BICUBIC, nullptr, nullptr, nullptr);
     if (sws == nullptr) throw Error("cannot convert " + name + "'s frames to BGR");
+    cv::Mat bgr;
+    const int row_bytes = 3 * width;
+    if (width == frame->width && row_bytes % 32 == 0) {
+      // Straight into the frame handed out (its rows as the 32-byte aligned
+      // frame's, so the same conversion), the coded rows past the picture
+      // left unseen: no copy of the picture. A spare row, as libav pads its
+      // buffers, for a conversion that writes whole vectors.
+      cv::Mat coded(height + 1, width, CV_8UC3);
+      uint8_t* const planes[4] = {coded.data, nullptr, nullptr, nullptr};
+      const int strides[4] = {row_bytes, 0, 0, 0};
+      sws_scale(sws, frame->data, frame->linesize, 0, height, planes, strides);
+      bgr = coded.rowRange(0, frame->height);
+    } else {
+      bgr = converted_copy(width, height);
+    }
+    if (rotation == 90) cv::rotate(bgr, bgr, cv::ROTATE_90_CLOCKWISE);
+    if (rotation == 180) cv::rotate(bgr, bgr, cv::ROTATE_180);
+    if (rotation == 270) cv::rotate(bgr, bgr, cv::ROTATE_90_COUNTERCLOCKWISE);
+    return bgr;
+  }
+
+  // The frame converted into `converted` (32-byte aligned rows, as OpenCV's
+  // back-end converts), its picture copied out.
+  cv::Mat converted_copy(int width, int height) {
     if (converted->width != width || converted->height != height) {
       av_frame_unref(converted);
       converted->format = AV_PIX_FMT_BGR24;
@@ -156,9 +180,6 @@ struct VideoDecoder::Impl {
     sws_scale(sws, frame->data, frame->linesize, 0, height, converted->data, converted->linesize);
     cv::Mat bgr;
     cv::Mat(frame->height, frame->width, CV_8UC3, converted->data[0], size_t(converted->linesize[0])).copyTo(bgr);
-    if (rotation == 90) cv::rotate(bgr, bgr, cv::ROTATE_90_CLOCKWISE);
-    if (rotation == 180) cv::rotate(bgr, bgr, cv::ROTATE_180);
-    if (rotation == 270) cv::rotate(bgr, bgr, cv::ROTATE_90_COUNTERCLOCKWISE);
     return bgr;
   }
 
