@@ -225,8 +225,9 @@ std::unique_ptr<FrameSource> open_source(const std::string& spec) {
   if (!fs::is_regular_file(path, ec)) throw Error("input is not a regular file: " + spec);
   if (fs::file_size(path, ec) == 0) throw Error("input is empty (0 bytes): " + spec);
   if (is_image_path(path)) return std::make_unique<ImageSource>(path);
-  InputInfo info = probe_video_file(path);
-  return std::make_unique<VideoSource>(VideoDecoder::open_file(path), info);
+  VideoDecoder decoder = VideoDecoder::open_file(path);
+  const InputInfo info = decoder.facts();
+  return std::make_unique<VideoSource>(std::move(decoder), info);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@ extern "C" {
 
 #include "facecap/core/error.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/io/video_container.hpp"
 
 namespace facecap {
 
@@ -45,12 +46,22 @@ std::map<std::string, std::string> read_container_tags(const std::filesystem::pa
   return tags;
 }
 
-InputInfo probe_video_file(const std::filesystem::path& path) {
-  const auto ctx = open_container(path);
+AVFormatContext* open_video_container(const std::filesystem::path& path) {
+  auto ctx = open_container(path);
   const int info_code = avformat_find_stream_info(ctx.get(), nullptr);
   if (info_code < 0) {
     throw Error("cannot read " + path.string() + ": corrupt or truncated video (" + av_error_text(info_code) + ")");
   }
+  return ctx.release();
+}
+
+InputInfo probe_video_file(const std::filesystem::path& path) {
+  const std::unique_ptr<AVFormatContext, FormatCloser> ctx(open_video_container(path));
+  return video_facts(*ctx, path);
+}
+
+InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path) {
+  const AVFormatContext* const ctx = &container;
   // A file cut short after its index (mp4 with the moov box first) opens
   // fine but its samples point past the end of the file.
   const int64_t file_size = ctx->pb ? avio_size(ctx->pb) : -1;

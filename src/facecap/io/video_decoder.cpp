@@ -19,6 +19,7 @@ extern "C" {
 
 #include "facecap/core/error.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/io/video_container.hpp"
 
 namespace facecap {
 
@@ -62,6 +63,7 @@ struct VideoDecoder::Impl {
   bool flushing = false;
   double last_time = std::numeric_limits<double>::quiet_NaN();
   bool holding = false;  // `frame` is the one seek() found, for the next read()
+  InputInfo facts;       // a file's (video_facts)
 
   ~Impl() {
     sws_freeContext(sws);
@@ -74,16 +76,20 @@ struct VideoDecoder::Impl {
 
   AVStream* video() const { return format->streams[stream]; }
 
-  // Opens `url` (with `input` as its demuxer, or probed), finds the best
-  // video stream and its decoder.
+  // Opens `url` with `input` as its demuxer (a camera).
   void open(const std::string& url, const AVInputFormat* input) {
     quiet_ffmpeg_log();
-    if (!packet || !frame || !converted) throw Error("cannot decode " + name + ": out of memory");
     int code = avformat_open_input(&format, url.c_str(), input, nullptr);
     if (code < 0) throw Error("cannot open " + name + ": " + av_error_text(code));
     code = avformat_find_stream_info(format, nullptr);
     if (code < 0) throw Error("cannot read " + name + ": " + av_error_text(code));
+  }
+
+  // Finds the opened container's best video stream and its decoder.
+  void open_decoder() {
+    if (!packet || !frame || !converted) throw Error("cannot decode " + name + ": out of memory");
     const AVCodec* decoder = nullptr;
+    int code = 0;
     stream = av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
     if (stream < 0 || decoder == nullptr)
       throw Error("cannot decode " + name + ": no video stream libavcodec can decode");
@@ -204,7 +210,9 @@ VideoDecoder& VideoDecoder::operator=(VideoDecoder&&) noexcept = default;
 VideoDecoder VideoDecoder::open_file(const fs::path& path) {
   auto impl = std::make_unique<Impl>();
   impl->name = path.string();
-  impl->open(path.string(), nullptr);
+  impl->format = open_video_container(path);
+  impl->facts = video_facts(*impl->format, path);
+  impl->open_decoder();
   return VideoDecoder(std::move(impl));
 }
 
@@ -217,6 +225,7 @@ VideoDecoder VideoDecoder::open_camera(int index) {
                 avdevice_library() + ", from the ffmpeg package)");
   }
   impl->open("/dev/video" + std::to_string(index), input);
+  impl->open_decoder();
   return VideoDecoder(std::move(impl));
 }
 
@@ -233,6 +242,8 @@ bool VideoDecoder::read(cv::Mat& bgr) {
 }
 
 double VideoDecoder::time() const { return impl_->last_time; }
+
+const InputInfo& VideoDecoder::facts() const { return impl_->facts; }
 
 double VideoDecoder::nominal_fps() const {
   const AVRational rate = av_guess_frame_rate(impl_->format, impl_->video(), nullptr);

@@ -10,12 +10,14 @@
 
 #include <opencv2/core.hpp>
 
+#include "facecap/io/input.hpp"
+
 namespace facecap {
 
 class VideoDecoder {
  public:
-  // Throws facecap::Error naming the file when it cannot be opened or holds
-  // no video stream that libavcodec can decode.
+  // Throws facecap::Error naming the file when it cannot be opened, is
+  // truncated, or holds no video stream that libavcodec can decode.
   static VideoDecoder open_file(const std::filesystem::path& path);
   // /dev/videoN through libavdevice's video4linux2 input; libavdevice is
   // loaded only here, the first time a camera is opened.
@@ -34,6 +36,9 @@ class VideoDecoder {
   double time() const;
   // The frame rate the container gives (average, else nominal), or 0.
   double nominal_fps() const;
+  // A file's facts, as probe_video_file gives them, read on the decoder's
+  // own opening of the container (a camera's are left empty).
+  const InputInfo& facts() const;
   // Makes the next read() give the first frame whose time is at or after
   // `seconds`, and returns its index in display order (the number of frames
   // before it), or -1 where the stream ends before. The timestamps of the

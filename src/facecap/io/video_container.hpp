@@ -1,0 +1,24 @@
+#pragma once
+// A video file's container opened with libavformat, and the facts facecap
+// reads from it (InputInfo), shared by probe_video_file and the decoder so
+// that a video opened to be decoded is probed on the same opening.
+#include <filesystem>
+
+#include "facecap/io/input.hpp"
+
+struct AVFormatContext;
+
+namespace facecap {
+
+// avformat_open_input and avformat_find_stream_info. The caller owns the
+// result (avformat_close_input). Throws facecap::Error naming the file when
+// it is not a video file or is corrupt.
+AVFormatContext* open_video_container(const std::filesystem::path& path);
+
+// Width, height, frame rate, frame count, audio and duration of the
+// container `open_video_container` gave. Throws facecap::Error naming the
+// file where it is truncated past its index, has no video stream or no
+// frame size.
+InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path);
+
+}  // namespace facecap
