@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/error.hpp"
+#include "facecap/swap/wide_blur.hpp"
 
 namespace facecap {
 
@@ -20,21 +21,8 @@ cv::Mat log_colour(const cv::Mat& bgr, int channels) {
   return out;
 }
 
-// A Gaussian blur; a wide one runs on a grid a few times coarser (at most a
-// quarter of sigma per coarse texel), then is resampled.
-cv::Mat blur(const cv::Mat& image, double sigma) {
-  const int factor = std::max(1, static_cast<int>(sigma / 4.0));
-  cv::Mat out;
-  if (factor == 1) {
-    cv::GaussianBlur(image, out, cv::Size(0, 0), sigma, sigma, cv::BORDER_CONSTANT);
-    return out;
-  }
-  const cv::Size small((image.cols + factor - 1) / factor, (image.rows + factor - 1) / factor);
-  cv::resize(image, out, small, 0, 0, cv::INTER_AREA);
-  cv::GaussianBlur(out, out, cv::Size(0, 0), sigma / factor, sigma / factor, cv::BORDER_CONSTANT);
-  cv::resize(out, out, image.size(), 0, 0, cv::INTER_LINEAR);
-  return out;
-}
+// A Gaussian blur with zeros outside the texture.
+cv::Mat blur(const cv::Mat& image, double sigma) { return wide_blur(image, sigma, cv::BORDER_CONSTANT); }
 
 // `weight` (one channel) repeated over `channels` channels.
 cv::Mat repeat_channels(const cv::Mat& weight, int channels) {

@@ -11,6 +11,7 @@
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/swap/noise_matching.hpp"
+#include "facecap/swap/wide_blur.hpp"
 
 namespace facecap {
 
@@ -102,12 +103,13 @@ int drop_non_skin(FaceTexture& texture, float max_chroma, float max_log_brightne
 void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
   const cv::Mat albedo = texture.albedo.clone(), weight = texture.weight.clone();
   // Low-pass colour of what was seen: blur(albedo * weight) / blur(weight).
-  cv::Mat w3, weighted, low, low_weight;
+  cv::Mat w3, weighted, low_weight3;
   cv::merge(std::vector<cv::Mat>{weight, weight, weight}, w3);
   cv::multiply(albedo, w3, weighted);
-  cv::GaussianBlur(weighted, low, cv::Size(0, 0), low_pass_texels);
-  cv::GaussianBlur(w3, low_weight, cv::Size(0, 0), low_pass_texels);
-  low /= cv::max(low_weight, 1e-4f);
+  cv::Mat low = wide_blur(weighted, low_pass_texels);
+  const cv::Mat low_weight = wide_blur(weight, low_pass_texels);
+  cv::merge(std::vector<cv::Mat>{low_weight, low_weight, low_weight}, low_weight3);
+  low /= cv::max(low_weight3, 1e-4f);
   // Where this side saw too little around a texel (its low-pass weight, the
   // seen share of the neighbourhood), the mirror's colour is kept as it is:
   // this side's low-pass colour says too little there. A texel unseen itself
@@ -121,7 +123,7 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
     const auto* a = albedo.ptr<cv::Vec3f>(y);
     const auto* lo = low.ptr<cv::Vec3f>(y);
     const float* w = weight.ptr<float>(y);
-    const auto* lw = low_weight.ptr<cv::Vec3f>(y);
+    const float* lw = low_weight.ptr<float>(y);
     auto* out = texture.albedo.ptr<cv::Vec3f>(y);
     float* out_w = texture.weight.ptr<float>(y);
     for (int x = 0; x < n; ++x) {
@@ -129,7 +131,7 @@ void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
       const float extra = w[m] - w[x];
       if (extra <= 0) continue;
       cv::Vec3f mirrored = a[m];
-      if (lw[x][0] > kMinLowPassWeight)
+      if (lw[x] > kMinLowPassWeight)
         for (int c = 0; c < 3; ++c) mirrored[c] *= lo[x][c] / std::max(lo[m][c], 1e-4f);
       out[x] = (w[x] * a[x] + extra * mirrored) / w[m];
       out_w[x] = w[m];

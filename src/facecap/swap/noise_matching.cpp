@@ -4,6 +4,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "facecap/swap/wide_blur.hpp"
+
 namespace facecap {
 
 namespace {
@@ -60,10 +62,6 @@ cv::Mat match_histograms(const cv::Mat& source, const cv::Mat& source_mask, cons
   return out;
 }
 
-cv::Mat fine_residual(const cv::Mat& albedo, double sigma) {
-  cv::Mat blurred;
-  cv::GaussianBlur(albedo, blurred, cv::Size(0, 0), sigma);
-  return albedo - blurred;
-}
+cv::Mat fine_residual(const cv::Mat& albedo, double sigma) { return albedo - wide_blur(albedo, sigma); }
 
 }  // namespace facecap

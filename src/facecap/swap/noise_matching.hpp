@@ -13,7 +13,8 @@ namespace facecap {
 cv::Mat match_histograms(const cv::Mat& source, const cv::Mat& source_mask, const cv::Mat& target,
                          const cv::Mat& target_mask, float lo, float hi, int bins = 256);
 
-// The fine residual of an albedo texture: itself minus its Gaussian blur (sigma in texels).
+// The fine residual of an albedo texture: itself minus its Gaussian blur
+// (sigma in texels; wide_blur.hpp).
 cv::Mat fine_residual(const cv::Mat& albedo, double sigma);
 
 }  // namespace facecap
