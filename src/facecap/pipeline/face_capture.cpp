@@ -135,7 +135,7 @@ const TrackedFace& FaceCapture::push(const DecodedFrame& d, bool cut, const Face
     face_tracker_.reset();
     job = track(d, frame_faces);
   }
-  pending_ = std::async(std::launch::async, [this, job = std::move(job)]() mutable { return fit(std::move(job)); });
+  pending_ = fitter_.submit([this, job = std::move(job)]() mutable { return fit(std::move(job)); });
   return last_;
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 
+#include "facecap/core/serial_worker.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/frame_loop.hpp"
 
@@ -75,7 +76,8 @@ class FaceCapture {
   int shot_ = 0;
   int shot_start_ = 0;
   TrackedFace last_;
-  std::future<FitResult> pending_;  // last: destroyed first, so a fit in flight ends before what it uses
+  std::future<FitResult> pending_;
+  SerialWorker fitter_;  // last: destroyed first, so a fit in flight ends before what it uses
 };
 
 }  // namespace facecap
