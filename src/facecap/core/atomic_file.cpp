@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <fstream>
+#include <iterator>
 
 #include "facecap/core/error.hpp"
 
@@ -83,6 +84,12 @@ void write_binary_file(const fs::path& path, const void* data, size_t bytes) {
     if (!out.flush()) throw Error("cannot write " + path.string());
   }
   file.commit();
+}
+
+std::optional<std::vector<unsigned char>> read_binary_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 void write_text_file(const fs::path& path, const std::string& text) {

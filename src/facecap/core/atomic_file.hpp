@@ -68,5 +68,8 @@ void ensure_not_an_input(const std::filesystem::path& output, const std::vector<
 // Writes text, or bytes, atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
 void write_binary_file(const std::filesystem::path& path, const void* data, size_t bytes);
+// Its reading twin: the whole of a file's bytes, or nothing where it cannot
+// be opened.
+std::optional<std::vector<unsigned char>> read_binary_file(const std::filesystem::path& path);
 
 }  // namespace facecap

@@ -13,8 +13,6 @@ extern "C" {
 #include <algorithm>
 #include <csetjmp>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -275,10 +273,8 @@ cv::Mat decode_image(std::span<const unsigned char> bytes) {
 }
 
 cv::Mat read_image(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return decode_image(bytes);
+  const auto bytes = read_binary_file(path);
+  return bytes ? decode_image(*bytes) : cv::Mat();
 }
 
 std::vector<unsigned char> encode_png(const cv::Mat& image) {

@@ -4,8 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
+#include <optional>
 #include <vector>
 
 #include "facecap/core/atomic_file.hpp"
@@ -258,9 +257,9 @@ void write_marked_image(const fs::path& path, const cv::Mat& bgr, const std::map
 }
 
 std::map<std::string, std::string> read_image_tags(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  const Bytes bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::optional<Bytes> read = read_binary_file(path);
+  if (!read) return {};
+  const Bytes& bytes = *read;
   if (bytes.size() >= 8 && std::equal(kPngSignature.begin(), kPngSignature.end(), bytes.begin()))
     return png_tags(bytes);
   if (bytes.size() >= 4 && bytes[0] == 0xff && bytes[1] == 0xd8) return jpeg_tags(bytes);
