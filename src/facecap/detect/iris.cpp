@@ -18,15 +18,6 @@ double parabola_peak(double a, double b, double c) {
   return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
 }
 
-// One eye resampled to kEyeWidthPx: pixel (u, v) is image point
-// (x0 + u / scale, y0 + v / scale), pixel centres at integers on both sides.
-struct EyePatch {
-  cv::Mat image;    // CV_32F grey levels
-  cv::Mat outline;  // CV_8U, 255 inside the six landmarks
-  cv::Mat visible;  // CV_32F, 1 inside the outline shrunk off the lid line and lashes
-  double x0 = 0, y0 = 0, scale = 1;
-};
-
 // Where an eye's patch comes from: the box about its six landmarks with a
 // margin of 0.15 of its width (to hi: the far corner, which must lie inside
 // the image), starting at the whole pixel (x0, y0), resampled to `size`.
@@ -56,6 +47,16 @@ EyeWindow eye_window(const std::array<Vec2d, 6>& p) {
   return w;
 }
 
+// One eye resampled to kEyeWidthPx from its window: pixel (u, v) is image
+// point (x0 + u / scale, y0 + v / scale), pixel centres at integers on both
+// sides.
+struct EyePatch {
+  EyeWindow window;
+  cv::Mat image;    // CV_32F grey levels
+  cv::Mat outline;  // CV_8U, 255 inside the six landmarks
+  cv::Mat visible;  // CV_32F, 1 inside the outline shrunk off the lid line and lashes
+};
+
 std::array<Vec2d, 6> eye_points(const Landmarks& landmarks, int eye) {
   std::array<Vec2d, 6> p;
   for (int k = 0; k < 6; ++k) p[k] = landmarks[36 + 6 * eye + k].cast<double>();
@@ -68,20 +69,18 @@ std::optional<EyePatch> resample_eye(const cv::Mat& grey, const cv::Point& origi
   if (w.x0 < origin.x || w.y0 < origin.y || w.hi.x() > origin.x + grey.cols - 1 || w.hi.y() > origin.y + grey.rows - 1)
     return std::nullopt;
   EyePatch e;
-  e.x0 = w.x0;
-  e.y0 = w.y0;
-  e.scale = w.scale;
+  e.window = w;
   const cv::Size size = w.size;
   // x0 and the origin are whole pixels: the same samples as from the whole image.
-  const cv::Matx23d to_eye(e.scale, 0, -e.scale * (e.x0 - origin.x), 0, e.scale, -e.scale * (e.y0 - origin.y));
+  const cv::Matx23d to_eye(w.scale, 0, -w.scale * (w.x0 - origin.x), 0, w.scale, -w.scale * (w.y0 - origin.y));
   cv::warpAffine(grey, e.image, to_eye, size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   e.image.convertTo(e.image, CV_32F);
 
   constexpr int kShift = 4;  // sub-pixel polygon vertices
   std::vector<cv::Point> outline;
   for (const Vec2d& q : p) {
-    outline.emplace_back(static_cast<int>(std::lround(e.scale * (q.x() - e.x0) * (1 << kShift))),
-                         static_cast<int>(std::lround(e.scale * (q.y() - e.y0) * (1 << kShift))));
+    outline.emplace_back(static_cast<int>(std::lround(w.scale * (q.x() - w.x0) * (1 << kShift))),
+                         static_cast<int>(std::lround(w.scale * (q.y() - w.y0) * (1 << kShift))));
   }
   e.outline = cv::Mat::zeros(size, CV_8U);
   cv::fillPoly(e.outline, std::vector<std::vector<cv::Point>>{outline}, cv::Scalar(255), cv::LINE_8, kShift);
@@ -202,7 +201,7 @@ std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks&
   if (!patch) return std::nullopt;
   std::vector<double> radii;
   if (expected.radius_px > 0.0) {
-    for (const double f : options.radius_factors) radii.push_back(f * expected.radius_px * patch->scale);
+    for (const double f : options.radius_factors) radii.push_back(f * expected.radius_px * patch->window.scale);
   } else {
     for (const double share : options.radius_shares) radii.push_back(share * kEyeWidthPx);
   }
@@ -210,8 +209,9 @@ std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks&
   if (disc.score < options.min_score) return std::nullopt;
 
   IrisObservation out;
-  out.centre = Vec2d(patch->x0, patch->y0) + disc.centre / patch->scale;
-  out.radius = disc.radius / patch->scale;
+  const EyeWindow& w = patch->window;
+  out.centre = Vec2d(w.x0, w.y0) + disc.centre / w.scale;
+  out.radius = disc.radius / w.scale;
   out.score = disc.score;
   return out;
 }
