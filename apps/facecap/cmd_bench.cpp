@@ -100,9 +100,9 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
     }
     a->capture.keep_images = a->refine;
     // Refinement timings, summed on the stage's thread.
-    double lighting = 0, albedo = 0, pyramid = 0;
-    std::vector<double> levels;
-    int refined = 0;
+    double lighting = 0, albedo = 0, pyramid = 0, sampling = 0, steady = 0;
+    std::vector<double> levels, solves;
+    int refined = 0, steady_frames = 0;
     std::unique_ptr<RefineStage> stage;
     if (a->refine) {
       stage = std::make_unique<RefineStage>(model, a->refine_options, [&](const RefinedFrame& r) {
@@ -111,8 +111,19 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
         lighting += t.lighting_ms;
         albedo += t.albedo_ms;
         pyramid += t.pyramid_ms;
+        sampling += t.sampling_ms;
         levels.resize(std::max(levels.size(), t.level_ms.size()), 0.0);
-        for (size_t l = 0; l < t.level_ms.size(); ++l) levels[l] += t.level_ms[l];
+        solves.resize(levels.size(), 0.0);
+        double frame_ms = t.pyramid_ms + t.lighting_ms + t.albedo_ms;
+        for (size_t l = 0; l < t.level_ms.size(); ++l) {
+          levels[l] += t.level_ms[l];
+          solves[l] += t.solve_ms[l];
+          frame_ms += t.level_ms[l];
+        }
+        if (t.albedo_fixed) {
+          steady += frame_ms;
+          ++steady_frames;
+        }
         ++refined;
       });
     }
@@ -125,15 +136,23 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
     nlohmann::json j = timings_json(s.timings);
     if (stage) {
       const double n = std::max(1, refined);
-      nlohmann::json per_level = nlohmann::json::array();
+      nlohmann::json per_level = nlohmann::json::array(), solve_per_level = nlohmann::json::array();
       for (double v : levels) per_level.push_back(v / n);
+      for (double v : solves) solve_per_level.push_back(v / n);
       j["refine"] = {{"frames", refined},
                      {"pyramid_ms_per_frame", pyramid / n},
                      {"lighting_ms_per_frame", lighting / n},
                      {"albedo_ms_per_frame", albedo / n},
                      {"albedo_note", "the albedo is solved during the first frames only (every 3rd of the first 30)"},
+                     {"timings_note",
+                      "displacement_ms_per_level: a level's whole pass (its base, normals, samples, masks and solve); "
+                      "displacement_solve_ms_per_level: the solve alone; sampling_ms_per_frame: every vertex sampling "
+                      "(lighting and levels); total_ms_per_frame_albedo_fixed: the frames after the albedo is fixed"},
                      {"displacement_ms_per_level", per_level},
+                     {"displacement_solve_ms_per_level", solve_per_level},
+                     {"sampling_ms_per_frame", sampling / n},
                      {"total_ms_per_frame", stage->refine_ms() / n},
+                     {"total_ms_per_frame_albedo_fixed", steady / std::max(1, steady_frames)},
                      {"device", to_string(a->refine_options.device)}};
       // Whether the two stages overlap: the stage's thread idles until
       // capture's start-up (the identity solve over the first frames) hands

@@ -10,7 +10,10 @@
 // DESIGN.md) is the same data solved with a much stronger Laplacian weight: a
 // smooth albedo estimated from the first frames, which also fills vertices
 // no frame has seen.
+#include <memory>
+
 #include "facecap/core/spherical_harmonics.hpp"
+#include "facecap/refine/albedo_solver.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
 #include "facecap/refine/vertex_samples.hpp"
 
@@ -26,7 +29,8 @@ struct AlbedoOptions {
 
 class AlbedoEstimator {
  public:
-  AlbedoEstimator(const MeshLevel& level, AlbedoOptions options = {});
+  // The level must outlive the estimator; `device` runs the PCG (albedo_solver.hpp).
+  AlbedoEstimator(const MeshLevel& level, AlbedoOptions options = {}, ComputeDevice device = ComputeDevice::cpu);
 
   // Adds one frame's visible samples with the shading s_i = l^T SH(n_i).
   void add_frame(const VertexSamples& samples, const Positions& camera_normals, const ShCoeffs& lighting);
@@ -42,21 +46,12 @@ class AlbedoEstimator {
   bool fixed() const { return frames_ >= options_.frames; }
 
  private:
-  // One column per colour channel: the channels share the operator.
-  using Channels = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-  // (D + w L^T L) x = b + w L^T L x_bar for the three channels at once: one
-  // PCG per column, with its own step sizes, sharing each pass over the mesh.
-  Channels solve_channels(const Eigen::VectorXd& d, const Channels& b, double w, const Channels& prior,
-                          Channels x) const;
-  // out = L^T L x, per column (lx: scratch for L x).
-  void laplacian_normal(const Channels& x, Channels& lx, Channels& out) const;
-
   const MeshLevel& level_;
   AlbedoOptions options_;
+  std::unique_ptr<AlbedoSolver> solver_;
   Eigen::VectorXd data_diag_;  // sum over frames of s_i^2
   Eigen::Matrix3Xd data_rhs_;  // sum over frames of s_i I_ic
   Positions albedo_;
-  Eigen::VectorXd inv_degree_;  // 1 / ring size (0 for an isolated vertex)
   int frames_ = 0;
 };
 

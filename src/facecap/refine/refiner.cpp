@@ -39,7 +39,7 @@ const Positions& Refiner::coarse_albedo() const {
 
 void Refiner::start_shot() {
   if (!initialised()) return;
-  albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo);
+  albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo, options_.device);
   albedo_frames_.clear();
   frame_count_ = 0;
   lighting_.reset();
@@ -55,7 +55,7 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     HierarchyOptions ho = options_.hierarchy;
     if (!options_.displacements) ho.levels = 1;
     hierarchy_ = MeshHierarchy::build(polygons_, num_vertices_, coarse, camera, ho);
-    albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo);
+    albedo_ = std::make_unique<AlbedoEstimator>(hierarchy_.level(0), options_.albedo, options_.device);
     previous_.assign(hierarchy_.num_levels(), Eigen::VectorXf());
     raster_.assign(hierarchy_.num_levels(), RasterBuffers());
     level_masks_.clear();
@@ -69,6 +69,8 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   Refinement out;
   out.levels = levels;
   out.timings.level_ms.assign(levels, 0.0);
+  out.timings.solve_ms.assign(levels, 0.0);
+  out.timings.albedo_fixed = albedo_->fixed();
 
   // Mesh level l pairs with the image 2^(levels - 1 - l) times smaller.
   auto t0 = std::chrono::steady_clock::now();
@@ -85,8 +87,10 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, normals0, previous_[0]);
   const Positions md_normals = level_normals(level0, md);
   if (!sampler_) sampler_ = make_vertex_sampler(options_.device);
+  auto sampling_start = std::chrono::steady_clock::now();
   VertexSamples samples0 =
       sampler_->sample(image_for(0), md, md_normals, md, level_skin_[0], camera_for(0), raster_[0]);
+  out.timings.sampling_ms += ms_since(sampling_start);
   apply_mask(samples0, data_mask_);
   // Without displacements the displacement pass below has this level, with
   // d = 0, the same depth mesh and the same mask: its samples are these,
@@ -150,11 +154,13 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     // Depth from the coarse mesh, whose surface every level's base is
     // (unless the smoothing mask moved the new vertices off it).
     const bool coarse_depth = !options_.hierarchy.smoothing_mask;
+    sampling_start = std::chrono::steady_clock::now();
     VertexSamples samples =
         undisplaced_samples
             ? std::move(*undisplaced_samples)
             : sampler_->sample(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
                                level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
+    out.timings.sampling_ms += ms_since(sampling_start);
     apply_mask(samples, mask);
     drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
     // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
@@ -176,7 +182,9 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     if (options_.displacements) {
       if (options_.on_displacement_problem) options_.on_displacement_problem(frame_count_ - 1, l, problem, d);
       if (!displacement_) displacement_ = make_displacement_backend(options_.device);
+      const auto solve_start = std::chrono::steady_clock::now();
       displacement_->solve(problem, d, options_.displacement);
+      out.timings.solve_ms[l] = ms_since(solve_start);
     }
     previous_[l] = d;
     if (l == levels - 1) {

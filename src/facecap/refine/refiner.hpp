@@ -59,9 +59,10 @@ struct RefineOptions {
   // displacements also corrupt the next frame's M_d. On address_720p_a (30
   // frames) the refined photometric error is 4.29 / 4.41 / 4.50.
   double displacement_min_facing = 0.7;
-  // Where the vertex sampling (the depth test and the colours) and the
-  // displacement solve run (the lighting and albedo run on the CPU): CUDA
-  // when this build has it and a GPU answers.
+  // Where the vertex sampling (the depth test and the colours), the albedo's
+  // conjugate gradients and the displacement solve run (the lighting's 9 x 9
+  // normal equations are formed and solved on the CPU): CUDA when this build
+  // has it and a GPU answers.
   ComputeDevice device = default_compute_device();
   // Called with each displacement problem before it is solved (frame index,
   // level, problem, starting d): `eval refine --save-problems` writes them.
@@ -76,9 +77,14 @@ struct RefineOptions {
 // Milliseconds per part of one frame's refinement.
 struct RefineTimings {
   double pyramid_ms = 0;
-  double lighting_ms = 0;
+  double lighting_ms = 0;  // the coarsest level's normals and samples, and the estimate
   double albedo_ms = 0;
-  std::vector<double> level_ms;  // displacement solve per level
+  std::vector<double> level_ms;  // per level: its base, samples, masks and displacement solve
+  // Parts of the above: every vertex sampling of the frame (lighting and
+  // levels), and each level's displacement solve alone.
+  double sampling_ms = 0;
+  std::vector<double> solve_ms;
+  bool albedo_fixed = false;  // the albedo was fixed before this frame (no albedo solve in it)
 };
 
 struct Refinement {
