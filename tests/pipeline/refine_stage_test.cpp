@@ -23,11 +23,12 @@ CapturedFrame lost_frame(int index) {
 
 }  // namespace
 
-// A consumer slower than capture: capture waits in push() once the queue of
-// 3 is full, and the stage never waits for a frame.
+// A consumer slower than capture: capture waits in push() once the stage's
+// six places are full (the queue of 3, a frame in each of its two threads and
+// one handed between them), and the stage never waits for a frame.
 TEST(RefineStage, ASlowStageMakesCaptureWaitAndSaysSo) {
   FACECAP_REQUIRE_MODEL(model);
-  constexpr int kFrames = 8;
+  constexpr int kFrames = 12;
   int consumed = 0;
   RefineStage stage(*model, RefineOptions{}, [&](const RefinedFrame&) {
     std::this_thread::sleep_for(milliseconds(10));
@@ -39,8 +40,8 @@ TEST(RefineStage, ASlowStageMakesCaptureWaitAndSaysSo) {
   EXPECT_EQ(consumed, kFrames);
   EXPECT_EQ(stage.frames(), kFrames);
   EXPECT_EQ(stage.refined_frames(), 0);
-  // At least the last 4 pushes wait for a 10 ms frame each.
-  EXPECT_GT(t.push_wait_ms, 30.0);
+  // The last 6 pushes wait for a 10 ms frame each.
+  EXPECT_GT(t.push_wait_ms, 50.0);
   EXPECT_GE(t.consumer_ms, 10.0 * kFrames);
   EXPECT_GE(t.first_to_last_ms, t.consumer_ms);
   EXPECT_LT(t.idle_ms, t.consumer_ms);

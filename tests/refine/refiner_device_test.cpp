@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
+#include <vector>
 
 #include "cuda_test_support.hpp"
 #include "facecap/refine/refiner.hpp"
@@ -97,6 +99,57 @@ TEST(RefinerOnEachDevice, CudaRefinesTheSameSurfaceAsTheCpu) {
     EXPECT_LT((a.lighting - b.lighting).norm(), 1e-4 * a.lighting.norm()) << "frame " << frame;
     EXPECT_TRUE(b.positions.allFinite());
   }
+}
+
+namespace {
+
+// The pipeline's split (RefineStage): frame t's finer levels solved on
+// another thread while frame t + 1's lighting, albedo and coarsest level are
+// solved give what refine() gives one frame after another, to the bit.
+void expect_halves_on_two_threads_refine_alike(ComputeDevice device) {
+  const Dome coarse(24, false), detailed(24, true);
+  const PinholeCamera camera = PinholeCamera::centered(900, kWidth, kHeight);
+  const cv::Mat image = render(detailed, camera);
+  RefineOptions options;
+  options.albedo.frames = 2;
+  options.albedo.interval = 1;
+  options.device = device;
+  Refiner sequential(coarse.polygons, static_cast<int>(coarse.points.cols()), options);
+  Refiner pipelined(coarse.polygons, static_cast<int>(coarse.points.cols()), options);
+  // The head moves a little from frame to frame, so each frame's solve differs.
+  constexpr int kFrames = 5;
+  std::vector<Positions> frames;
+  for (int f = 0; f < kFrames; ++f) frames.push_back(coarse.points.colwise() + Vec3f(0.02f * f, -0.01f * f, 0.0f));
+  std::vector<Refinement> expected, got(kFrames);
+  for (int f = 0; f < kFrames; ++f) expected.push_back(sequential.refine(image, frames[f], camera));
+  PendingFrame pending = pipelined.begin_frame(image, frames[0], camera);
+  for (int f = 0; f < kFrames; ++f) {
+    std::thread finisher([&, f, p = std::move(pending)]() mutable { got[f] = pipelined.finish_frame(std::move(p)); });
+    if (f + 1 < kFrames) pending = pipelined.begin_frame(image, frames[f + 1], camera);
+    finisher.join();
+  }
+  for (int f = 0; f < kFrames; ++f) {
+    ASSERT_EQ(expected[f].positions.cols(), got[f].positions.cols()) << "frame " << f;
+    EXPECT_TRUE(expected[f].positions == got[f].positions) << "frame " << f;
+    EXPECT_TRUE(expected[f].normals == got[f].normals) << "frame " << f;
+    EXPECT_TRUE(expected[f].lighting == got[f].lighting) << "frame " << f;
+    EXPECT_TRUE(expected[f].albedo == got[f].albedo) << "frame " << f;
+    EXPECT_EQ(expected[f].visible, got[f].visible) << "frame " << f;
+    EXPECT_EQ(expected[f].albedo_final, got[f].albedo_final) << "frame " << f;
+  }
+  EXPECT_FALSE(got[0].albedo_final);
+  EXPECT_TRUE(got[kFrames - 1].albedo_final);
+}
+
+}  // namespace
+
+TEST(RefinerHalves, OnTwoThreadsTheyRefineAsRefineDoes) {
+  expect_halves_on_two_threads_refine_alike(ComputeDevice::cpu);
+}
+
+TEST(RefinerHalves, OnTwoThreadsTheyRefineAsRefineDoesOnTheGpu) {
+  FACECAP_REQUIRE_CUDA_DEVICE();
+  expect_halves_on_two_threads_refine_alike(ComputeDevice::cuda);
 }
 
 // The vertex sampling on each device: the detailed dome's vertices tested

@@ -68,7 +68,7 @@ void FaceSwapStream::take(const RefinedFrame& r) {
   t.pose = f.fit.pose;
   t.camera = r.camera;
   t.lighting = r.refinement->lighting;
-  t.lighting_final = stage_->refiner().albedo_fixed();
+  t.lighting_final = r.refinement->albedo_final;
   if (options_.wrinkles) {
     t.fine = r.refinement->positions;
     t.hierarchy = &stage_->refiner().hierarchy();

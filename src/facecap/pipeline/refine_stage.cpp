@@ -10,71 +10,138 @@ RefineStage::RefineStage(const FaceModel& model, const RefineOptions& options, C
       refiner_(make_face_refiner(model, options)),
       consumer_(std::move(consumer)),
       queue_(static_cast<size_t>(queue_size)),
+      handoff_(1),
       started_(std::chrono::steady_clock::now()),
-      worker_([this] { run(); }) {}
+      second_half_([this] { run_second_half(); }),
+      first_half_([this] { run_first_half(); }) {}
 
 RefineStage::~RefineStage() {
   queue_.close();
-  if (worker_.joinable()) worker_.join();
+  handoff_.close();
+  fail(nullptr);  // wakes a first thread waiting for the second to drain
+  if (first_half_.joinable()) first_half_.join();
+  if (second_half_.joinable()) second_half_.join();
+}
+
+void RefineStage::fail(std::exception_ptr error) {
+  {
+    const std::lock_guard lock(mutex_);
+    if (!error_) error_ = error;
+    failed_ = true;
+  }
+  drained_.notify_all();
+  queue_.close();
+  handoff_.close();
+}
+
+std::exception_ptr RefineStage::error() const {
+  const std::lock_guard lock(mutex_);
+  return error_;
 }
 
 void RefineStage::push(const CapturedFrame& frame) {
-  if (error_) std::rethrow_exception(error_);
+  if (const auto e = error()) std::rethrow_exception(e);
   const auto t0 = std::chrono::steady_clock::now();
   const bool queued = queue_.push(frame);
-  timings_.push_wait_ms += ms_since(t0);
-  if (!queued && error_) std::rethrow_exception(error_);
+  push_wait_ms_ += ms_since(t0);
+  if (!queued)
+    if (const auto e = error()) std::rethrow_exception(e);
 }
 
 void RefineStage::finish() {
   queue_.close();
-  if (worker_.joinable()) worker_.join();
-  if (error_) std::rethrow_exception(error_);
+  if (first_half_.joinable()) first_half_.join();
+  if (second_half_.joinable()) second_half_.join();
+  timings_.refine_ms = first_.refine_ms + second_.refine_ms;
+  timings_.coarse_ms = first_.coarse_ms;
+  timings_.consumer_ms = first_.consumer_ms + second_.consumer_ms;
+  timings_.startup_ms = first_.startup_ms;
+  timings_.idle_ms = first_.idle_ms;
+  timings_.push_wait_ms = push_wait_ms_;
+  timings_.first_to_last_ms = second_.first_to_last_ms;
+  if (const auto e = error()) std::rethrow_exception(e);
 }
 
-void RefineStage::run() {
+void RefineStage::wait_until_drained() {
+  std::unique_lock lock(mutex_);
+  drained_.wait(lock, [&] { return failed_ || finished_ == handed_; });
+}
+
+// Each frame's coarse face and the refinement's first half; a shot cut first
+// lets the second thread hand on the last shot's frames.
+void RefineStage::run_first_half() {
   using Clock = std::chrono::steady_clock;
   try {
-    Clock::time_point first, waiting = Clock::now();
+    Clock::time_point waiting = Clock::now();
     while (std::optional<CapturedFrame> f = queue_.pop()) {
       if (frames_++ == 0) {
-        first = Clock::now();
-        timings_.startup_ms = std::chrono::duration<double, std::milli>(first - started_).count();
+        first_frame_ = Clock::now();
+        first_.startup_ms = std::chrono::duration<double, std::milli>(first_frame_ - started_).count();
       } else {
-        timings_.idle_ms += ms_since(waiting);
+        first_.idle_ms += ms_since(waiting);
       }
-      RefinedFrame out;
+      Handoff h;
+      RefinedFrame& out = h.frame;
       out.frame = std::move(*f);
       out.starts_shot = out.frame.shot != shot_;
       if (out.starts_shot) {
+        wait_until_drained();
         const auto t0 = Clock::now();
         if (shot_end_) shot_end_();
-        timings_.consumer_ms += ms_since(t0);
+        first_.consumer_ms += ms_since(t0);
         refiner_.start_shot();
         shot_ = out.frame.shot;
       }
-      Clock::time_point t0;
       if (out.frame.status != TrackStatus::kLost && !out.frame.image.empty()) {
-        t0 = Clock::now();
+        auto t0 = Clock::now();
         out.camera = PinholeCamera::centered(out.frame.fit.focal, out.frame.image.cols, out.frame.image.rows);
         out.coarse =
             to_camera(face_shape_.evaluate(out.frame.identity.identity.cast<float>(), out.frame.fit.expression),
                       out.frame.fit.pose);
-        timings_.coarse_ms += ms_since(t0);
+        first_.coarse_ms += ms_since(t0);
         t0 = Clock::now();
-        out.refinement = refiner_.refine(out.frame.image, out.coarse, out.camera);
-        timings_.refine_ms += ms_since(t0);
+        h.pending = refiner_.begin_frame(out.frame.image, out.coarse, out.camera);
+        first_.refine_ms += ms_since(t0);
         ++refined_;
+      }
+      {
+        const std::lock_guard lock(mutex_);
+        ++handed_;
+      }
+      if (!handoff_.push(std::move(h))) break;  // the second thread failed
+      waiting = Clock::now();
+    }
+    handoff_.close();
+  } catch (...) {
+    fail(std::current_exception());
+  }
+}
+
+// The refinement's second half of each frame, then the consumer, in frame order.
+void RefineStage::run_second_half() {
+  using Clock = std::chrono::steady_clock;
+  try {
+    while (std::optional<Handoff> h = handoff_.pop()) {
+      RefinedFrame& out = h->frame;
+      auto t0 = Clock::now();
+      if (h->pending) {
+        out.refinement = refiner_.finish_frame(std::move(*h->pending));
+        second_.refine_ms += ms_since(t0);
       }
       t0 = Clock::now();
       consumer_(out);
-      timings_.consumer_ms += ms_since(t0);
-      waiting = Clock::now();
-      timings_.first_to_last_ms = std::chrono::duration<double, std::milli>(waiting - first).count();
+      const Clock::time_point end = Clock::now();
+      second_.consumer_ms += std::chrono::duration<double, std::milli>(end - t0).count();
+      // first_frame_ was set before the first hand-off, which the queue's lock orders before this.
+      second_.first_to_last_ms = std::chrono::duration<double, std::milli>(end - first_frame_).count();
+      {
+        const std::lock_guard lock(mutex_);
+        ++finished_;
+      }
+      drained_.notify_all();
     }
   } catch (...) {
-    error_ = std::current_exception();
-    queue_.close();
+    fail(std::current_exception());
   }
 }
 

@@ -1,11 +1,16 @@
 #pragma once
 // The refinement stage of capture (§4.4.1: coarse tracking and refinement
-// run concurrently on consecutive frames): a worker thread that takes
-// tracked frames from a bounded queue, refines them, and hands each result,
-// in frame order, to a consumer (the track job's writers).
+// run concurrently on consecutive frames): it takes tracked frames from a
+// bounded queue, refines them, and hands each result, in frame order, to a
+// consumer (the track job's writers). Two threads share the refinement in a
+// pipeline of their own: the first solves a frame's lighting, albedo and
+// coarsest level (Refiner::begin_frame) while the second solves the previous
+// frame's finer levels (Refiner::finish_frame) and runs the consumer.
 #include <chrono>
+#include <condition_variable>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include "facecap/core/bounded_queue.hpp"
@@ -26,14 +31,14 @@ struct RefinedFrame {
   bool starts_shot = false;
 };
 
-// Where the stage's thread spends a run, to tell whether capture and
+// Where the stage's threads spend a run, to tell whether capture and
 // refinement overlap (all milliseconds, summed over the run).
 struct RefineStageTimings {
-  double refine_ms = 0;         // Refiner::refine()
+  double refine_ms = 0;         // the refinement's work: Refiner::begin_frame() and finish_frame()
   double coarse_ms = 0;         // the coarse face in camera space for it
   double consumer_ms = 0;       // the consumer (writers), shot ends included
   double startup_ms = 0;        // from the stage's start to its first frame: capture's own start-up (identity solve)
-  double idle_ms = 0;           // waiting for frames after the first one
+  double idle_ms = 0;           // the first thread waiting for frames after the first one
   double push_wait_ms = 0;      // capture's thread blocked in push() on a full queue
   double first_to_last_ms = 0;  // from the first frame's arrival to the last frame's end
 };
@@ -41,43 +46,64 @@ struct RefineStageTimings {
 class RefineStage {
  public:
   using Consumer = std::function<void(const RefinedFrame&)>;
-  // The consumer runs on the stage's thread.
+  // The consumer runs on the stage's second thread.
   RefineStage(const FaceModel& model, const RefineOptions& options, Consumer consumer, int queue_size = 3);
   ~RefineStage();
 
-  // Runs on the stage's thread at a shot cut, after the last shot's last
-  // frame reached the consumer and before the refiner starts its albedo and
-  // lighting again: what a consumer keeps per shot (the glTF's albedo) is
-  // still the last shot's here. Set it before the first push().
+  // Runs on the stage's first thread at a shot cut, after the last shot's
+  // last frame reached the consumer (the second thread waits meanwhile) and
+  // before the refiner starts its albedo and lighting again: what a consumer
+  // keeps per shot (the glTF's albedo) is still the last shot's here. Set it
+  // before the first push().
   void on_shot_end(std::function<void()> hook) { shot_end_ = std::move(hook); }
 
-  // Queues a frame (blocks while the queue is full). Rethrows a failure of the worker.
+  // Queues a frame (blocks while the queue is full). Rethrows a failure of either thread.
   void push(const CapturedFrame& frame);
-  // Waits for the queue to drain; rethrows a failure of the worker.
+  // Waits for the queue to drain; rethrows a failure of either thread.
   void finish();
 
+  // The refiner's hierarchy may be read at any time once the first frame was
+  // refined; the rest of its state from the consumer only at a shot's end,
+  // or after finish().
   const Refiner& refiner() const { return refiner_; }
+  // These after finish().
   double refine_ms() const { return timings_.refine_ms; }
   int refined_frames() const { return refined_; }
   int frames() const { return frames_; }
-  // Complete after finish().
   const RefineStageTimings& timings() const { return timings_; }
 
  private:
-  void run();
+  // A frame on its way from the first thread to the second.
+  struct Handoff {
+    RefinedFrame frame;
+    std::optional<PendingFrame> pending;  // empty for lost frames
+  };
+  void run_first_half();
+  void run_second_half();
+  // Blocks the first thread until the second has handed on every frame given to it.
+  void wait_until_drained();
+  void fail(std::exception_ptr error);
+  std::exception_ptr error() const;
 
   FaceShapeCache face_shape_;
   Refiner refiner_;
   Consumer consumer_;
   std::function<void()> shot_end_;
   BoundedQueue<CapturedFrame> queue_;
+  BoundedQueue<Handoff> handoff_;
+  mutable std::mutex mutex_;  // error_, handed_, finished_, failed_
+  std::condition_variable drained_;
   std::exception_ptr error_;
-  RefineStageTimings timings_;  // push_wait_ms written by push()'s caller, the rest by the stage's thread
-  std::chrono::steady_clock::time_point started_;
+  int handed_ = 0, finished_ = 0;
+  bool failed_ = false;
+  // Each thread's own accounting, joined into timings_ by finish().
+  RefineStageTimings first_, second_, timings_;
+  double push_wait_ms_ = 0;  // push()'s caller's
+  std::chrono::steady_clock::time_point started_, first_frame_;
   int refined_ = 0;
   int frames_ = 0;
-  int shot_ = 0;  // of the last frame (CapturedFrame::shot)
-  std::jthread worker_;
+  int shot_ = 0;                           // of the last frame (CapturedFrame::shot)
+  std::jthread second_half_, first_half_;  // last: they start once everything else is made
 };
 
 }  // namespace facecap

@@ -48,6 +48,11 @@ void Refiner::start_shot() {
 
 Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
                            const KnownShading* known) {
+  return finish_frame(begin_frame(image, coarse, camera, known));
+}
+
+PendingFrame Refiner::begin_frame(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
+                                  const KnownShading* known) {
   if (known && known->albedo.cols() != num_vertices_)
     throw Error("known albedo has " + std::to_string(known->albedo.cols()) + " vertices, the mesh " +
                 std::to_string(num_vertices_));
@@ -66,37 +71,38 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     }
   }
   const int levels = hierarchy_.num_levels();
-  Refinement out;
+  PendingFrame f;
+  Refinement& out = f.out;
   out.levels = levels;
   out.timings.level_ms.assign(levels, 0.0);
   out.timings.solve_ms.assign(levels, 0.0);
   out.timings.albedo_fixed = albedo_->fixed();
+  f.coarse = coarse;
+  f.camera = camera;
+  f.frame_index = frame_count_;
 
   // Mesh level l pairs with the image 2^(levels - 1 - l) times smaller.
   auto t0 = std::chrono::steady_clock::now();
-  const std::vector<cv::Mat> pyramid = image_pyramid(image, levels);
-  auto image_for = [&](int l) -> const cv::Mat& { return pyramid[levels - 1 - l]; };
-  auto camera_for = [&](int l) { return scaled_camera(camera, double(1 << (levels - 1 - l))); };
+  f.pyramid = image_pyramid(image, levels);
   out.timings.pyramid_ms = ms_since(t0);
 
   // Lighting on the coarsest level with last frame's displacements (M_d = M + d N).
   t0 = std::chrono::steady_clock::now();
   const MeshLevel& level0 = hierarchy_.level(0);
-  const Positions normals0 = level_normals(level0, coarse);
+  f.coarse_normals = level_normals(level0, coarse);
   Positions md = coarse;
-  if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, normals0, previous_[0]);
+  if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, f.coarse_normals, previous_[0]);
   const Positions md_normals = level_normals(level0, md);
-  if (!sampler_) sampler_ = make_vertex_sampler(options_.device);
-  auto sampling_start = std::chrono::steady_clock::now();
+  if (!sampler_[0]) sampler_[0] = make_vertex_sampler(options_.device);
+  const auto sampling_start = std::chrono::steady_clock::now();
   VertexSamples samples0 =
-      sampler_->sample(image_for(0), md, md_normals, md, level_skin_[0], camera_for(0), raster_[0]);
+      sampler_[0]->sample(f.image_for(0), md, md_normals, md, level_skin_[0], f.camera_for(0), raster_[0]);
   out.timings.sampling_ms += ms_since(sampling_start);
   apply_mask(samples0, data_mask_);
   // Without displacements the displacement pass below has this level, with
   // d = 0, the same depth mesh and the same mask: its samples are these,
   // before the lighting's erosion, and need not be drawn again.
-  std::optional<VertexSamples> undisplaced_samples;
-  if (!options_.displacements && levels == 1) undisplaced_samples = samples0;
+  if (!options_.displacements && levels == 1) f.undisplaced_samples = samples0;
   erode_observations(samples0, level0.rings, options_.shading_margin_rings, level0.boundary);
   if (albedo_->frames() == 0 && !lighting_) albedo_->initialise_uniform(samples0);
   const ShCoeffs lighting = estimate_lighting(samples0, md_normals, albedo_->albedo(), lighting_, options_.lighting);
@@ -115,10 +121,10 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
     const int rounds = fixing_frame ? options_.albedo_rounds : options_.albedo_rounds_interim;
     for (int round = 0; round < rounds; ++round) {
       albedo_->clear_data();
-      for (AlbedoFrame& f : albedo_frames_) {
+      for (AlbedoFrame& a : albedo_frames_) {
         if (round > 0)
-          f.lighting = estimate_lighting(f.samples, f.normals, albedo_->albedo(), std::nullopt, options_.lighting);
-        albedo_->add_frame(f.samples, f.normals, f.lighting);
+          a.lighting = estimate_lighting(a.samples, a.normals, albedo_->albedo(), std::nullopt, options_.lighting);
+        albedo_->add_frame(a.samples, a.normals, a.lighting);
       }
       albedo_->solve();
     }
@@ -128,75 +134,89 @@ Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const 
   out.timings.albedo_ms = ms_since(t0);
   lighting_ = frame_lighting;
   out.lighting = frame_lighting;
-  const ShCoeffs& lighting_used = known ? known->lighting : frame_lighting;
+  out.albedo_final = albedo_->fixed();
+  f.lighting_used = known ? known->lighting : frame_lighting;
 
-  // Displacements, coarse to fine.
-  Eigen::MatrixXf base = coarse;
-  Eigen::MatrixXf albedo = known ? known->albedo : albedo_->albedo();
-  Eigen::VectorXf d;
-  for (int l = 0; l < levels; ++l) {
-    t0 = std::chrono::steady_clock::now();
-    const MeshLevel& level = hierarchy_.level(l);
-    Eigen::VectorXf prolonged;
-    if (l > 0) {
-      base = hierarchy_.prolong(base, l);
-      albedo = hierarchy_.prolong(albedo, l);
-      prolonged = hierarchy_.prolong(Eigen::MatrixXf(d.transpose()), l).transpose();
-    }
-    DisplacementProblem problem;
-    problem.level = &level;
-    problem.base = base;
-    // Level 0's base is the coarse mesh, whose normals the lighting computed.
-    problem.base_normals = l == 0 ? normals0 : level_normals(level, problem.base);
-    problem.albedo = albedo;
-    problem.lighting = lighting_used;
-    const std::vector<bool>& mask = level_masks_[l];
-    // Depth from the coarse mesh, whose surface every level's base is
-    // (unless the smoothing mask moved the new vertices off it).
-    const bool coarse_depth = !options_.hierarchy.smoothing_mask;
-    sampling_start = std::chrono::steady_clock::now();
-    VertexSamples samples =
-        undisplaced_samples
-            ? std::move(*undisplaced_samples)
-            : sampler_->sample(image_for(l), problem.base, problem.base_normals, coarse_depth ? coarse : problem.base,
-                               level_skin_[coarse_depth ? 0 : l], camera_for(l), raster_[l]);
-    out.timings.sampling_ms += ms_since(sampling_start);
-    apply_mask(samples, mask);
-    drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
-    // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
-    problem.active = samples.visible;
-    erode_observations(samples, level.rings, options_.data_margin_rings, level.boundary);
-    for (int grow = 0; grow < 2; ++grow) {
-      std::vector<bool> next = problem.active;
-      for (int i = 0; i < level.num_vertices; ++i) {
-        if (!problem.active[i]) continue;
-        for (int s = level.rings.offsets[i]; s < level.rings.offsets[i + 1]; ++s) next[level.rings.indices[s]] = true;
-      }
-      problem.active = std::move(next);
-    }
-    problem.samples = &samples;
-    problem.prolonged = prolonged;
-    if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];
-    // Start from the coarser level's solution, or at level 0 from last frame's.
-    d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
-    if (options_.displacements) {
-      if (options_.on_displacement_problem) options_.on_displacement_problem(frame_count_ - 1, l, problem, d);
-      if (!displacement_) displacement_ = make_displacement_backend(options_.device);
-      const auto solve_start = std::chrono::steady_clock::now();
-      displacement_->solve(problem, d, options_.displacement);
-      out.timings.solve_ms[l] = ms_since(solve_start);
-    }
-    previous_[l] = d;
-    if (l == levels - 1) {
-      out.positions = displaced_positions(problem.base, problem.base_normals, d);
-      out.normals = level_normals(level, out.positions);
-      out.albedo = albedo;
-      out.visible = samples.visible;
-      out.data_mask = mask;
-    }
-    out.timings.level_ms[l] = ms_since(t0);
+  // The coarsest level's displacements.
+  f.base = coarse;
+  f.albedo = known ? known->albedo : albedo_->albedo();
+  solve_level(0, f);
+  return f;
+}
+
+Refinement Refiner::finish_frame(PendingFrame&& f) {
+  for (int l = 1; l < f.out.levels; ++l) solve_level(l, f);
+  return std::move(f.out);
+}
+
+void Refiner::solve_level(int l, PendingFrame& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Refinement& out = f.out;
+  const int levels = out.levels;
+  const MeshLevel& level = hierarchy_.level(l);
+  // Each level's device objects serve one of the frame's two halves, so that
+  // they may run on two threads at once.
+  const int half = l == 0 ? 0 : 1;
+  Eigen::VectorXf prolonged;
+  if (l > 0) {
+    f.base = hierarchy_.prolong(f.base, l);
+    f.albedo = hierarchy_.prolong(f.albedo, l);
+    prolonged = hierarchy_.prolong(Eigen::MatrixXf(f.d.transpose()), l).transpose();
   }
-  return out;
+  DisplacementProblem problem;
+  problem.level = &level;
+  problem.base = f.base;
+  // Level 0's base is the coarse mesh, whose normals the lighting computed.
+  problem.base_normals = l == 0 ? f.coarse_normals : level_normals(level, problem.base);
+  problem.albedo = f.albedo;
+  problem.lighting = f.lighting_used;
+  const std::vector<bool>& mask = level_masks_[l];
+  // Depth from the coarse mesh, whose surface every level's base is
+  // (unless the smoothing mask moved the new vertices off it).
+  const bool coarse_depth = !options_.hierarchy.smoothing_mask;
+  if (!sampler_[half]) sampler_[half] = make_vertex_sampler(options_.device);
+  const auto sampling_start = std::chrono::steady_clock::now();
+  VertexSamples samples = f.undisplaced_samples
+                              ? std::move(*f.undisplaced_samples)
+                              : sampler_[half]->sample(f.image_for(l), problem.base, problem.base_normals,
+                                                       coarse_depth ? f.coarse : problem.base,
+                                                       level_skin_[coarse_depth ? 0 : l], f.camera_for(l), raster_[l]);
+  f.undisplaced_samples.reset();
+  out.timings.sampling_ms += ms_since(sampling_start);
+  apply_mask(samples, mask);
+  drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
+  // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
+  problem.active = samples.visible;
+  erode_observations(samples, level.rings, options_.data_margin_rings, level.boundary);
+  for (int grow = 0; grow < 2; ++grow) {
+    std::vector<bool> next = problem.active;
+    for (int i = 0; i < level.num_vertices; ++i) {
+      if (!problem.active[i]) continue;
+      for (int s = level.rings.offsets[i]; s < level.rings.offsets[i + 1]; ++s) next[level.rings.indices[s]] = true;
+    }
+    problem.active = std::move(next);
+  }
+  problem.samples = &samples;
+  problem.prolonged = prolonged;
+  if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];
+  // Start from the coarser level's solution, or at level 0 from last frame's.
+  f.d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
+  if (options_.displacements) {
+    if (options_.on_displacement_problem) options_.on_displacement_problem(f.frame_index, l, problem, f.d);
+    if (!displacement_[half]) displacement_[half] = make_displacement_backend(options_.device);
+    const auto solve_start = std::chrono::steady_clock::now();
+    displacement_[half]->solve(problem, f.d, options_.displacement);
+    out.timings.solve_ms[l] = ms_since(solve_start);
+  }
+  previous_[l] = f.d;
+  if (l == levels - 1) {
+    out.positions = displaced_positions(problem.base, problem.base_normals, f.d);
+    out.normals = level_normals(level, out.positions);
+    out.albedo = f.albedo;
+    out.visible = samples.visible;
+    out.data_mask = mask;
+  }
+  out.timings.level_ms[l] = ms_since(t0);
 }
 
 }  // namespace facecap

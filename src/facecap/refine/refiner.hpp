@@ -5,6 +5,7 @@
 // displacements, M_d = M + d_{t-1} N), updates the albedo during the first
 // frames (then holds it), and solves the displacements level by level from
 // coarse to fine, each level starting from the prolonged coarser solution.
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -95,6 +96,7 @@ struct Refinement {
   std::vector<bool> visible;    // finest level vertices seen in this frame (and in the data mask)
   std::vector<bool> data_mask;  // finest level vertices the estimators used
   int levels = 0;
+  bool albedo_final = false;  // the albedo was fixed by this frame or before it: later lightings are final
   RefineTimings timings;
 };
 
@@ -108,6 +110,25 @@ std::vector<Triangle> masked_triangles(const std::vector<Triangle>& triangles, c
 struct KnownShading {
   ShCoeffs lighting = ShCoeffs::Zero();
   Positions albedo;  // 3 x N RGB on the coarse mesh
+};
+
+// A frame refined through its coarsest level (Refiner::begin_frame), whose
+// finer levels Refiner::finish_frame solves.
+struct PendingFrame {
+  std::vector<cv::Mat> pyramid;  // the frame, then each level half the size
+  Positions coarse, coarse_normals;
+  PinholeCamera camera;
+  ShCoeffs lighting_used = ShCoeffs::Zero();  // the estimate, or the known lighting
+  int frame_index = 0;                        // since the refiner's shot began
+  // The last level solved: its base surface, albedo and displacements.
+  Eigen::MatrixXf base, albedo;
+  Eigen::VectorXf d;
+  std::optional<VertexSamples> undisplaced_samples;  // the lighting's, when they are the level's too
+  Refinement out;
+
+  // Mesh level l pairs with the image 2^(levels - 1 - l) times smaller.
+  const cv::Mat& image_for(int l) const { return pyramid[out.levels - 1 - l]; }
+  PinholeCamera camera_for(int l) const { return scaled_camera(camera, double(1 << (out.levels - 1 - l))); }
 };
 
 class Refiner {
@@ -124,9 +145,21 @@ class Refiner {
   Refinement refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
                     const KnownShading* known = nullptr);
 
+  // refine() in two halves, for a pipeline (RefineStage): begin_frame() makes
+  // the pyramid and solves the lighting, the albedo and the coarsest level's
+  // displacements; finish_frame() the finer levels. Frame t's finish_frame
+  // may run on another thread while frame t + 1's begin_frame runs (the
+  // finer levels depend on the frame's coarsest level and on their own last
+  // solution, nothing else); each half runs in frame order, and the results
+  // are refine()'s.
+  PendingFrame begin_frame(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
+                           const KnownShading* known = nullptr);
+  Refinement finish_frame(PendingFrame&& frame);
+
   // A shot cut (shot_cut.hpp): the albedo is estimated again over the next
   // frames, and the lighting and displacements start afresh; the hierarchy,
-  // built on the first frame, is kept (its meshes stay one topology).
+  // built on the first frame, is kept (its meshes stay one topology). Not
+  // while a finish_frame() runs.
   void start_shot();
 
   bool initialised() const { return hierarchy_.num_levels() > 0; }
@@ -142,10 +175,15 @@ class Refiner {
   RefineOptions options_;
   MeshHierarchy hierarchy_;
   std::unique_ptr<AlbedoEstimator> albedo_;
-  std::unique_ptr<DisplacementBackend> displacement_;  // made at the first solve
-  std::unique_ptr<VertexSampler> sampler_;             // made at the first frame
+  // Solves level l of a frame into it: its base, samples, masks and displacements.
+  void solve_level(int l, PendingFrame& frame);
+
+  // Per half of a frame (the coarsest level; the finer ones), made when first used.
+  std::array<std::unique_ptr<DisplacementBackend>, 2> displacement_;
+  std::array<std::unique_ptr<VertexSampler>, 2> sampler_;
   std::optional<ShCoeffs> lighting_;
-  std::vector<Eigen::VectorXf> previous_;  // per level, last frame's displacements
+  // Per level, last frame's displacements: level 0 begin_frame's, the finer finish_frame's.
+  std::vector<Eigen::VectorXf> previous_;
   // The albedo frames' coarsest-level samples and normals, kept until the
   // albedo is fixed: lighting and albedo are solved alternately over all of them.
   struct AlbedoFrame {
