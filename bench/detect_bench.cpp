@@ -10,6 +10,7 @@
 
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_detector.hpp"
+#include "facecap/detect/landmark_detector.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 
@@ -40,6 +41,25 @@ void BM_DetectWholeFrame(benchmark::State& state) {
   state.counters["faces"] = double(faces);
 }
 BENCHMARK(BM_DetectWholeFrame)->Arg(640)->Arg(960)->Arg(1280)->Arg(1920)->Unit(benchmark::kMillisecond);
+
+// dlib's 68 points on the frame's face, from its detector box: what tracking
+// costs per frame besides the verification (the cascade's 15 levels of 500
+// trees read about 2.7 MB of its 64 MB of leaves).
+void BM_LandmarksOneFace(benchmark::State& state) {
+  static const cv::Mat grey = first_frame_grey();
+  if (grey.empty()) {
+    state.SkipWithError("address_720p_a.mp4 not found in the data folder");
+    return;
+  }
+  const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
+  if (faces.empty()) {
+    state.SkipWithError("no face found in the frame");
+    return;
+  }
+  const LandmarkDetector landmarks;
+  for (auto _ : state) benchmark::DoNotOptimize(landmarks.detect(grey, faces.front().box));
+}
+BENCHMARK(BM_LandmarksOneFace)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -111,14 +111,31 @@ void RegressionCascade::add_level(size_t level, std::span<const float> features,
   const CascadeLevel& l = levels_.at(level);
   const size_t dims = initial_shape_.size();
   if (features.size() != l.num_features() || shape.size() != dims) throw Error("add_level: wrong sizes");
-  for (uint32_t t = l.first_tree; t < l.first_tree + l.num_trees; ++t) {
+  // First every tree's leaf (the splits are small and stay in cache), then
+  // the leaves' sum, each leaf fetched a few trees ahead: the leaves of all
+  // levels are 64 MB, so each one is a run of cache misses, and waiting for
+  // them one tree at a time cost most of the 68 points' time (BM_LandmarksOneFace).
+  // The sum runs in tree order, so the result is the same to the bit.
+  std::vector<const float*> chosen(l.num_trees);
+  for (uint32_t k = 0; k < l.num_trees; ++k) {
+    const uint32_t t = l.first_tree + k;
     const uint32_t begin = tree_split_begin_[t];
     const uint32_t n = tree_split_begin_[t + 1] - begin;
     const RegressionSplit* split = splits_.data() + begin;
     uint32_t i = 0;
     while (i < n) i = features[split[i].idx1] - features[split[i].idx2] > split[i].thresh ? 2 * i + 1 : 2 * i + 2;
-    const float* leaf = leaves_.data() + size_t(begin + t + (i - n)) * dims;
-    for (size_t d = 0; d < dims; ++d) shape[d] += leaf[d];
+    chosen[k] = leaves_.data() + size_t(begin + t + (i - n)) * dims;
+  }
+  constexpr uint32_t kAhead = 8;
+  constexpr size_t kLine = 64;
+  float* __restrict__ sum = shape.data();
+  for (uint32_t k = 0; k < l.num_trees; ++k) {
+    if (k + kAhead < l.num_trees) {
+      const char* ahead = reinterpret_cast<const char*>(chosen[k + kAhead]);
+      for (size_t b = 0; b < dims * sizeof(float); b += kLine) __builtin_prefetch(ahead + b);
+    }
+    const float* __restrict__ leaf = chosen[k];
+    for (size_t d = 0; d < dims; ++d) sum[d] += leaf[d];
   }
 }
 
