@@ -162,6 +162,7 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
       const double m = std::max(1, stage->frames());
       j["refine_stage"] = {{"frames", stage->frames()},
                            {"startup_ms", st.startup_ms},
+                           {"first_refine_ms", st.first_refine_ms},
                            {"coarse_face_ms_per_frame", st.coarse_ms / m},
                            {"consumer_ms_per_frame", st.consumer_ms / m},
                            {"idle_ms_per_frame", st.idle_ms / m},

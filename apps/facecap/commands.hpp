@@ -88,7 +88,7 @@ CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& 
 // --no-occlusion: whether it leaves what covers the target's face in front
 // (SwapOptions), for `swap` and `eval swap` alike.
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
-// --device cpu|cuda: where the refinement's sampling and displacement solve run (default:
+// --device cpu|cuda: where the refinement's sampling, albedo and displacement solves run (default:
 // cuda when this build has it and a GPU answers, else cpu).
 void add_device_option(CLI::App& cmd, ComputeDevice& device);
 // --face-photo PHOTO: give the synthetic face that portrait's skin rather

@@ -189,7 +189,7 @@ void add_device_option(CLI::App& cmd, ComputeDevice& device) {
                                       : "--device cuda: this facecap was built without CUDA");
            device = *d;
          },
-         "Where the refinement's vertex sampling and displacement solve run: cpu or cuda (default: " +
+         "Where the refinement's vertex sampling, albedo solve and displacement solve run: cpu or cuda (default: " +
              std::string(to_string(default_compute_device())) + " on this machine)")
       ->type_name("cpu|cuda");
 }

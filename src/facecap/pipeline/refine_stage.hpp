@@ -38,6 +38,7 @@ struct RefineStageTimings {
   double coarse_ms = 0;         // the coarse face in camera space for it
   double consumer_ms = 0;       // the consumer (writers), shot ends included
   double startup_ms = 0;        // from the stage's start to its first frame: capture's own start-up (identity solve)
+  double first_refine_ms = 0;   // the first frame's first half, which builds the mesh hierarchy (in refine_ms too)
   double idle_ms = 0;           // the first thread waiting for frames after the first one
   double push_wait_ms = 0;      // capture's thread blocked in push() on a full queue
   double first_to_last_ms = 0;  // from the first frame's arrival to the last frame's end

@@ -7,7 +7,7 @@
 // Jacobi-preconditioned conjugate gradients from a start, each channel with
 // its own step sizes; a channel whose residual vanishes holds still. The CPU
 // solver is the reference; the CUDA one (refine/cuda) keeps the level's rings
-// on the GPU and runs the iterations there, one thread block per channel.
+// on the GPU and runs all the iterations there in one cooperative kernel.
 #include <memory>
 
 #include <Eigen/Core>

@@ -46,6 +46,14 @@ void Refiner::start_shot() {
   for (Eigen::VectorXf& d : previous_) d = Eigen::VectorXf();
 }
 
+void Refiner::prepare_devices() {
+  for (int half = 0; half < 2; ++half) {
+    if (!sampler_[half]) sampler_[half] = make_vertex_sampler(options_.device);
+    if (options_.displacements && !displacement_[half])
+      displacement_[half] = make_displacement_backend(options_.device);
+  }
+}
+
 Refinement Refiner::refine(const cv::Mat& image, const Positions& coarse, const PinholeCamera& camera,
                            const KnownShading* known) {
   return finish_frame(begin_frame(image, coarse, camera, known));

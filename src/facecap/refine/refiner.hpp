@@ -162,6 +162,12 @@ class Refiner {
   // while a finish_frame() runs.
   void start_shot();
 
+  // Makes the samplers and displacement backends of both halves now rather
+  // than at the first frame: on a GPU this creates the CUDA context and
+  // streams (a few hundred milliseconds), which RefineStage does while
+  // capture solves the identity over its first frames.
+  void prepare_devices();
+
   bool initialised() const { return hierarchy_.num_levels() > 0; }
   const MeshHierarchy& hierarchy() const { return hierarchy_; }
   // The albedo at the coarsest level (3 x N RGB) and whether it is final.

@@ -1,3 +1,7 @@
+#include <cooperative_groups.h>
+
+#include <algorithm>
+
 #include "facecap/refine/cuda/albedo_kernels.cuh"
 #include "facecap/refine/cuda/block_reduce.cuh"
 
@@ -5,17 +9,30 @@ namespace facecap::cuda {
 
 namespace {
 
-// lx = L v over this block's channel (L = I - A / r).
-__device__ void laplacian(const AlbedoRingsView& r, const double* v, double* lx) {
-  for (int i = threadIdx.x; i < r.num_vertices; i += blockDim.x) {
-    double sum = 0.0;
-    for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) sum += v[r.indices[s]];
-    const double inv = r.inv_degree[i];
-    lx[i] = inv > 0.0 ? v[i] - sum * inv : 0.0;
-  }
+namespace cg = cooperative_groups;
+
+constexpr int kThreads = kBlockThreads;  // block_add's block size
+
+// The CG's vectors, each 3 n channel-major, and its per-iteration sums.
+struct PcgVectors {
+  double *res, *z, *ap, *lx, *lx_start;
+  double* p[2];     // the search direction, alternately written and read
+  double* scalars;  // rz_k (3 per iteration, k = 0 .. iterations), then p.Ap_k (3 per iteration)
+  int iterations;
+
+  __device__ double& rz(int k, int c) const { return scalars[3 * k + c]; }
+  __device__ double& pap(int k, int c) const { return scalars[3 * (iterations + 1) + 3 * k + c]; }
+};
+
+// (L v)_i with L = I - A / r.
+__device__ double laplacian_at(const AlbedoRingsView& r, const double* v, int i) {
+  double sum = 0.0;
+  for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) sum += v[r.indices[s]];
+  const double inv = r.inv_degree[i];
+  return inv > 0.0 ? v[i] - sum * inv : 0.0;
 }
 
-// out_i = (L^T lx)_i = lx_i - sum over the ring of lx_j / r_j (the rings are symmetric).
+// (L^T lx)_i = lx_i - sum over the ring of lx_j / r_j (the rings are symmetric).
 __device__ double laplacian_transpose_at(const AlbedoRingsView& r, const double* lx, int i) {
   double sum = 0.0;
   for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
@@ -25,69 +42,138 @@ __device__ double laplacian_transpose_at(const AlbedoRingsView& r, const double*
   return lx[i] - sum;
 }
 
-// One block per channel: blockIdx.x = c.
-__global__ void __launch_bounds__(kAlbedoThreads)
+__device__ double inverse_diagonal(const AlbedoRingsView& r, const double* d, double w, int i) {
+  return 1.0 / (d[i] + w * r.normal_diagonal[i]);
+}
+
+// Blocks [c B, (c + 1) B) serve channel c; a converged channel's blocks only
+// join the syncs. The loop's end is the same for every thread: it reads sums
+// completed before the last sync.
+__global__ void __launch_bounds__(kThreads)
     albedo_pcg_kernel(AlbedoRingsView r, const double* d, const double* b_all, const double* prior_all, double w,
-                      int iterations, double* x_all, double* scratch) {
-  const int n = r.num_vertices, c = blockIdx.x;
-  const double* b = b_all + size_t(c) * n;
-  const double* prior = prior_all + size_t(c) * n;
-  double* x = x_all + size_t(c) * n;
-  double* res = scratch + size_t(c) * n;
-  double* z = res + 3 * size_t(n);
-  double* p = z + 3 * size_t(n);
-  double* ap = p + 3 * size_t(n);
-  double* lx = ap + 3 * size_t(n);
-  double* lx_start = lx + 3 * size_t(n);
+                      double* x_all, PcgVectors v, int blocks_per_channel) {
+  const cg::grid_group grid = cg::this_grid();
+  const int n = r.num_vertices;
+  const int c = blockIdx.x / blocks_per_channel;
+  const int first = (blockIdx.x % blocks_per_channel) * blockDim.x + threadIdx.x;
+  const int stride = blocks_per_channel * blockDim.x;
+  const size_t off = size_t(c) * n;
+  const double* b = b_all + off;
+  const double* prior = prior_all + off;
+  double* x = x_all + off;
+  double *res = v.res + off, *z = v.z + off, *ap = v.ap + off, *lx = v.lx + off, *lx_start = v.lx_start + off;
 
-  // res = b + w L^T L prior - (D x + w L^T L x) = b - D x + w L^T L (prior - x),
-  // formed as the CPU forms it: both Laplacian products, then the sums.
-  laplacian(r, prior, lx);
-  laplacian(r, x, lx_start);
-  __syncthreads();
-  double rz_local = 0.0;
-  for (int i = threadIdx.x; i < n; i += blockDim.x) {
-    const double llx_prior = laplacian_transpose_at(r, lx, i);
-    const double llx_x = laplacian_transpose_at(r, lx_start, i);
-    const double inv_diag = 1.0 / (d[i] + w * r.normal_diagonal[i]);
-    const double ri = (b[i] + w * llx_prior) - (d[i] * x[i] + w * llx_x);
+  // res = (b + w L^T L prior) - (D x + w L^T L x), formed as the CPU forms it.
+  for (int i = first; i < n; i += stride) {
+    lx[i] = laplacian_at(r, prior, i);
+    lx_start[i] = laplacian_at(r, x, i);
+  }
+  grid.sync();
+  double sum = 0.0;
+  for (int i = first; i < n; i += stride) {
+    const double ri =
+        (b[i] + w * laplacian_transpose_at(r, lx, i)) - (d[i] * x[i] + w * laplacian_transpose_at(r, lx_start, i));
     res[i] = ri;
-    z[i] = inv_diag * ri;
-    p[i] = z[i];
-    rz_local += ri * z[i];
+    z[i] = inverse_diagonal(r, d, w, i) * ri;
+    v.p[0][off + i] = z[i];
+    sum += ri * z[i];
   }
-  double rz = block_sum<kAlbedoThreads>(rz_local);
+  block_add(sum, &v.rz(0, c));
+  grid.sync();
 
-  for (int k = 0; k < iterations && rz > 1e-20; ++k) {
-    laplacian(r, p, lx);
-    __syncthreads();
-    double pap_local = 0.0;
-    for (int i = threadIdx.x; i < n; i += blockDim.x) {
-      ap[i] = d[i] * p[i] + w * laplacian_transpose_at(r, lx, i);
-      pap_local += p[i] * ap[i];
+  for (int k = 0; k < v.iterations; ++k) {
+    if (!(v.rz(k, 0) > 1e-20 || v.rz(k, 1) > 1e-20 || v.rz(k, 2) > 1e-20)) break;
+    const bool live = v.rz(k, c) > 1e-20;  // else this channel holds still (and its rz stays 0)
+    double* p = v.p[k & 1] + off;
+    // lx = L p, with p = z + beta p_prev formed here for k > 0 (each block
+    // writes its own vertices' p and reads its neighbours' z and p_prev).
+    if (live) {
+      if (k == 0) {
+        for (int i = first; i < n; i += stride) lx[i] = laplacian_at(r, p, i);
+      } else {
+        const double* p_prev = v.p[(k - 1) & 1] + off;
+        const double beta = v.rz(k, c) / v.rz(k - 1, c);
+        for (int i = first; i < n; i += stride) {
+          const double pi = z[i] + beta * p_prev[i];
+          p[i] = pi;
+          double ring = 0.0;
+          for (int s = r.offsets[i]; s < r.offsets[i + 1]; ++s) {
+            const int j = r.indices[s];
+            ring += z[j] + beta * p_prev[j];
+          }
+          const double inv = r.inv_degree[i];
+          lx[i] = inv > 0.0 ? pi - ring * inv : 0.0;
+        }
+      }
     }
-    const double alpha = rz / block_sum<kAlbedoThreads>(pap_local);
-    double rz_new_local = 0.0;
-    for (int i = threadIdx.x; i < n; i += blockDim.x) {
-      x[i] += alpha * p[i];
-      res[i] -= alpha * ap[i];
-      z[i] = (1.0 / (d[i] + w * r.normal_diagonal[i])) * res[i];
-      rz_new_local += res[i] * z[i];
+    grid.sync();
+    sum = 0.0;
+    if (live)
+      for (int i = first; i < n; i += stride) {
+        ap[i] = d[i] * p[i] + w * laplacian_transpose_at(r, lx, i);
+        sum += p[i] * ap[i];
+      }
+    block_add(sum, &v.pap(k, c));
+    grid.sync();
+    sum = 0.0;
+    if (live) {
+      const double alpha = v.rz(k, c) / v.pap(k, c);
+      for (int i = first; i < n; i += stride) {
+        x[i] += alpha * p[i];
+        res[i] -= alpha * ap[i];
+        z[i] = inverse_diagonal(r, d, w, i) * res[i];
+        sum += res[i] * z[i];
+      }
     }
-    const double rz_new = block_sum<kAlbedoThreads>(rz_new_local);
-    const double beta = rz_new / rz;
-    for (int i = threadIdx.x; i < n; i += blockDim.x) p[i] = z[i] + beta * p[i];
-    rz = rz_new;
-    __syncthreads();  // p complete before the next Laplacian reads it
+    block_add(sum, &v.rz(k + 1, c));
+    grid.sync();
   }
+}
+
+int blocks_per_channel(int n) {
+  // Every block must be resident at once for grid.sync.
+  static const int resident = [] {
+    int device = 0, sms = 0, per_sm = 0;
+    cudaGetDevice(&device);
+    cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device);
+    cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, albedo_pcg_kernel, kThreads, 0);
+    return sms * per_sm;
+  }();
+  return std::max(1, std::min((n + kThreads - 1) / kThreads, resident / 3));
 }
 
 }  // namespace
 
-void launch_albedo_pcg(const AlbedoRingsView& rings, const double* d, const double* b, const double* prior, double w,
-                       int iterations, double* x, double* scratch, cudaStream_t stream) {
-  if (rings.num_vertices <= 0) return;
-  albedo_pcg_kernel<<<3, kAlbedoThreads, 0, stream>>>(rings, d, b, prior, w, iterations, x, scratch);
+std::size_t albedo_pcg_scratch(int num_vertices, int iterations) {
+  return 7 * 3 * std::size_t(num_vertices) + 6 * std::size_t(iterations + 1);
+}
+
+cudaError_t launch_albedo_pcg(const AlbedoRingsView& rings, const double* d, const double* b, const double* prior,
+                              double w, int iterations, double* x, double* scratch, cudaStream_t stream) {
+  const int n = rings.num_vertices;
+  if (n <= 0) return cudaSuccess;
+  const std::size_t size = 3 * std::size_t(n);
+  PcgVectors v{scratch,
+               scratch + size,
+               scratch + 2 * size,
+               scratch + 3 * size,
+               scratch + 4 * size,
+               {scratch + 5 * size, scratch + 6 * size},
+               scratch + 7 * size,
+               iterations};
+  const cudaError_t cleared = cudaMemsetAsync(v.scalars, 0, 6 * std::size_t(iterations + 1) * sizeof(double), stream);
+  if (cleared != cudaSuccess) return cleared;
+  int per_channel = blocks_per_channel(n);
+  cudaLaunchConfig_t config = {};
+  config.gridDim = dim3(3 * per_channel);
+  config.blockDim = dim3(kThreads);
+  config.stream = stream;
+  cudaLaunchAttribute cooperative[1];
+  cooperative[0].id = cudaLaunchAttributeCooperative;
+  cooperative[0].val.cooperative = 1;
+  config.attrs = cooperative;
+  config.numAttrs = 1;
+  return cudaLaunchKernelEx(&config, albedo_pcg_kernel, rings, d, b, prior, w, x, v, per_channel);
 }
 
 }  // namespace facecap::cuda

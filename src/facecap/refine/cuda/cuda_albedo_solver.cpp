@@ -57,9 +57,9 @@ AlbedoChannels CudaAlbedoSolver::solve(const Eigen::VectorXd& d, const AlbedoCha
   check(cudaMemcpyAsync(on_device, staged, count * sizeof(double), cudaMemcpyHostToDevice, s.stream),
         "copy to the GPU");
   double* const x_on_device = on_device + 7 * n;
-  cuda::launch_albedo_pcg(s.rings(), on_device, on_device + n, on_device + 4 * n, w, iterations, x_on_device,
-                          s.scratch.reserve(18 * std::size_t(n)), s.stream);
-  check(cudaGetLastError(), "albedo solve");
+  check(cuda::launch_albedo_pcg(s.rings(), on_device, on_device + n, on_device + 4 * n, w, iterations, x_on_device,
+                                s.scratch.reserve(cuda::albedo_pcg_scratch(n, iterations)), s.stream),
+        "cooperative launch of the albedo solve");
   check(cudaMemcpyAsync(staged + 7 * n, x_on_device, 3 * std::size_t(n) * sizeof(double), cudaMemcpyDeviceToHost,
                         s.stream),
         "copy from the GPU");
