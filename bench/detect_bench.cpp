@@ -61,6 +61,29 @@ void BM_LandmarksOneFace(benchmark::State& state) {
 }
 BENCHMARK(BM_LandmarksOneFace)->Unit(benchmark::kMicrosecond);
 
+// The tracker's per-frame check that a face is still there: the detector on a
+// crop 1.6 times the face, scaled to 130 px (FaceTracker's verifier).
+void BM_VerifyFaceCrop(benchmark::State& state) {
+  static const cv::Mat grey = first_frame_grey();
+  if (grey.empty()) {
+    state.SkipWithError("address_720p_a.mp4 not found in the data folder");
+    return;
+  }
+  const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
+  if (faces.empty()) {
+    state.SkipWithError("no face found in the frame");
+    return;
+  }
+  const Box& b = faces.front().box;
+  const Box crop{b.center().x() - 0.8f * b.width, b.center().y() - 0.8f * b.height, 1.6f * b.width, 1.6f * b.height};
+  const FaceDetector verifier(
+      FaceDetectorOptions{.max_side = 130, .min_side = 130, .upsample = 0, .adjust_threshold = -0.4});
+  size_t found = 0;
+  for (auto _ : state) found = verifier.detect_in(grey, crop).size();
+  state.counters["faces"] = double(found);
+}
+BENCHMARK(BM_VerifyFaceCrop)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 }  // namespace facecap
