@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace facecap {
 
 LandmarkBasis gather_landmark_basis(const FaceModel& model, int identity_modes) {
   LandmarkBasis b;
   b.contour = build_jaw_contour(model);
+  b.slot_of_vertex.assign(model.num_vertices, -1);
   auto add = [&](int v) {
-    if (b.slot_of.count(v)) return;
-    b.slot_of.emplace(v, static_cast<int>(b.vertices.size()));
+    if (b.slot_of_vertex.at(v) >= 0) return;
+    b.slot_of_vertex[v] = static_cast<int>(b.vertices.size());
     b.vertices.push_back(v);
   };
   for (int v : model.landmarks.vertices) add(v);
@@ -30,13 +33,27 @@ LandmarkBasis gather_landmark_basis(const FaceModel& model, int identity_modes) 
     b.identity.middleRows(3 * s, 3) = model.identity_basis.block(row, 0, 3, k).cast<double>();
     b.expression.middleRows(3 * s, 3) = model.expression_basis.middleRows(row, 3).cast<double>();
   }
+  const int ne = static_cast<int>(b.expression.cols());
+  b.identity_by_slot.resize(3, std::size_t(n) * k);
+  b.expression_by_slot.resize(3, std::size_t(n) * ne);
+  for (int s = 0; s < n; ++s) {
+    b.identity_by_slot.middleCols(std::size_t(s) * k, k) = b.identity.middleRows(3 * s, 3);
+    b.expression_by_slot.middleCols(std::size_t(s) * ne, ne) = b.expression.middleRows(3 * s, 3);
+  }
   return b;
+}
+
+int LandmarkBasis::slot(int vertex) const {
+  const int s = vertex >= 0 && std::size_t(vertex) < slot_of_vertex.size() ? slot_of_vertex[vertex] : -1;
+  if (s < 0) throw std::out_of_range("vertex " + std::to_string(vertex) + " is not in the landmark basis");
+  return s;
 }
 
 Eigen::Vector3d LandmarkBasis::position(int s, const Eigen::VectorXd& id, const Eigen::VectorXd& w) const {
   Eigen::Vector3d x = neutral.col(s);
-  if (id.size() > 0) x.noalias() += identity.middleRows(3 * s, 3).leftCols(id.size()) * id;
-  if (w.size() > 0) x.noalias() += expression.middleRows(3 * s, 3) * w;
+  const Eigen::Index ni = identity.cols(), ne = expression.cols();
+  if (id.size() > 0) x.noalias() += identity_by_slot.middleCols(s * ni, id.size()) * id;
+  if (w.size() > 0) x.noalias() += expression_by_slot.middleCols(s * ne, ne) * w;
   return x;
 }
 

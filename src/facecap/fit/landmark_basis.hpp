@@ -3,7 +3,6 @@
 // and every jaw march-line vertex, gathered once (double precision) so that
 // a landmark's model position X = n + B_id a + B_exp w costs a few hundred
 // multiply-adds instead of a face-region evaluation.
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,14 +15,20 @@
 namespace facecap {
 
 struct LandmarkBasis {
-  std::vector<int> vertices;             // global vertex index of each gathered row triple
-  std::unordered_map<int, int> slot_of;  // global vertex -> slot
-  Eigen::Matrix3Xd neutral;              // 3 x slots
-  Eigen::MatrixXd identity;              // 3*slots x identity modes
-  Eigen::MatrixXd expression;            // 3*slots x expressions
+  std::vector<int> vertices;        // global vertex index of each gathered row triple
+  std::vector<int> slot_of_vertex;  // global vertex -> slot, -1 where not gathered
+  Eigen::Matrix3Xd neutral;         // 3 x slots
+  Eigen::MatrixXd identity;         // 3*slots x identity modes
+  Eigen::MatrixXd expression;       // 3*slots x expressions
+  // The same rows slot by slot, each slot's 3 x modes block contiguous (at
+  // columns [s modes, (s + 1) modes)): position() reads one vertex's rows
+  // from a few cache lines rather than one line per mode.
+  Eigen::MatrixXd identity_by_slot,
+      expression_by_slot;  // 3 rows (dynamic, as identity and expression: the same products)
   JawContour contour;
 
-  int slot(int vertex) const { return slot_of.at(vertex); }
+  // Throws std::out_of_range for a vertex that was not gathered.
+  int slot(int vertex) const;
   // Model-space position of a gathered vertex.
   Eigen::Vector3d position(int slot, const Eigen::VectorXd& identity_weights,
                            const Eigen::VectorXd& expression_weights) const;
