@@ -88,4 +88,20 @@ TEST(ErodeObservations, AFullyObservedMeshKeepsEverything) {
   EXPECT_EQ(s.visible_count, n * n);
 }
 
+// The solve's free set: the seen vertices and their rings, ring by ring.
+TEST(GrowByRings, AddsTheRingsAroundAVertex) {
+  const int n = 9;
+  const VertexAdjacency rings = vertex_adjacency(grid_triangles(n), n * n);
+  const int seed = 4 * n + 4;
+  std::vector<bool> mask(n * n, false);
+  mask[seed] = true;
+  for (int depth = 0; depth <= 3; ++depth) {
+    const std::vector<bool> grown = grow_by_rings(mask, rings, depth);
+    for (int i = 0; i < n * n; ++i) EXPECT_EQ(grown[i], grid_distance(i, seed, n) <= depth) << "vertex " << i;
+  }
+  // Nothing grows from nothing, and a full mask stays full.
+  EXPECT_EQ(grow_by_rings(std::vector<bool>(n * n, false), rings, 2), std::vector<bool>(n * n, false));
+  EXPECT_EQ(grow_by_rings(std::vector<bool>(n * n, true), rings, 2), std::vector<bool>(n * n, true));
+}
+
 }  // namespace facecap

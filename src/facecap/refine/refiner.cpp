@@ -194,16 +194,8 @@ void Refiner::solve_level(int l, PendingFrame& f) {
   apply_mask(samples, mask);
   drop_oblique_observations(samples, problem.base, problem.base_normals, float(options_.displacement_min_facing));
   // Solve where skin is seen, with two rings of margin; elsewhere d = 0.
-  problem.active = samples.visible;
+  problem.active = grow_by_rings(samples.visible, level.rings, 2);
   erode_observations(samples, level.rings, options_.data_margin_rings, level.boundary);
-  for (int grow = 0; grow < 2; ++grow) {
-    std::vector<bool> next = problem.active;
-    for (int i = 0; i < level.num_vertices; ++i) {
-      if (!problem.active[i]) continue;
-      for (int s = level.rings.offsets[i]; s < level.rings.offsets[i + 1]; ++s) next[level.rings.indices[s]] = true;
-    }
-    problem.active = std::move(next);
-  }
   problem.samples = &samples;
   problem.prolonged = prolonged;
   if (previous_[l].size() == level.num_vertices) problem.previous = previous_[l];

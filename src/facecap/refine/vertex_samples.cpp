@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/image_sampling.hpp"
+#include "facecap/core/parallel.hpp"
 #include "facecap/render/rasterizer.hpp"
 
 namespace facecap {
@@ -38,19 +39,60 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& p, const Po
   return s;
 }
 
+namespace {
+
+using ByteMask = std::vector<unsigned char>;
+
+ByteMask to_bytes(const std::vector<bool>& mask) { return ByteMask(mask.begin(), mask.end()); }
+
+std::vector<bool> to_bits(const ByteMask& mask) { return std::vector<bool>(mask.begin(), mask.end()); }
+
+// Vertices per block of the ring passes (a finest level has about 37k).
+constexpr int kRingBlock = 4096;
+
+}  // namespace
+
 void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int rings,
                         const std::vector<bool>& open_boundary) {
+  // On bytes, not the bit-packed vector: the passes read every ring.
+  ByteMask seen = to_bytes(s.visible), next(seen.size());
   for (int r = 0; r < rings; ++r) {
-    std::vector<bool> next = s.visible;
-    for (size_t i = 0; i < s.visible.size(); ++i) {
-      if (!s.visible[i]) continue;
-      if (r == 0 && !open_boundary.empty() && open_boundary[i]) next[i] = false;  // one ring from the hole
-      for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && next[i]; ++k)
-        next[i] = s.visible[adjacency.indices[k]];
-    }
-    s.visible = std::move(next);
+    parallel_for(
+        static_cast<int>(seen.size()),
+        [&](int b, int e) {
+          for (int i = b; i < e; ++i) {
+            bool keep = seen[i] != 0;
+            if (keep && r == 0 && !open_boundary.empty() && open_boundary[i]) keep = false;  // one ring from the hole
+            for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && keep; ++k)
+              keep = seen[adjacency.indices[k]] != 0;
+            next[i] = keep;
+          }
+        },
+        kRingBlock);
+    seen.swap(next);
   }
-  s.visible_count = static_cast<int>(std::count(s.visible.begin(), s.visible.end(), true));
+  s.visible = to_bits(seen);
+  s.visible_count = static_cast<int>(std::count(seen.begin(), seen.end(), 1));
+}
+
+std::vector<bool> grow_by_rings(const std::vector<bool>& mask, const VertexAdjacency& adjacency, int rings) {
+  ByteMask in = to_bytes(mask), next(in.size());
+  for (int r = 0; r < rings; ++r) {
+    // A vertex joins when it or a neighbour is in (the rings are symmetric).
+    parallel_for(
+        static_cast<int>(in.size()),
+        [&](int b, int e) {
+          for (int i = b; i < e; ++i) {
+            bool grown = in[i] != 0;
+            for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && !grown; ++k)
+              grown = in[adjacency.indices[k]] != 0;
+            next[i] = grown;
+          }
+        },
+        kRingBlock);
+    in.swap(next);
+  }
+  return to_bits(in);
 }
 
 void drop_oblique_observations(VertexSamples& s, const Positions& p, const Positions& n, float min_facing) {

@@ -46,6 +46,10 @@ VertexSamples sample_vertices(const cv::Mat& image, const Positions& camera_poin
 void erode_observations(VertexSamples& samples, const VertexAdjacency& adjacency, int rings,
                         const std::vector<bool>& open_boundary = {});
 
+// `mask` grown by `rings` rings of neighbours (the rings must be symmetric, as
+// a mesh's one-rings are).
+std::vector<bool> grow_by_rings(const std::vector<bool>& mask, const VertexAdjacency& adjacency, int rings);
+
 // Drops the observations of vertices seen more obliquely than `min_facing`
 // (the cosine between the normal and the ray to the camera). There a
 // displacement along the normal moves the vertex's image point by a sizeable
