@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_detector.hpp"
@@ -45,19 +46,26 @@ BENCHMARK(BM_DetectWholeFrame)->Arg(640)->Arg(960)->Arg(1280)->Arg(1920)->Unit(b
 // dlib's 68 points on the frame's face, from its detector box: what tracking
 // costs per frame besides the verification (the cascade's 15 levels of 500
 // trees read about 2.7 MB of its 64 MB of leaves).
-void BM_LandmarksOneFace(benchmark::State& state) {
-  static const cv::Mat grey = first_frame_grey();
+// The frame's largest face, or nothing with the benchmark skipped and told why.
+std::optional<Box> first_face(const cv::Mat& grey, benchmark::State& state) {
   if (grey.empty()) {
     state.SkipWithError("address_720p_a.mp4 not found in the data folder");
-    return;
+    return std::nullopt;
   }
   const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
   if (faces.empty()) {
     state.SkipWithError("no face found in the frame");
-    return;
+    return std::nullopt;
   }
+  return faces.front().box;
+}
+
+void BM_LandmarksOneFace(benchmark::State& state) {
+  static const cv::Mat grey = first_frame_grey();
+  const std::optional<Box> face = first_face(grey, state);
+  if (!face) return;
   const LandmarkDetector landmarks;
-  for (auto _ : state) benchmark::DoNotOptimize(landmarks.detect(grey, faces.front().box));
+  for (auto _ : state) benchmark::DoNotOptimize(landmarks.detect(grey, *face));
 }
 BENCHMARK(BM_LandmarksOneFace)->Unit(benchmark::kMicrosecond);
 
@@ -65,16 +73,9 @@ BENCHMARK(BM_LandmarksOneFace)->Unit(benchmark::kMicrosecond);
 // crop 1.6 times the face, scaled to 130 px (FaceTracker's verifier).
 void BM_VerifyFaceCrop(benchmark::State& state) {
   static const cv::Mat grey = first_frame_grey();
-  if (grey.empty()) {
-    state.SkipWithError("address_720p_a.mp4 not found in the data folder");
-    return;
-  }
-  const std::vector<FaceDetection> faces = FaceDetector().detect(grey);
-  if (faces.empty()) {
-    state.SkipWithError("no face found in the frame");
-    return;
-  }
-  const Box& b = faces.front().box;
+  const std::optional<Box> face = first_face(grey, state);
+  if (!face) return;
+  const Box& b = *face;
   const Box crop{b.center().x() - 0.8f * b.width, b.center().y() - 0.8f * b.height, 1.6f * b.width, 1.6f * b.height};
   const FaceDetector verifier(
       FaceDetectorOptions{.max_side = 130, .min_side = 130, .upsample = 0, .adjust_threshold = -0.4});

@@ -50,49 +50,46 @@ std::vector<bool> to_bits(const ByteMask& mask) { return std::vector<bool>(mask.
 // Vertices per block of the ring passes (a finest level has about 37k).
 constexpr int kRingBlock = 4096;
 
-}  // namespace
-
-void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int rings,
-                        const std::vector<bool>& open_boundary) {
-  // On bytes, not the bit-packed vector: the passes read every ring.
-  ByteMask seen = to_bytes(s.visible), next(seen.size());
+// `rings` passes over a mask, each computing every vertex's next value with
+// rule(i, mask, pass) from the last pass's mask, on the pool.
+template <typename Rule>
+ByteMask ring_passes(ByteMask mask, int rings, const Rule& rule) {
+  ByteMask next(mask.size());
   for (int r = 0; r < rings; ++r) {
     parallel_for(
-        static_cast<int>(seen.size()),
+        static_cast<int>(mask.size()),
         [&](int b, int e) {
-          for (int i = b; i < e; ++i) {
-            bool keep = seen[i] != 0;
-            if (keep && r == 0 && !open_boundary.empty() && open_boundary[i]) keep = false;  // one ring from the hole
-            for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && keep; ++k)
-              keep = seen[adjacency.indices[k]] != 0;
-            next[i] = keep;
-          }
+          for (int i = b; i < e; ++i) next[i] = rule(i, mask, r);
         },
         kRingBlock);
-    seen.swap(next);
+    mask.swap(next);
   }
+  return mask;
+}
+
+}  // namespace
+
+// On bytes, not the bit-packed vector: the passes read every ring.
+void erode_observations(VertexSamples& s, const VertexAdjacency& adjacency, int rings,
+                        const std::vector<bool>& open_boundary) {
+  const ByteMask seen = ring_passes(to_bytes(s.visible), rings, [&](int i, const ByteMask& m, int r) {
+    bool keep = m[i] != 0;
+    if (keep && r == 0 && !open_boundary.empty() && open_boundary[i]) keep = false;  // one ring from the hole
+    for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && keep; ++k) keep = m[adjacency.indices[k]] != 0;
+    return keep;
+  });
   s.visible = to_bits(seen);
   s.visible_count = static_cast<int>(std::count(seen.begin(), seen.end(), 1));
 }
 
 std::vector<bool> grow_by_rings(const std::vector<bool>& mask, const VertexAdjacency& adjacency, int rings) {
-  ByteMask in = to_bytes(mask), next(in.size());
-  for (int r = 0; r < rings; ++r) {
-    // A vertex joins when it or a neighbour is in (the rings are symmetric).
-    parallel_for(
-        static_cast<int>(in.size()),
-        [&](int b, int e) {
-          for (int i = b; i < e; ++i) {
-            bool grown = in[i] != 0;
-            for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && !grown; ++k)
-              grown = in[adjacency.indices[k]] != 0;
-            next[i] = grown;
-          }
-        },
-        kRingBlock);
-    in.swap(next);
-  }
-  return to_bits(in);
+  // A vertex joins when it or a neighbour is in (the rings are symmetric).
+  return to_bits(ring_passes(to_bytes(mask), rings, [&](int i, const ByteMask& m, int) {
+    bool grown = m[i] != 0;
+    for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1] && !grown; ++k)
+      grown = m[adjacency.indices[k]] != 0;
+    return grown;
+  }));
 }
 
 void drop_oblique_observations(VertexSamples& s, const Positions& p, const Positions& n, float min_facing) {

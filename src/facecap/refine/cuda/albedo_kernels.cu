@@ -4,6 +4,7 @@
 
 #include "facecap/refine/cuda/albedo_kernels.cuh"
 #include "facecap/refine/cuda/block_reduce.cuh"
+#include "facecap/refine/cuda/cooperative_launch.cuh"
 
 namespace facecap::cuda {
 
@@ -131,14 +132,7 @@ __global__ void __launch_bounds__(kThreads)
 }
 
 int blocks_per_channel(int n) {
-  // Every block must be resident at once for grid.sync.
-  static const int resident = [] {
-    int device = 0, sms = 0, per_sm = 0;
-    cudaGetDevice(&device);
-    cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device);
-    cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, albedo_pcg_kernel, kThreads, 0);
-    return sms * per_sm;
-  }();
+  static const int resident = resident_blocks(albedo_pcg_kernel, kThreads);
   return std::max(1, std::min((n + kThreads - 1) / kThreads, resident / 3));
 }
 
@@ -163,17 +157,9 @@ cudaError_t launch_albedo_pcg(const AlbedoRingsView& rings, const double* d, con
                iterations};
   const cudaError_t cleared = cudaMemsetAsync(v.scalars, 0, 6 * std::size_t(iterations + 1) * sizeof(double), stream);
   if (cleared != cudaSuccess) return cleared;
-  int per_channel = blocks_per_channel(n);
-  cudaLaunchConfig_t config = {};
-  config.gridDim = dim3(3 * per_channel);
-  config.blockDim = dim3(kThreads);
-  config.stream = stream;
-  cudaLaunchAttribute cooperative[1];
-  cooperative[0].id = cudaLaunchAttributeCooperative;
-  cooperative[0].val.cooperative = 1;
-  config.attrs = cooperative;
-  config.numAttrs = 1;
-  return cudaLaunchKernelEx(&config, albedo_pcg_kernel, rings, d, b, prior, w, x, v, per_channel);
+  const int per_channel = blocks_per_channel(n);
+  return launch_cooperative(albedo_pcg_kernel, 3 * per_channel, kThreads, stream, rings, d, b, prior, w, x, v,
+                            per_channel);
 }
 
 }  // namespace facecap::cuda

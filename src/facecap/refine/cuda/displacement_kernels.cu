@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "facecap/refine/cuda/block_reduce.cuh"
+#include "facecap/refine/cuda/cooperative_launch.cuh"
 #include "facecap/refine/cuda/displacement_kernels.cuh"
 
 namespace facecap::cuda {
@@ -310,24 +311,10 @@ cudaError_t launch_newton_step(const GraphView& g, const LinearisationView& lin,
   // Every block must be resident at once for grid.sync: no more blocks than
   // the GPU holds (one thread per vertex fits on any GPU at these sizes; the
   // loops stride over the rest).
-  static const int resident = [] {
-    int device = 0, sms = 0, per_sm = 0;
-    cudaGetDevice(&device);
-    cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device);
-    cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, newton_step_kernel, kThreads, 0);
-    return sms * per_sm;
-  }();
+  static const int resident = resident_blocks(newton_step_kernel, kThreads);
   const int blocks = std::max(1, std::min(blocks_for(g.num_vertices), resident));
-  cudaLaunchConfig_t config = {};
-  config.gridDim = dim3(blocks);
-  config.blockDim = dim3(kThreads);
-  config.stream = s;
-  cudaLaunchAttribute cooperative[1];
-  cooperative[0].id = cudaLaunchAttributeCooperative;
-  cooperative[0].val.cooperative = 1;
-  config.attrs = cooperative;
-  config.numAttrs = 1;
-  return cudaLaunchKernelEx(&config, newton_step_kernel, g, lin, w, v, d, prolonged, previous, scalars, iterations);
+  return launch_cooperative(newton_step_kernel, blocks, kThreads, s, g, lin, w, v, d, prolonged, previous, scalars,
+                            iterations);
 }
 
 void launch_axpy(const GraphView& g, const float* a, float scale, const float* b, float* out, cudaStream_t s) {
