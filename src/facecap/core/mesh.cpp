@@ -1,8 +1,8 @@
 #include "facecap/core/mesh.hpp"
 
 #include <algorithm>
-#include <map>
-#include <utility>
+#include <cstdint>
+#include <vector>
 
 namespace facecap {
 
@@ -64,17 +64,23 @@ VertexAdjacency vertex_adjacency(const std::vector<Triangle>& triangles, int num
 }
 
 std::vector<bool> boundary_vertices(const std::vector<Triangle>& triangles, int num_vertices) {
-  std::map<std::pair<int, int>, int> edge_use;
+  // Every triangle's edges as sorted keys (lower vertex in the high half);
+  // an edge listed once is on the boundary.
+  std::vector<uint64_t> edges;
+  edges.reserve(3 * triangles.size());
   for (const Triangle& t : triangles) {
     for (int k = 0; k < 3; ++k) {
-      const int a = t[k];
-      const int b = t[(k + 1) % 3];
-      ++edge_use[{std::min(a, b), std::max(a, b)}];
+      const auto a = static_cast<uint32_t>(t[k]), b = static_cast<uint32_t>(t[(k + 1) % 3]);
+      edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
     }
   }
+  std::sort(edges.begin(), edges.end());
   std::vector<bool> boundary(num_vertices, false);
-  for (const auto& [edge, count] : edge_use) {
-    if (count == 1) boundary[edge.first] = boundary[edge.second] = true;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary[edges[i] >> 32] = boundary[edges[i] & 0xffffffffu] = true;
+    i = j;
   }
   return boundary;
 }
