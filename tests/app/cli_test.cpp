@@ -787,6 +787,45 @@ TEST(Cli, DeviceOptionNamesWhatItNeeds) {
   EXPECT_NE(r.out.find("cuda"), std::string::npos) << r.out;
 }
 
+// bench track --refine reports each part of a frame's refinement, and the
+// parts add up: each level's solve within its pass, the samplings within the
+// frame, the first frame (the hierarchy's build) within the whole.
+TEST(Cli, BenchTrackWithRefinementReportsEachPart) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const RunResult r = run("bench track " + video.string() + " --refine --device cpu --max-frames 40");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json& refine = j.at("refine");
+  const int frames = refine.at("frames").get<int>();
+  ASSERT_EQ(frames, 40) << r.out;
+  EXPECT_EQ(refine.at("device"), "cpu");
+  const auto& pass = refine.at("displacement_ms_per_level");
+  const auto& solve = refine.at("displacement_solve_ms_per_level");
+  ASSERT_GE(pass.size(), 1u);
+  ASSERT_EQ(pass.size(), solve.size());
+  double levels = 0;
+  for (size_t l = 0; l < pass.size(); ++l) {
+    EXPECT_GT(solve[l].get<double>(), 0.0) << "level " << l;
+    EXPECT_LT(solve[l].get<double>(), pass[l].get<double>()) << "level " << l;
+    levels += pass[l].get<double>();
+  }
+  const double total = refine.at("total_ms_per_frame").get<double>();
+  const double sampling = refine.at("sampling_ms_per_frame").get<double>();
+  EXPECT_GT(sampling, 0.0);
+  EXPECT_LT(sampling, refine.at("lighting_ms_per_frame").get<double>() + levels);
+  EXPECT_LT(levels, total);
+  // The albedo is fixed after the first 30 frames; the frames after it cost less.
+  const double steady = refine.at("total_ms_per_frame_albedo_fixed").get<double>();
+  EXPECT_GT(steady, 0.0);
+  EXPECT_LT(steady, total);
+  const nlohmann::json& stage = j.at("refine_stage");
+  EXPECT_EQ(stage.at("frames").get<int>(), frames);
+  EXPECT_GT(stage.at("first_refine_ms").get<double>(), 0.0);
+  EXPECT_LT(stage.at("first_refine_ms").get<double>(), total * frames);
+  EXPECT_GT(stage.at("fps_after_startup").get<double>(), 0.0);
+}
+
 // Real footage's displacement problems saved, then solved again on their
 // own: what a GPU machine runs to compare the devices without the model.
 TEST(Cli, SavedDisplacementProblemsSolveAgainOnTheirOwn) {
