@@ -46,11 +46,20 @@ void Refiner::start_shot() {
   for (Eigen::VectorXf& d : previous_) d = Eigen::VectorXf();
 }
 
+VertexSampler& Refiner::sampler(int half) {
+  if (!sampler_[half]) sampler_[half] = make_vertex_sampler(options_.device);
+  return *sampler_[half];
+}
+
+DisplacementBackend& Refiner::displacement(int half) {
+  if (!displacement_[half]) displacement_[half] = make_displacement_backend(options_.device);
+  return *displacement_[half];
+}
+
 void Refiner::prepare_devices() {
   for (int half = 0; half < 2; ++half) {
-    if (!sampler_[half]) sampler_[half] = make_vertex_sampler(options_.device);
-    if (options_.displacements && !displacement_[half])
-      displacement_[half] = make_displacement_backend(options_.device);
+    sampler(half);
+    if (options_.displacements) displacement(half);
   }
 }
 
@@ -101,10 +110,9 @@ PendingFrame Refiner::begin_frame(const cv::Mat& image, const Positions& coarse,
   Positions md = coarse;
   if (previous_[0].size() == coarse.cols()) md = displaced_positions(coarse, f.coarse_normals, previous_[0]);
   const Positions md_normals = level_normals(level0, md);
-  if (!sampler_[0]) sampler_[0] = make_vertex_sampler(options_.device);
   const auto sampling_start = std::chrono::steady_clock::now();
   VertexSamples samples0 =
-      sampler_[0]->sample(f.image_for(0), md, md_normals, md, level_skin_[0], f.camera_for(0), raster_[0]);
+      sampler(0).sample(f.image_for(0), md, md_normals, md, level_skin_[0], f.camera_for(0), raster_[0]);
   out.timings.sampling_ms += ms_since(sampling_start);
   apply_mask(samples0, data_mask_);
   // Without displacements the displacement pass below has this level, with
@@ -182,13 +190,12 @@ void Refiner::solve_level(int l, PendingFrame& f) {
   // Depth from the coarse mesh, whose surface every level's base is
   // (unless the smoothing mask moved the new vertices off it).
   const bool coarse_depth = !options_.hierarchy.smoothing_mask;
-  if (!sampler_[half]) sampler_[half] = make_vertex_sampler(options_.device);
   const auto sampling_start = std::chrono::steady_clock::now();
   VertexSamples samples = f.undisplaced_samples
                               ? std::move(*f.undisplaced_samples)
-                              : sampler_[half]->sample(f.image_for(l), problem.base, problem.base_normals,
-                                                       coarse_depth ? f.coarse : problem.base,
-                                                       level_skin_[coarse_depth ? 0 : l], f.camera_for(l), raster_[l]);
+                              : sampler(half).sample(f.image_for(l), problem.base, problem.base_normals,
+                                                     coarse_depth ? f.coarse : problem.base,
+                                                     level_skin_[coarse_depth ? 0 : l], f.camera_for(l), raster_[l]);
   f.undisplaced_samples.reset();
   out.timings.sampling_ms += ms_since(sampling_start);
   apply_mask(samples, mask);
@@ -203,9 +210,8 @@ void Refiner::solve_level(int l, PendingFrame& f) {
   f.d = l > 0 ? prolonged : (problem.previous.size() ? problem.previous : Eigen::VectorXf::Zero(level.num_vertices));
   if (options_.displacements) {
     if (options_.on_displacement_problem) options_.on_displacement_problem(f.frame_index, l, problem, f.d);
-    if (!displacement_[half]) displacement_[half] = make_displacement_backend(options_.device);
     const auto solve_start = std::chrono::steady_clock::now();
-    displacement_[half]->solve(problem, f.d, options_.displacement);
+    displacement(half).solve(problem, f.d, options_.displacement);
     out.timings.solve_ms[l] = ms_since(solve_start);
   }
   previous_[l] = f.d;

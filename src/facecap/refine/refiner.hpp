@@ -184,6 +184,10 @@ class Refiner {
   // Solves level l of a frame into it: its base, samples, masks and displacements.
   void solve_level(int l, PendingFrame& frame);
 
+  // Half `half`'s device objects, made when first asked for.
+  VertexSampler& sampler(int half);
+  DisplacementBackend& displacement(int half);
+
   // Per half of a frame (the coarsest level; the finer ones), made when first used.
   std::array<std::unique_ptr<DisplacementBackend>, 2> displacement_;
   std::array<std::unique_ptr<VertexSampler>, 2> sampler_;
