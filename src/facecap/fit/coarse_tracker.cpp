@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "facecap/core/parallel.hpp"
 #include "facecap/fit/identity_size.hpp"
 
 namespace facecap {
@@ -80,9 +81,17 @@ void CoarseTracker::initialize() {
   std::vector<IrisCentres> irises(observed.size());
   bool any_iris = false;
   double search_ms = 0.0;  // the iris searches are not part of the solve's time
+  // The frames' fits are independent (the mean face, no temporal link).
+  parallel_for(
+      static_cast<int>(observed.size()),
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) {
+          fitter_.initialize_frame(observed[i], identity, focal, frames[i]);
+          fitter_.fit_frame(observed[i], identity, focal, nullptr, frames[i]);
+        }
+      },
+      1);
   for (size_t i = 0; i < observed.size(); ++i) {
-    fitter_.initialize_frame(observed[i], identity, focal, frames[i]);
-    fitter_.fit_frame(observed[i], identity, focal, nullptr, frames[i]);
     if (faces[i]->iris_search) {
       const auto search_start = std::chrono::steady_clock::now();
       faces[i]->irises = faces[i]->iris_search(expected_irises(mean_eyes, frames[i].pose(), fitter_.camera(focal)));

@@ -1,7 +1,9 @@
 #include "facecap/fit/face_fitter.hpp"
 
 #include <cmath>
+#include <optional>
 
+#include "facecap/core/parallel.hpp"
 #include "facecap/fit/frame_energy.hpp"
 #include "facecap/fit/frame_solver.hpp"
 #include "facecap/fit/identity_solver.hpp"
@@ -136,17 +138,22 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
   o.sigma_log_focal = options_.still ? options_.weights.sigma_log_focal_still : options_.weights.sigma_log_focal;
   o.max_iterations = 40;
   o.refresh = [&](const std::vector<FrameParameters>& f, const Eigen::VectorXd& id, double current_focal) {
-    for (size_t i = 0; i < f.size(); ++i) {
-      energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(), f[i].pose(),
-                                                            camera(current_focal), observed[i], slide_jaw()));
-    }
-    if (irises == nullptr) return;
     // The gaze's pull, weighed like the frame's other terms, on the current identity's eyeballs.
-    const EyeballGeometry eyes = eyeball_geometry(model_, id);
-    for (size_t i = 0; i < f.size(); ++i) {
-      pull_eye_look(*energies[i], {&eyes, (*irises)[i]}, f[i].pose(), current_focal,
-                    options_.weights.sigma_eye_look / std::sqrt(frame_weight));
-    }
+    std::optional<EyeballGeometry> eyes;
+    if (irises != nullptr) eyes = eyeball_geometry(model_, id);
+    parallel_for(
+        static_cast<int>(f.size()),
+        [&](int b, int e) {
+          for (int i = b; i < e; ++i) {
+            energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(), f[i].pose(),
+                                                                  camera(current_focal), observed[i], slide_jaw()));
+            if (eyes) {
+              pull_eye_look(*energies[i], {&*eyes, (*irises)[i]}, f[i].pose(), current_focal,
+                            options_.weights.sigma_eye_look / std::sqrt(frame_weight));
+            }
+          }
+        },
+        1);
   };
   return solve_identity_joint(energies, frames, identity, focal, o);
 }

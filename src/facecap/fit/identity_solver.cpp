@@ -155,17 +155,27 @@ IdentitySolveReport solve_identity_joint(const std::vector<std::unique_ptr<Frame
       Eigen::MatrixXd schur = u;
       schur.diagonal() += lambda * u.diagonal().cwiseMax(1e-9);
       Eigen::VectorXd rhs = gy;
-      std::vector<Eigen::LDLT<Eigen::MatrixXd>> factors(n);
-      std::vector<Eigen::MatrixXd> ainv_b(n);
-      std::vector<Eigen::VectorXd> ainv_g(n);
+      // Each frame's elimination on its own (in parallel), its terms then
+      // subtracted in frame order, so the sums do not depend on the threads.
+      std::vector<Eigen::MatrixXd> ainv_b(n), schur_terms(n);
+      std::vector<Eigen::VectorXd> ainv_g(n), rhs_terms(n);
+      parallel_for(
+          n,
+          [&](int b, int e) {
+            for (int i = b; i < e; ++i) {
+              Eigen::MatrixXd a = sys[i].a;
+              a.diagonal() += lambda * sys[i].a.diagonal().cwiseMax(1e-9);
+              const Eigen::LDLT<Eigen::MatrixXd> factor(a);
+              ainv_b[i] = factor.solve(sys[i].b);
+              ainv_g[i] = factor.solve(sys[i].g);
+              schur_terms[i].noalias() = sys[i].b.transpose() * ainv_b[i];
+              rhs_terms[i].noalias() = sys[i].b.transpose() * ainv_g[i];
+            }
+          },
+          1);
       for (int i = 0; i < n; ++i) {
-        Eigen::MatrixXd a = sys[i].a;
-        a.diagonal() += lambda * sys[i].a.diagonal().cwiseMax(1e-9);
-        factors[i].compute(a);
-        ainv_b[i] = factors[i].solve(sys[i].b);
-        ainv_g[i] = factors[i].solve(sys[i].g);
-        schur.noalias() -= sys[i].b.transpose() * ainv_b[i];
-        rhs.noalias() -= sys[i].b.transpose() * ainv_g[i];
+        schur -= schur_terms[i];
+        rhs -= rhs_terms[i];
       }
       if (!o.identity_free) {
         // Held: the identity rows decouple and their step is zero; what is
