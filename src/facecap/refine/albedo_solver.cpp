@@ -1,5 +1,7 @@
 #include "facecap/refine/albedo_solver.hpp"
 
+#include <array>
+
 #include "facecap/core/parallel.hpp"
 
 #if FACECAP_HAVE_CUDA
@@ -139,12 +141,16 @@ AlbedoChannels CpuAlbedoSolver::solve(const Eigen::VectorXd& d, const AlbedoChan
       return rd[q] * zd[q];
     });
     const Eigen::Array3d beta = (rz > 1e-20).select(rz_new / rz, 0.0);
+    // Local copies: pd's stores could alias rz and beta, which the compiler
+    // would then read again for every entry.
+    const std::array<double, 3> step = {beta[0], beta[1], beta[2]};
+    const std::array<bool, 3> moving = {rz[0] > 1e-20, rz[1] > 1e-20, rz[2] > 1e-20};
     parallel_for(
         n,
-        [&](int b, int e) {
+        [&, step, moving](int b, int e) {
           for (int i = b; i < e; ++i)
             for (int c = 0; c < 3; ++c)
-              if (rz[c] > 1e-20) pd[3 * i + c] = zd[3 * i + c] + beta[c] * pd[3 * i + c];
+              if (moving[c]) pd[3 * i + c] = zd[3 * i + c] + step[c] * pd[3 * i + c];
         },
         kBlock);
     rz = (rz > 1e-20).select(rz_new, rz);
