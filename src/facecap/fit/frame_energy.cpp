@@ -65,6 +65,7 @@ FrameEnergy::FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, 
   }
   fixed_priors_ = prior_index_.size();
   rows_ = 2 * 68 + static_cast<int>(prior_index_.size());
+  update_shaped();
 }
 
 void FrameEnergy::set_expression_targets(const std::vector<std::pair<int, double>>& targets, double sigma) {
@@ -81,17 +82,45 @@ void FrameEnergy::set_expression_targets(const std::vector<std::pair<int, double
 
 void FrameEnergy::set_correspondences(const Correspondences& correspondences) {
   set_landmark_correspondences(basis_, correspondences, terms_);
+  update_shaped();
+}
+
+void FrameEnergy::set_shared(const Eigen::VectorXd& identity, double focal) {
+  identity_ = identity;
+  focal_ = focal;
+  update_shaped();
+}
+
+void FrameEnergy::update_shaped() {
+  // As LandmarkCost::Evaluate forms it (the same products, so the same bits).
+  const Eigen::Map<const Eigen::VectorXd> a(identity_.data(), identity_.size());
+  for (int i = 0; i < 68; ++i) {
+    const LandmarkTerm& t = terms_[i];
+    shaped_[i] = t.neutral;
+    if (t.identity_rows.cols() > 0 && t.identity_rows.cols() == a.size()) shaped_[i].noalias() += t.identity_rows * a;
+  }
 }
 
 double FrameEnergy::landmark_block(int i, const FrameParameters& x, double* residual, double* jacobian_pose,
                                    double* jacobian_expression, double* jacobian_identity,
                                    double* jacobian_focal) const {
-  const double focal = focal_;
-  const double* params[4] = {x.values.data(), x.values.data() + frame_block::kExpression, identity_.data(), &focal};
-  double* jacobians[4] = {jacobian_pose, jacobian_expression, jacobian_identity, jacobian_focal};
-  if (!costs_[i]->Evaluate(params, residual, jacobian_pose ? jacobians : nullptr)) {
-    residual[0] = residual[1] = 1e6;  // behind the camera
+  bool in_front = false;
+  if (jacobian_identity == nullptr) {
+    // The identity's part of the model point is fixed here (shaped_).
+    const LandmarkTerm& t = terms_[i];
+    const Eigen::Map<const Eigen::VectorXd> w(x.values.data() + frame_block::kExpression, num_expressions_);
+    Eigen::Vector3d point = shaped_[i];
+    point.noalias() += t.expression_rows * w;
+    in_front = jacobian_pose ? project_landmark(t, point, x.values.data(), focal_, residual, jacobian_pose,
+                                                jacobian_expression, nullptr, jacobian_focal)
+                             : project_landmark(t, point, x.values.data(), focal_, residual);
+  } else {
+    const double focal = focal_;
+    const double* params[4] = {x.values.data(), x.values.data() + frame_block::kExpression, identity_.data(), &focal};
+    double* jacobians[4] = {jacobian_pose, jacobian_expression, jacobian_identity, jacobian_focal};
+    in_front = costs_[i]->Evaluate(params, residual, jacobian_pose ? jacobians : nullptr);
   }
+  if (!in_front) residual[0] = residual[1] = 1e6;  // behind the camera
   return residual[0] * residual[0] + residual[1] * residual[1];
 }
 

@@ -41,15 +41,13 @@ class FrameEnergy {
   double linearize(const FrameParameters& x, Eigen::VectorXd& r, Eigen::MatrixXd& jacobian,
                    Eigen::MatrixXd* shared = nullptr) const;
   // Changes the identity and focal the energy is evaluated with.
-  void set_shared(const Eigen::VectorXd& identity, double focal) {
-    identity_ = identity;
-    focal_ = focal;
-  }
+  void set_shared(const Eigen::VectorXd& identity, double focal);
 
   // Exposed for the identity solve, which adds the same landmark terms to Ceres.
   const std::array<LandmarkTerm, 68>& terms() const { return terms_; }
 
  private:
+  void update_shaped();
   double landmark_block(int i, const FrameParameters& x, double* residual, double* jacobian_pose,
                         double* jacobian_expression, double* jacobian_identity = nullptr,
                         double* jacobian_focal = nullptr) const;
@@ -60,6 +58,9 @@ class FrameEnergy {
   double focal_;
   int num_expressions_;
   std::array<LandmarkTerm, 68> terms_;
+  // Each landmark's n + B_id a for the current identity and correspondences:
+  // fixed within a frame's fit, so formed once rather than at every evaluation.
+  std::array<Eigen::Vector3d, 68> shaped_;
   std::vector<std::unique_ptr<LandmarkCost>> costs_;
   std::vector<double> prior_index_, prior_mean_, prior_inv_sigma_;  // diagonal Gaussian rows
   size_t fixed_priors_ = 0;                                         // the rows before those of set_expression_targets

@@ -37,16 +37,23 @@ bool LandmarkCost::Evaluate(double const* const* parameters, double* residuals, 
   const LandmarkTerm& t = *term_;
   const int ne = static_cast<int>(t.expression_rows.cols());
   const int ni = static_cast<int>(t.identity_rows.cols());
-  const double* pose = parameters[0];
-  const Eigen::Map<const Eigen::Vector3d> r(pose + frame_block::kRotation);
-  const Eigen::Map<const Eigen::Vector3d> translation(pose + frame_block::kTranslation);
   const Eigen::Map<const Eigen::VectorXd> w(parameters[1], ne);
   const Eigen::Map<const Eigen::VectorXd> a(parameters[2], ni);
-  const double focal = parameters[3][0];
-
   Eigen::Vector3d x = t.neutral;
   if (ni > 0) x.noalias() += t.identity_rows * a;
   x.noalias() += t.expression_rows * w;
+  if (jacobians == nullptr) return project_landmark(t, x, parameters[0], parameters[3][0], residuals);
+  return project_landmark(t, x, parameters[0], parameters[3][0], residuals, jacobians[0], jacobians[1], jacobians[2],
+                          jacobians[3]);
+}
+
+bool project_landmark(const LandmarkTerm& t, const Eigen::Vector3d& x, const double* pose, double focal,
+                      double* residuals, double* jacobian_pose, double* jacobian_expression, double* jacobian_identity,
+                      double* jacobian_focal) {
+  const int ne = static_cast<int>(t.expression_rows.cols());
+  const int ni = static_cast<int>(t.identity_rows.cols());
+  const Eigen::Map<const Eigen::Vector3d> r(pose + frame_block::kRotation);
+  const Eigen::Map<const Eigen::Vector3d> translation(pose + frame_block::kTranslation);
   const Eigen::Vector3d v(x.x(), -x.y(), -x.z());  // F: model into camera convention
   const Eigen::Matrix3d rotation = rotation_from_axis_angle(r);
   const Eigen::Vector3d y = rotation * v + translation;
@@ -55,7 +62,9 @@ bool LandmarkCost::Evaluate(double const* const* parameters, double* residuals, 
   const double u = y.x() * inv_z, q = y.y() * inv_z;
   residuals[0] = t.inv_sigma * (focal * u + t.principal_point.x() - t.observed.x());
   residuals[1] = t.inv_sigma * (focal * q + t.principal_point.y() - t.observed.y());
-  if (jacobians == nullptr) return true;
+  if (jacobian_pose == nullptr && jacobian_expression == nullptr && jacobian_identity == nullptr &&
+      jacobian_focal == nullptr)
+    return true;
 
   // d residual / d y (2 x 3)
   Eigen::Matrix<double, 2, 3> dr_dy;
@@ -68,22 +77,22 @@ bool LandmarkCost::Evaluate(double const* const* parameters, double* residuals, 
   const Eigen::Matrix<double, 2, 3> dr_dx = dr_dy * rf;
 
   using RowMajor2 = Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor>;
-  if (jacobians[0] != nullptr) {
-    Eigen::Map<Eigen::Matrix<double, 2, 6, Eigen::RowMajor>> j(jacobians[0]);
+  if (jacobian_pose != nullptr) {
+    Eigen::Map<Eigen::Matrix<double, 2, 6, Eigen::RowMajor>> j(jacobian_pose);
     j.block<2, 3>(0, frame_block::kRotation) = dr_dy * rotated_point_jacobian(r, rotation, v);
     j.block<2, 3>(0, frame_block::kTranslation) = dr_dy;
   }
-  if (jacobians[1] != nullptr) {
-    Eigen::Map<RowMajor2> j(jacobians[1], 2, ne);
+  if (jacobian_expression != nullptr) {
+    Eigen::Map<RowMajor2> j(jacobian_expression, 2, ne);
     j.noalias() = dr_dx * t.expression_rows;
   }
-  if (jacobians[2] != nullptr && ni > 0) {
-    Eigen::Map<RowMajor2> j(jacobians[2], 2, ni);
+  if (jacobian_identity != nullptr && ni > 0) {
+    Eigen::Map<RowMajor2> j(jacobian_identity, 2, ni);
     j.noalias() = dr_dx * t.identity_rows;
   }
-  if (jacobians[3] != nullptr) {
-    jacobians[3][0] = t.inv_sigma * u;
-    jacobians[3][1] = t.inv_sigma * q;
+  if (jacobian_focal != nullptr) {
+    jacobian_focal[0] = t.inv_sigma * u;
+    jacobian_focal[1] = t.inv_sigma * q;
   }
   return true;
 }

@@ -32,6 +32,14 @@ class LandmarkCost final : public ceres::CostFunction {
   const LandmarkTerm* term_;
 };
 
+// The landmark's residual (and, where asked, its Jacobians) given its model
+// point x = n + B_id a + B_exp w already formed: what Evaluate does after
+// forming x, for callers that hold the identity's part fixed. pose: the
+// frame block's first 6 entries. False behind the camera.
+bool project_landmark(const LandmarkTerm& term, const Eigen::Vector3d& x, const double* pose, double focal,
+                      double* residuals, double* jacobian_pose = nullptr, double* jacobian_expression = nullptr,
+                      double* jacobian_identity = nullptr, double* jacobian_focal = nullptr);
+
 // d(R(r) v)/dr for the axis-angle r (Gallego & Yezzi 2015): -R [v]x J(r).
 Eigen::Matrix3d rotated_point_jacobian(const Eigen::Vector3d& r, const Eigen::Matrix3d& rotation,
                                        const Eigen::Vector3d& v);
