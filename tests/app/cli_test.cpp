@@ -883,4 +883,21 @@ TEST(Cli, TrackingAndRefinementDoNotDependOnTheThreadCount) {
   EXPECT_TRUE(outputs[0] == outputs[1]) << "the outputs on 1 and 3 threads differ";
 }
 
+// bench swap --tracked-first times the swap on a target captured first, and
+// says so; it is one face's, so --all-faces with it is a usage error.
+TEST(Cli, BenchSwapTrackedFirstTimesTheSwapAloneAndSaysSo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(target, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
+  const std::string args = "bench swap --source " + photo.string() + " --target " + target.string();
+  const RunResult r = run(args + " --tracked-first --max-frames 12");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["swap"]["tracked_first"].get<bool>());
+  EXPECT_EQ(j["swap"]["frames"].get<int>(), 12);
+  EXPECT_GT(j["swap"]["swap_fps"].get<double>(), 0.0);
+  const RunResult both = run(args + " --tracked-first --all-faces");
+  EXPECT_EQ(both.code, 2) << both.out;
+}
+
 }  // namespace facecap

@@ -251,7 +251,13 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   }
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
-  summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) { stream.push(f); });
+  if (options.track_first) {
+    std::vector<CapturedFrame> tracked;
+    summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) { tracked.push_back(f); });
+    for (const CapturedFrame& f : tracked) stream.push(f);
+  } else {
+    summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) { stream.push(f); });
+  }
   stream.finish();
   summary.timings.swap = stream.timings();
   summary.timings.swapped = stream.swapped();
@@ -270,6 +276,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
                                        const std::string& target, const fs::path& output, const SwapJobOptions& options,
                                        const AllFacesOptions& all) {
   if (!options.gltf.empty()) throw Error("--gltf is for one face: it cannot be used with --all-faces");
+  if (options.track_first) throw Error("--tracked-first is for one face: it cannot be used with --all-faces");
   for (const auto& [face, photo] : options.face_sources) {
     if (all.unedited.contains(face))
       throw Error("face " + std::to_string(face) + " is both left as it is (--leave-faces) and given a source");

@@ -54,6 +54,10 @@ struct SwapJobOptions {
   // the covers), as a greyscale video or image frame for frame with the
   // output (matte_output.hpp), marked like it. Empty: none.
   std::filesystem::path matte;
+  // The whole target captured before the swap starts (one face only), so
+  // that the swap's stages run without capture beside them: for `bench swap
+  // --tracked-first`. Holds every frame in memory (about 2.8 MB a 720p frame).
+  bool track_first = false;
   // Called with each output frame (and the target frame it came from).
   std::function<void(const CapturedFrame& target, const SwappedFrame& result)> on_frame;
   // Each output frame as it is written (before encoding), in order, with
