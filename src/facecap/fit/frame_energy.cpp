@@ -92,13 +92,8 @@ void FrameEnergy::set_shared(const Eigen::VectorXd& identity, double focal) {
 }
 
 void FrameEnergy::update_shaped() {
-  // As LandmarkCost::Evaluate forms it (the same products, so the same bits).
   const Eigen::Map<const Eigen::VectorXd> a(identity_.data(), identity_.size());
-  for (int i = 0; i < 68; ++i) {
-    const LandmarkTerm& t = terms_[i];
-    shaped_[i] = t.neutral;
-    if (t.identity_rows.cols() > 0 && t.identity_rows.cols() == a.size()) shaped_[i].noalias() += t.identity_rows * a;
-  }
+  for (int i = 0; i < 68; ++i) shaped_[i] = identity_shaped_point(terms_[i], a);
 }
 
 double FrameEnergy::landmark_block(int i, const FrameParameters& x, double* residual, double* jacobian_pose,
@@ -111,9 +106,8 @@ double FrameEnergy::landmark_block(int i, const FrameParameters& x, double* resi
     const Eigen::Map<const Eigen::VectorXd> w(x.values.data() + frame_block::kExpression, num_expressions_);
     Eigen::Vector3d point = shaped_[i];
     point.noalias() += t.expression_rows * w;
-    in_front = jacobian_pose ? project_landmark(t, point, x.values.data(), focal_, residual, jacobian_pose,
-                                                jacobian_expression, nullptr, jacobian_focal)
-                             : project_landmark(t, point, x.values.data(), focal_, residual);
+    in_front = project_landmark(t, point, x.values.data(), focal_, residual, jacobian_pose, jacobian_expression,
+                                nullptr, jacobian_focal);
   } else {
     const double focal = focal_;
     const double* params[4] = {x.values.data(), x.values.data() + frame_block::kExpression, identity_.data(), &focal};

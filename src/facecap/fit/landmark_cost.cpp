@@ -39,12 +39,17 @@ bool LandmarkCost::Evaluate(double const* const* parameters, double* residuals, 
   const int ni = static_cast<int>(t.identity_rows.cols());
   const Eigen::Map<const Eigen::VectorXd> w(parameters[1], ne);
   const Eigen::Map<const Eigen::VectorXd> a(parameters[2], ni);
-  Eigen::Vector3d x = t.neutral;
-  if (ni > 0) x.noalias() += t.identity_rows * a;
+  Eigen::Vector3d x = identity_shaped_point(t, a);
   x.noalias() += t.expression_rows * w;
   if (jacobians == nullptr) return project_landmark(t, x, parameters[0], parameters[3][0], residuals);
   return project_landmark(t, x, parameters[0], parameters[3][0], residuals, jacobians[0], jacobians[1], jacobians[2],
                           jacobians[3]);
+}
+
+Eigen::Vector3d identity_shaped_point(const LandmarkTerm& t, const Eigen::Map<const Eigen::VectorXd>& a) {
+  Eigen::Vector3d x = t.neutral;
+  if (t.identity_rows.cols() > 0 && t.identity_rows.cols() == a.size()) x.noalias() += t.identity_rows * a;
+  return x;
 }
 
 bool project_landmark(const LandmarkTerm& t, const Eigen::Vector3d& x, const double* pose, double focal,

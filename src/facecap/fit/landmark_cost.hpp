@@ -32,6 +32,11 @@ class LandmarkCost final : public ceres::CostFunction {
   const LandmarkTerm* term_;
 };
 
+// The identity's part of the landmark's model point, n + B_id a (n alone
+// while the term has no identity rows of a's size). Evaluate and callers
+// that hold it fixed form it here alike, so both get the same bits.
+Eigen::Vector3d identity_shaped_point(const LandmarkTerm& term, const Eigen::Map<const Eigen::VectorXd>& a);
+
 // The landmark's residual (and, where asked, its Jacobians) given its model
 // point x = n + B_id a + B_exp w already formed: what Evaluate does after
 // forming x, for callers that hold the identity's part fixed. pose: the

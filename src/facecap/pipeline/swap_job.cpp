@@ -251,13 +251,14 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   }
   CaptureOptions capture = options.capture;
   capture.keep_images = true;
-  if (options.track_first) {
-    std::vector<CapturedFrame> tracked;
-    summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) { tracked.push_back(f); });
-    for (const CapturedFrame& f : tracked) stream.push(f);
-  } else {
-    summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) { stream.push(f); });
-  }
+  std::vector<CapturedFrame> tracked;  // with track_first: the whole target, swapped once captured
+  summary.target = run_capture(model, *setup.input, capture, [&](const CapturedFrame& f) {
+    if (options.track_first)
+      tracked.push_back(f);
+    else
+      stream.push(f);
+  });
+  for (const CapturedFrame& f : tracked) stream.push(f);
   stream.finish();
   summary.timings.swap = stream.timings();
   summary.timings.swapped = stream.swapped();
