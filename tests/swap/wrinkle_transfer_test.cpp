@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 
 #include "swap/square_grid.hpp"
@@ -54,6 +55,34 @@ TEST(CoatingTransfer, AFurrowMovesOntoAnotherShape) {
     depth += std::abs(expected(2, v) - source_base(2, v));
   }
   EXPECT_LT(err, 0.2 * depth);  // the shape of the furrow, not noise
+}
+
+TEST(CoatingTransfer, SolvesItsLeastSquaresProblem) {
+  // ||L x - (L base + coating)||^2 + mu ||x - base||^2, solved densely in
+  // double precision with L the uniform graph Laplacian of the grid.
+  const std::vector<Triangle> triangles = test::square_grid(kN);
+  const int n = (kN + 1) * (kN + 1);
+  const double mu = 0.01;
+  const CoatingTransfer t(triangles, n, mu);
+  const VertexAdjacency adj = vertex_adjacency(triangles, n);
+  Eigen::MatrixXd l = Eigen::MatrixXd::Identity(n, n);
+  for (int v = 0; v < n; ++v)
+    for (int k = adj.offsets[v]; k < adj.offsets[v + 1]; ++k) l(v, adj.indices[k]) = -1.0 / adj.degree(v);
+  const Positions base = sheet(2.0f, 0.0f);
+  Positions coating = t.coating(sheet(2.0f, -0.3f), base);
+  // Some tangential coating too.
+  coating.row(0) += 0.01f * Eigen::RowVectorXf::LinSpaced(n, -1.0f, 1.0f);
+  coating.row(1) += 0.01f * Eigen::RowVectorXf::LinSpaced(n, 0.0f, 20.0f).array().sin().matrix();
+  const Eigen::MatrixXd b = base.transpose().cast<double>();
+  const Eigen::MatrixXd rhs = l.transpose() * (l * b + coating.transpose().cast<double>()) + mu * b;
+  const Eigen::MatrixXd expected = (l.transpose() * l + mu * Eigen::MatrixXd::Identity(n, n)).ldlt().solve(rhs);
+  const Eigen::MatrixXd displacement = expected - b;
+  const Eigen::MatrixXd got = t.solve(base, coating).transpose().cast<double>();
+  // Within single precision of the largest displacement (0.3 cm here) and
+  // of the positions it is added to (up to 5 cm).
+  EXPECT_LT((got - expected).cwiseAbs().maxCoeff(), 1e-4 * displacement.cwiseAbs().maxCoeff() + 5 * 2.4e-7);
+  // Every coordinate moves as it should, not only the depth.
+  for (int k = 0; k < 3; ++k) EXPECT_GT(displacement.col(k).cwiseAbs().maxCoeff(), 1e-4) << k;
 }
 
 TEST(CoatingTransfer, RotationTakesOneNormalToTheOther) {
