@@ -4,6 +4,8 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "facecap/core/parallel.hpp"
+
 namespace facecap {
 
 std::vector<cv::Point2f> window_border(const cv::Rect& w) {
@@ -79,39 +81,47 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
   const auto border = window_border(window);
   src.insert(src.end(), border.begin(), border.end());
   dst.insert(dst.end(), border.begin(), border.end());
-  // Identity map, then each destination triangle samples its source triangle.
+  // Identity map, then each destination triangle samples its source
+  // triangle (a later triangle overwriting an earlier one on their shared
+  // edge). On the pool in bands of rows, each band visiting the triangles in
+  // their order, so the map does not depend on the thread count.
   map_x_.create(window.size(), CV_32F);
   map_y_.create(window.size(), CV_32F);
-  for (int y = 0; y < window.height; ++y) {
-    float* mx = map_x_.ptr<float>(y);
-    float* my = map_y_.ptr<float>(y);
-    for (int x = 0; x < window.width; ++x) {
-      mx[x] = float(window.x + x);
-      my[x] = float(window.y + y);
-    }
-  }
-  for (const cv::Vec3i& t : triangles_) {
-    const cv::Point2f d[3] = {dst[t[0]], dst[t[1]], dst[t[2]]};
-    const cv::Point2f s[3] = {src[t[0]], src[t[1]], src[t[2]]};
-    const float area = (d[1].x - d[0].x) * (d[2].y - d[0].y) - (d[1].y - d[0].y) * (d[2].x - d[0].x);
-    if (std::abs(area) < 1e-3f) continue;
-    const int x0 = std::max(window.x, int(std::floor(std::min({d[0].x, d[1].x, d[2].x}))));
-    const int x1 = std::min(window.x + window.width - 1, int(std::ceil(std::max({d[0].x, d[1].x, d[2].x}))));
-    const int y0 = std::max(window.y, int(std::floor(std::min({d[0].y, d[1].y, d[2].y}))));
-    const int y1 = std::min(window.y + window.height - 1, int(std::ceil(std::max({d[0].y, d[1].y, d[2].y}))));
-    for (int y = y0; y <= y1; ++y) {
-      float* mx = map_x_.ptr<float>(y - window.y);
-      float* my = map_y_.ptr<float>(y - window.y);
-      for (int x = x0; x <= x1; ++x) {
-        const float w0 = ((d[1].x - x) * (d[2].y - y) - (d[1].y - y) * (d[2].x - x)) / area;
-        const float w1 = ((d[2].x - x) * (d[0].y - y) - (d[2].y - y) * (d[0].x - x)) / area;
-        const float w2 = 1.0f - w0 - w1;
-        if (w0 < -1e-4f || w1 < -1e-4f || w2 < -1e-4f) continue;
-        mx[x - window.x] = w0 * s[0].x + w1 * s[1].x + w2 * s[2].x;
-        my[x - window.x] = w0 * s[0].y + w1 * s[1].y + w2 * s[2].y;
-      }
-    }
-  }
+  parallel_for(
+      window.height,
+      [&](int band_begin, int band_end) {
+        for (int y = band_begin; y < band_end; ++y) {
+          float* mx = map_x_.ptr<float>(y);
+          float* my = map_y_.ptr<float>(y);
+          for (int x = 0; x < window.width; ++x) {
+            mx[x] = float(window.x + x);
+            my[x] = float(window.y + y);
+          }
+        }
+        for (const cv::Vec3i& t : triangles_) {
+          const cv::Point2f d[3] = {dst[t[0]], dst[t[1]], dst[t[2]]};
+          const cv::Point2f s[3] = {src[t[0]], src[t[1]], src[t[2]]};
+          const float area = (d[1].x - d[0].x) * (d[2].y - d[0].y) - (d[1].y - d[0].y) * (d[2].x - d[0].x);
+          if (std::abs(area) < 1e-3f) continue;
+          const int x0 = std::max(window.x, int(std::floor(std::min({d[0].x, d[1].x, d[2].x}))));
+          const int x1 = std::min(window.x + window.width - 1, int(std::ceil(std::max({d[0].x, d[1].x, d[2].x}))));
+          const int y0 = std::max(window.y + band_begin, int(std::floor(std::min({d[0].y, d[1].y, d[2].y}))));
+          const int y1 = std::min(window.y + band_end - 1, int(std::ceil(std::max({d[0].y, d[1].y, d[2].y}))));
+          for (int y = y0; y <= y1; ++y) {
+            float* mx = map_x_.ptr<float>(y - window.y);
+            float* my = map_y_.ptr<float>(y - window.y);
+            for (int x = x0; x <= x1; ++x) {
+              const float w0 = ((d[1].x - x) * (d[2].y - y) - (d[1].y - y) * (d[2].x - x)) / area;
+              const float w1 = ((d[2].x - x) * (d[0].y - y) - (d[2].y - y) * (d[0].x - x)) / area;
+              const float w2 = 1.0f - w0 - w1;
+              if (w0 < -1e-4f || w1 < -1e-4f || w2 < -1e-4f) continue;
+              mx[x - window.x] = w0 * s[0].x + w1 * s[1].x + w2 * s[2].x;
+              my[x - window.x] = w0 * s[0].y + w1 * s[1].y + w2 * s[2].y;
+            }
+          }
+        }
+      },
+      32);
   cv::remap(frame, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
 }
 
