@@ -198,6 +198,7 @@ TEST(SwapJob, WrinklePredictionShadesTheNewFaceOnly) {
   o.on_frame = [&](const CapturedFrame&, const SwappedFrame& r) { wrinkled.push_back(r.image.clone()); };
   const SwapSummary s = run_swap(*model, photo.string(), video.string(), dir.path() / "wrinkled.mp4", o);
   EXPECT_GT(s.timings.swap.wrinkle_ms, 0.0);
+  EXPECT_GT(s.timings.swap.wrinkle_setup_ms, 0.0);  // the factorisation, timed apart
   ASSERT_EQ(plain.size(), wrinkled.size());
   // Outside the face window the frames are the target's in both.
   cv::Mat outside(plain.back().size(), CV_8U, cv::Scalar(255));

@@ -341,6 +341,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     sum.warp_ms += t.warp_ms;
     sum.blend_ms += t.blend_ms;
     sum.wrinkle_ms += t.wrinkle_ms;
+    sum.wrinkle_setup_ms += t.wrinkle_setup_ms;
     sum.ratio_ms += t.ratio_ms;
     sum.occlusion_ms += t.occlusion_ms;
     summary.timings.lighting_ms += stream.lighting_ms();

@@ -211,19 +211,23 @@ struct FaceSwapper::Impl {
   // into the swapped mesh's tangent frames and solved for, shades the render:
   // each pixel is scaled by the SH shading of the wrinkled surface over that
   // of the coarse one (the texture already holds the photo's static detail).
-  void add_wrinkles(const TargetFrame& target, const Positions& target_points, const Positions& swapped_points,
-                    const PinholeCamera& window, cv::Mat& render) {
+  // Returns the milliseconds spent setting the transfer up (the first call).
+  double add_wrinkles(const TargetFrame& target, const Positions& target_points, const Positions& swapped_points,
+                      const PinholeCamera& window, cv::Mat& render) {
     const MeshHierarchy& h = *target.hierarchy;
     const int finest = h.num_levels() - 1;
     const MeshLevel& level = h.level(finest);
-    if (target.fine.cols() != level.num_vertices) return;
+    if (target.fine.cols() != level.num_vertices) return 0.0;
+    double setup_ms = 0;
     if (!coating) {
+      const auto setup_start = std::chrono::steady_clock::now();
       coating = std::make_unique<CoatingTransfer>(level.triangles, level.num_vertices);
       reference.emplace(source.expression);
       std::vector<bool> skin_vertices(skin.num_vertices, false);
       for (const Triangle& tri : skin.triangles)
         for (int v : tri) skin_vertices[v] = true;
       fine_skin = masked_triangles(level.triangles, h.prolong_mask(skin_vertices, finest));
+      setup_ms = ms_since(setup_start);
     }
     const Positions base_target = h.prolong_from_coarse(target_points, finest);
     const Positions base_swapped = h.prolong_from_coarse(swapped_points, finest);
@@ -255,6 +259,7 @@ struct FaceSwapper::Impl {
           }
         },
         16);
+    return setup_ms;
   }
 
   // Eq. 6.3-6.5 with the target frames seen so far.
@@ -479,8 +484,9 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
 
   if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {
     t0 = std::chrono::steady_clock::now();
-    m.add_wrinkles(target, target_points, swapped_points, window, render);
-    t.wrinkle_ms += ms_since(t0);
+    const double setup_ms = m.add_wrinkles(target, target_points, swapped_points, window, render);
+    t.wrinkle_setup_ms += setup_ms;
+    t.wrinkle_ms += ms_since(t0) - setup_ms;
   }
 
   // §6.3: the target background warped to the swapped face's outline.

@@ -129,13 +129,14 @@ struct TargetFrame {
 };
 
 struct SwapTimings {
-  double appearance_ms = 0;  // texture of the target frame and harmonisation (first frames only)
-  double render_ms = 0;      // both meshes, the target light's colour and residual shading, the render
-  double warp_ms = 0;        // background warp
-  double blend_ms = 0;       // alpha blending
-  double wrinkle_ms = 0;     // coating transfer and its shading (with SwapOptions::wrinkles)
-  double ratio_ms = 0;       // the target's unshading and change (with SwapOptions::expression_ratio)
-  double occlusion_ms = 0;   // what covers the target face (with SwapOptions::keep_occluders)
+  double appearance_ms = 0;     // texture of the target frame and harmonisation (first frames only)
+  double render_ms = 0;         // both meshes, the target light's colour and residual shading, the render
+  double warp_ms = 0;           // background warp
+  double blend_ms = 0;          // alpha blending
+  double wrinkle_ms = 0;        // coating transfer and its shading (with SwapOptions::wrinkles)
+  double wrinkle_setup_ms = 0;  // the transfer's factorisation, once a shot (not in wrinkle_ms)
+  double ratio_ms = 0;          // the target's unshading and change (with SwapOptions::expression_ratio)
+  double occlusion_ms = 0;      // what covers the target face (with SwapOptions::keep_occluders)
 };
 
 struct SwappedFrame {
