@@ -5,23 +5,14 @@
 #include <cmath>
 
 #include "facecap/swap/wrinkle_transfer.hpp"
+#include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
 
 namespace facecap {
 namespace {
 
 constexpr int kCells = 181;  // (181 + 1)^2 = 33124 vertices
 
-std::vector<Triangle> grid_triangles() {
-  std::vector<Triangle> t;
-  for (int y = 0; y < kCells; ++y) {
-    for (int x = 0; x < kCells; ++x) {
-      const int a = y * (kCells + 1) + x, b = a + 1, c = a + kCells + 1, d = c + 1;
-      t.push_back({a, b, d});
-      t.push_back({a, d, c});
-    }
-  }
-  return t;
-}
+std::vector<Triangle> grid_triangles() { return test::square_grid(kCells); }
 
 // A curved sheet 10 cm across; `furrows` adds fine ripples.
 Positions sheet(float furrows) {
