@@ -28,7 +28,7 @@ CapturedFrame lost_frame(int index) {
 // one handed between them), and the stage never waits for a frame.
 TEST(RefineStage, ASlowStageMakesCaptureWaitAndSaysSo) {
   FACECAP_REQUIRE_MODEL(model);
-  constexpr int kFrames = 12;
+  constexpr int kFrames = 16;
   int consumed = 0;
   RefineStage stage(*model, RefineOptions{}, [&](const RefinedFrame&) {
     std::this_thread::sleep_for(milliseconds(10));
@@ -40,8 +40,9 @@ TEST(RefineStage, ASlowStageMakesCaptureWaitAndSaysSo) {
   EXPECT_EQ(consumed, kFrames);
   EXPECT_EQ(stage.frames(), kFrames);
   EXPECT_EQ(stage.refined_frames(), 0);
-  // The last 6 pushes wait for a 10 ms frame each.
-  EXPECT_GT(t.push_wait_ms, 50.0);
+  // The stage holds 8 frames (3 queued, 1 on each of its three threads and 1
+  // between each two of them); the last 8 pushes wait for a 10 ms frame each.
+  EXPECT_GT(t.push_wait_ms, 60.0);
   EXPECT_GE(t.consumer_ms, 10.0 * kFrames);
   EXPECT_GE(t.first_to_last_ms, t.consumer_ms);
   EXPECT_LT(t.idle_ms, t.consumer_ms);

@@ -11,16 +11,20 @@ RefineStage::RefineStage(const FaceModel& model, const RefineOptions& options, C
       consumer_(std::move(consumer)),
       queue_(static_cast<size_t>(queue_size)),
       handoff_(1),
+      refined_frames_(1),
       started_(std::chrono::steady_clock::now()),
+      consumer_thread_([this] { run_consumer(); }),
       second_half_([this] { run_second_half(); }),
       first_half_([this] { run_first_half(); }) {}
 
 RefineStage::~RefineStage() {
-  queue_.close();
-  handoff_.close();
-  fail(nullptr);  // wakes a first thread waiting for the second to drain
-  if (first_half_.joinable()) first_half_.join();
-  if (second_half_.joinable()) second_half_.join();
+  fail(nullptr);  // closes the queues and wakes a first thread waiting for the others to drain
+  join_all();
+}
+
+void RefineStage::join_all() {
+  for (std::jthread* t : {&first_half_, &second_half_, &consumer_thread_})
+    if (t->joinable()) t->join();
 }
 
 void RefineStage::fail(std::exception_ptr error) {
@@ -32,6 +36,7 @@ void RefineStage::fail(std::exception_ptr error) {
   drained_.notify_all();
   queue_.close();
   handoff_.close();
+  refined_frames_.close();
 }
 
 std::exception_ptr RefineStage::error() const {
@@ -50,16 +55,15 @@ void RefineStage::push(const CapturedFrame& frame) {
 
 void RefineStage::finish() {
   queue_.close();
-  if (first_half_.joinable()) first_half_.join();
-  if (second_half_.joinable()) second_half_.join();
+  join_all();
   timings_.refine_ms = first_.refine_ms + second_.refine_ms;
   timings_.coarse_ms = first_.coarse_ms;
-  timings_.consumer_ms = first_.consumer_ms + second_.consumer_ms;
+  timings_.consumer_ms = first_.consumer_ms + third_.consumer_ms;
   timings_.startup_ms = first_.startup_ms;
   timings_.first_refine_ms = first_.first_refine_ms;
   timings_.idle_ms = first_.idle_ms;
   timings_.push_wait_ms = push_wait_ms_;
-  timings_.first_to_last_ms = second_.first_to_last_ms;
+  timings_.first_to_last_ms = third_.first_to_last_ms;
   if (const auto e = error()) std::rethrow_exception(e);
 }
 
@@ -121,23 +125,35 @@ void RefineStage::run_first_half() {
   }
 }
 
-// The refinement's second half of each frame, then the consumer, in frame order.
+// The refinement's second half of each frame, in frame order.
 void RefineStage::run_second_half() {
-  using Clock = std::chrono::steady_clock;
   try {
     while (std::optional<Handoff> h = handoff_.pop()) {
       RefinedFrame& out = h->frame;
-      auto t0 = Clock::now();
       if (h->pending) {
+        const auto t0 = std::chrono::steady_clock::now();
         out.refinement = refiner_.finish_frame(std::move(*h->pending));
         second_.refine_ms += ms_since(t0);
       }
-      t0 = Clock::now();
-      consumer_(out);
+      if (!refined_frames_.push(std::move(out))) break;  // the third thread failed
+    }
+    refined_frames_.close();
+  } catch (...) {
+    fail(std::current_exception());
+  }
+}
+
+// The consumer, on each refined frame in frame order.
+void RefineStage::run_consumer() {
+  using Clock = std::chrono::steady_clock;
+  try {
+    while (std::optional<RefinedFrame> out = refined_frames_.pop()) {
+      const Clock::time_point t0 = Clock::now();
+      consumer_(*out);
       const Clock::time_point end = Clock::now();
-      second_.consumer_ms += std::chrono::duration<double, std::milli>(end - t0).count();
-      // first_frame_ was set before the first hand-off, which the queue's lock orders before this.
-      second_.first_to_last_ms = std::chrono::duration<double, std::milli>(end - first_frame_).count();
+      third_.consumer_ms += std::chrono::duration<double, std::milli>(end - t0).count();
+      // first_frame_ was set before the first hand-off, which the queues' locks order before this.
+      third_.first_to_last_ms = std::chrono::duration<double, std::milli>(end - first_frame_).count();
       {
         const std::lock_guard lock(mutex_);
         ++finished_;

@@ -2,10 +2,11 @@
 // The refinement stage of capture (§4.4.1: coarse tracking and refinement
 // run concurrently on consecutive frames): it takes tracked frames from a
 // bounded queue, refines them, and hands each result, in frame order, to a
-// consumer (the track job's writers). Two threads share the refinement in a
-// pipeline of their own: the first solves a frame's lighting, albedo and
+// consumer (the track job's writers, a swap). Three threads share the work in
+// a pipeline of their own: the first solves a frame's lighting, albedo and
 // coarsest level (Refiner::begin_frame) while the second solves the previous
-// frame's finer levels (Refiner::finish_frame) and runs the consumer.
+// frame's finer levels (Refiner::finish_frame) and the third runs the
+// consumer on the frame before that.
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -47,7 +48,7 @@ struct RefineStageTimings {
 class RefineStage {
  public:
   using Consumer = std::function<void(const RefinedFrame&)>;
-  // The consumer runs on the stage's second thread.
+  // The consumer runs on the stage's third thread.
   RefineStage(const FaceModel& model, const RefineOptions& options, Consumer consumer, int queue_size = 3);
   ~RefineStage();
 
@@ -81,7 +82,9 @@ class RefineStage {
   };
   void run_first_half();
   void run_second_half();
-  // Blocks the first thread until the second has handed on every frame given to it.
+  void run_consumer();
+  void join_all();
+  // Blocks the first thread until the consumer has taken every frame handed on.
   void wait_until_drained();
   void fail(std::exception_ptr error);
   std::exception_ptr error() const;
@@ -92,19 +95,20 @@ class RefineStage {
   std::function<void()> shot_end_;
   BoundedQueue<CapturedFrame> queue_;
   BoundedQueue<Handoff> handoff_;
-  mutable std::mutex mutex_;  // error_, handed_, finished_, failed_
+  BoundedQueue<RefinedFrame> refined_frames_;  // from the second thread to the third
+  mutable std::mutex mutex_;                   // error_, handed_, finished_, failed_
   std::condition_variable drained_;
   std::exception_ptr error_;
   int handed_ = 0, finished_ = 0;
   bool failed_ = false;
   // Each thread's own accounting, joined into timings_ by finish().
-  RefineStageTimings first_, second_, timings_;
+  RefineStageTimings first_, second_, third_, timings_;
   double push_wait_ms_ = 0;  // push()'s caller's
   std::chrono::steady_clock::time_point started_, first_frame_;
   int refined_ = 0;
   int frames_ = 0;
-  int shot_ = 0;                           // of the last frame (CapturedFrame::shot)
-  std::jthread second_half_, first_half_;  // last: they start once everything else is made
+  int shot_ = 0;                                             // of the last frame (CapturedFrame::shot)
+  std::jthread consumer_thread_, second_half_, first_half_;  // last: they start once everything else is made
 };
 
 }  // namespace facecap
