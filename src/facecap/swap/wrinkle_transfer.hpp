@@ -49,7 +49,9 @@ class CoatingTransfer {
   CoatingTransfer& operator=(CoatingTransfer&&) noexcept;
 
   Positions laplacian(const Positions& points) const;  // uniform graph Laplacian, per vertex
-  Positions coating(const Positions& fine, const Positions& base) const { return laplacian(fine) - laplacian(base); }
+  // L(fine) - L(base), as L(fine - base): one product, without the
+  // cancellation of two positions' Laplacians.
+  Positions coating(const Positions& fine, const Positions& base) const { return laplacian(fine - base); }
   // Eq. 6.1: the mesh whose Laplacian is L(base) + coating, anchored softly to base.
   Positions solve(const Positions& base, const Positions& coating) const;
 
