@@ -53,7 +53,7 @@ class RefineStage {
   ~RefineStage();
 
   // Runs on the stage's first thread at a shot cut, after the last shot's
-  // last frame reached the consumer (the second thread waits meanwhile) and
+  // last frame reached the consumer (the other two threads wait meanwhile) and
   // before the refiner starts its albedo and lighting again: what a consumer
   // keeps per shot (the glTF's albedo) is still the last shot's here. Set it
   // before the first push().
