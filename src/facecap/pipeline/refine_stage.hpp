@@ -59,9 +59,9 @@ class RefineStage {
   // before the first push().
   void on_shot_end(std::function<void()> hook) { shot_end_ = std::move(hook); }
 
-  // Queues a frame (blocks while the queue is full). Rethrows a failure of either thread.
+  // Queues a frame (blocks while the queue is full). Rethrows a failure of any of its threads.
   void push(const CapturedFrame& frame);
-  // Waits for the queue to drain; rethrows a failure of either thread.
+  // Waits for the queue to drain; rethrows a failure of any of its threads.
   void finish();
 
   // The refiner's hierarchy may be read at any time once the first frame was
