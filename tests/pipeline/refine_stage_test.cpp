@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <stdexcept>
 #include <thread>
 
 #include "test_support.hpp"
@@ -24,8 +25,8 @@ CapturedFrame lost_frame(int index) {
 }  // namespace
 
 // A consumer slower than capture: capture waits in push() once the stage's
-// six places are full (the queue of 3, a frame in each of its two threads and
-// one handed between them), and the stage never waits for a frame.
+// eight places are full (the queue of 3, a frame in each of its three threads
+// and one handed between each two), and the stage never waits for a frame.
 TEST(RefineStage, ASlowStageMakesCaptureWaitAndSaysSo) {
   FACECAP_REQUIRE_MODEL(model);
   constexpr int kFrames = 16;
@@ -40,8 +41,7 @@ TEST(RefineStage, ASlowStageMakesCaptureWaitAndSaysSo) {
   EXPECT_EQ(consumed, kFrames);
   EXPECT_EQ(stage.frames(), kFrames);
   EXPECT_EQ(stage.refined_frames(), 0);
-  // The stage holds 8 frames (3 queued, 1 on each of its three threads and 1
-  // between each two of them); the last 8 pushes wait for a 10 ms frame each.
+  // The last 8 pushes wait for a 10 ms frame each.
   EXPECT_GT(t.push_wait_ms, 60.0);
   EXPECT_GE(t.consumer_ms, 10.0 * kFrames);
   EXPECT_GE(t.first_to_last_ms, t.consumer_ms);
@@ -65,6 +65,27 @@ TEST(RefineStage, ASlowCaptureLeavesTheStageIdleAfterItsStartUp) {
   EXPECT_GE(t.startup_ms, 30.0);
   EXPECT_GE(t.idle_ms, 10.0 * (kFrames - 3));  // 5 gaps of 10 ms, less scheduling delays
   EXPECT_LT(t.consumer_ms, t.idle_ms);
+}
+
+// A consumer that fails (a full disk under a writer) stops the stage: the
+// failure reaches capture's thread, from push() or finish(), and the frames
+// after it are not consumed.
+TEST(RefineStage, AConsumersFailureReachesCapture) {
+  FACECAP_REQUIRE_MODEL(model);
+  int consumed = 0;
+  RefineStage stage(*model, RefineOptions{}, [&](const RefinedFrame& r) {
+    if (r.frame.index == 3) throw std::runtime_error("disk full");
+    ++consumed;
+  });
+  std::string message;
+  try {
+    for (int i = 0; i < 40; ++i) stage.push(lost_frame(i));
+    stage.finish();
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, "disk full");
+  EXPECT_EQ(consumed, 3);
 }
 
 }  // namespace facecap
