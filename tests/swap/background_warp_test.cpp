@@ -84,4 +84,77 @@ TEST(BackgroundWarp, TheBackgroundBeyondTheRingStaysPut) {
   }
 }
 
+// An anchor moved past its neighbours (a new face's point crossing the
+// target's outline) must not tear the map: a triangle laid out on the
+// target's points turns over in the destination, overlaps its neighbours
+// and leaves pixels that keep the unwarped frame. The frame holds each
+// pixel's own coordinates, so the output is the map itself.
+TEST(BackgroundWarp, AnAnchorMovedPastItsNeighboursLeavesNoTear) {
+  cv::Mat frame(200, 240, CV_32FC3);
+  for (int y = 0; y < frame.rows; ++y)
+    for (int x = 0; x < frame.cols; ++x) frame.at<cv::Vec3f>(y, x) = cv::Vec3f(float(x), float(y), 0);
+  const auto from = ring({120, 100}, 40, 12);  // the centre is the last point
+  std::vector<cv::Point2f> to = from;
+  to.back() = {172, 104};  // past the ring's point at (160, 100)
+  const cv::Rect window(40, 20, 160, 160);
+  BackgroundWarp warp;
+  cv::Mat out;
+  warp.warp(frame, from, to, window, out);
+  // Neighbouring pixels sample the frame at most a few pixels apart (the
+  // warp stretches nothing more than 40 px of source over 12 px), where a
+  // tear puts an unwarped pixel next to one carried 50 px.
+  double worst = 0;
+  for (int y = 0; y + 1 < out.rows; ++y) {
+    for (int x = 0; x + 1 < out.cols; ++x) {
+      const cv::Vec3f p = out.at<cv::Vec3f>(y, x);
+      for (const cv::Vec3f& q : {out.at<cv::Vec3f>(y, x + 1), out.at<cv::Vec3f>(y + 1, x)})
+        worst = std::max(worst, double(cv::norm(p - q)));
+    }
+  }
+  EXPECT_LT(worst, 8.0);
+  // The moved anchor carries the frame's centre with it.
+  const cv::Vec3f at_anchor = out.at<cv::Vec3f>(104 - window.y, 172 - window.x);
+  EXPECT_NEAR(at_anchor[0], 120.0f, 1.0f);
+  EXPECT_NEAR(at_anchor[1], 100.0f, 1.0f);
+}
+
+// Anchors turned away from the camera in either face are left out; those
+// without a normal (past the skin mesh) are kept.
+TEST(BackgroundWarp, AnchorsTurnedAwayInEitherFaceAreLeftOut) {
+  // Camera space, the camera at the origin looking down +z.
+  Positions target(3, 4), swapped(3, 4), target_normals(3, 4), swapped_normals(3, 4);
+  target << 0, 1, 2, 0,  //
+      0, 0, 0, 0,        //
+      50, 52, 50, 50;
+  swapped = target;
+  target_normals << 0, 0, 0, 0,  //
+      0, 0, 0, 0,                //
+      -1, 1, -1, -1;             // vertex 1 faces away from the camera
+  swapped_normals = target_normals;
+  swapped_normals.col(2) = Vec3f(0, 0, 1);  // vertex 2 turns away in the new face only
+  const std::vector<bool> shown =
+      anchors_facing({0, 1, 2, 7}, target, target_normals, swapped, swapped_normals, /*skin_vertices=*/4);
+  EXPECT_EQ(shown, (std::vector<bool>{true, false, false, true}));
+  // A grazing normal that still faces the camera is kept.
+  target_normals.col(0) = Vec3f(0.999f, 0, -0.045f);
+  swapped_normals.col(0) = target_normals.col(0);
+  EXPECT_TRUE(anchors_facing({0}, target, target_normals, swapped, swapped_normals, 4)[0]);
+}
+
+// An anchor outside the window (a face cut off by the frame's edge) does
+// not drag the window's border, which holds still.
+TEST(BackgroundWarp, AnAnchorOutsideTheWindowIsLeftOut) {
+  const cv::Mat frame = textured();
+  auto from = ring({120, 100}, 40, 12);
+  auto to = from;
+  from.emplace_back(80, 5);  // above the window's top edge (y = 20)
+  to.emplace_back(84, 2);
+  const cv::Rect window(40, 20, 160, 160);
+  BackgroundWarp warp;
+  cv::Mat out;
+  warp.warp(frame, from, to, window, out);
+  for (int x = 60; x <= 100; x += 10)
+    EXPECT_EQ(out.at<cv::Vec3b>(0, x - window.x), frame.at<cv::Vec3b>(window.y, x)) << x;
+}
+
 }  // namespace facecap

@@ -40,16 +40,11 @@ std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const 
   return ring;
 }
 
-void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& anchors, const cv::Rect& window) {
-  std::vector<cv::Point2f> points = anchors;
-  const auto border = window_border(window);
-  points.insert(points.end(), border.begin(), border.end());
+void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& points, const cv::Rect& window) {
   cv::Subdiv2D subdiv(cv::Rect(window.x - 2, window.y - 2, window.width + 4, window.height + 4));
   std::vector<int> id_of;  // Subdiv2D vertex id -> our point index
   for (size_t i = 0; i < points.size(); ++i) {
-    cv::Point2f p(std::clamp(points[i].x, float(window.x), float(window.x + window.width - 1)),
-                  std::clamp(points[i].y, float(window.y), float(window.y + window.height - 1)));
-    const int id = subdiv.insert(p);
+    const int id = subdiv.insert(points[i]);
     if (id >= static_cast<int>(id_of.size())) id_of.resize(id + 1, -1);
     id_of[id] = static_cast<int>(i);  // a duplicate point maps to its last index
   }
@@ -72,15 +67,27 @@ void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& anchors, const 
 void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from,
                           const std::vector<cv::Point2f>& to, cv::Rect window, cv::Mat& out) {
   window &= cv::Rect(0, 0, frame.cols, frame.rows);
-  // Anchors, then the fixed ring (the same points in both sets), then the border.
-  std::vector<cv::Point2f> src = from, dst = to;
-  const auto ring = fixed_ring(from, to, window);
-  src.insert(src.end(), ring.begin(), ring.end());
-  dst.insert(dst.end(), ring.begin(), ring.end());
-  if (triangles_.empty()) triangulate(src, window);
+  // Anchors, then the fixed ring (the same points in both sets), then the
+  // border. An anchor outside the window in either face (one cut off by the
+  // frame's edge) is left out, since the border holds still: all the
+  // destination points lie in the window, and their triangles tile it.
+  std::vector<cv::Point2f> src, dst;
+  const auto inside = [&](const cv::Point2f& p) {
+    return p.x >= window.x && p.y >= window.y && p.x <= window.x + window.width - 1 &&
+           p.y <= window.y + window.height - 1;
+  };
+  for (size_t k = 0; k < std::min(from.size(), to.size()); ++k) {
+    if (!inside(from[k]) || !inside(to[k])) continue;
+    src.push_back(from[k]);
+    dst.push_back(to[k]);
+  }
+  const auto ring = fixed_ring(src, dst, window);
   const auto border = window_border(window);
-  src.insert(src.end(), border.begin(), border.end());
-  dst.insert(dst.end(), border.begin(), border.end());
+  for (const auto* fixed : {&ring, &border}) {
+    src.insert(src.end(), fixed->begin(), fixed->end());
+    dst.insert(dst.end(), fixed->begin(), fixed->end());
+  }
+  triangulate(dst, window);
   // Identity map, then each destination triangle samples its source
   // triangle (a later triangle overwriting an earlier one on their shared
   // edge). On the pool in bands of rows, each band visiting the triangles in
@@ -123,6 +130,21 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
       },
       32);
   cv::remap(frame, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+}
+
+std::vector<bool> anchors_facing(const std::vector<int>& anchors, const Positions& target_points,
+                                 const Positions& target_normals, const Positions& swapped_points,
+                                 const Positions& swapped_normals, int skin_vertices) {
+  const auto faces_camera = [](const Positions& points, const Positions& normals, int v) {
+    return normals.col(v).dot(points.col(v)) < 0;  // the camera sits at the origin
+  };
+  std::vector<bool> shown(anchors.size(), true);
+  for (size_t k = 0; k < anchors.size(); ++k) {
+    const int v = anchors[k];
+    if (v < skin_vertices)
+      shown[k] = faces_camera(target_points, target_normals, v) && faces_camera(swapped_points, swapped_normals, v);
+  }
+  return shown;
 }
 
 }  // namespace facecap

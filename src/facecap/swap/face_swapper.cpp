@@ -103,6 +103,14 @@ cv::Mat covered_pixels(const TriangleMesh& skin, const Positions& points, const 
   return out;
 }
 
+// The points whose `keep` is set, in order.
+std::vector<cv::Point2f> kept(const std::vector<cv::Point2f>& points, const std::vector<bool>& keep) {
+  std::vector<cv::Point2f> out;
+  for (size_t k = 0; k < points.size(); ++k)
+    if (keep[k]) out.push_back(points[k]);
+  return out;
+}
+
 }  // namespace
 
 struct FaceSwapper::Impl {
@@ -412,11 +420,12 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   // The target light's colour now against the appearance frames'
   // (light_colour.hpp), and the shading pattern its SH lighting leaves
   // unexplained (residual_shading.hpp), from the same lit vertices.
+  const Positions target_normals = vertex_normals(target_points, m.skin.triangles);
   Vec3f tint = Vec3f::Ones();
   cv::Mat gains;
   if (m.target_vertex_albedo.cols() > 0 && (m.options.follow_light_colour || m.residual)) {
     const std::vector<LitVertex> lit =
-        lit_vertices(frame, target_points, vertex_normals(target_points, m.skin.triangles),
+        lit_vertices(frame, target_points, target_normals,
                      cover.empty() ? m.target_vertex_seen : uncovered(m.skin, m.target_vertex_seen, cover),
                      target.camera, target.lighting);
     if (m.options.follow_light_colour) tint = light_colour(lit, m.target_vertex_albedo);
@@ -500,7 +509,9 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     for (size_t k = 0; k < to.size() && !cover.empty(); ++k) {
       if (m.anchor_uvs[k] && cover_at(cover, *m.anchor_uvs[k]) > 0.5f) to[k] = from[k];
     }
-    m.warp.warp(frame, from, to, out.window, background);
+    const std::vector<bool> shown =
+        anchors_facing(m.anchors, target_points, target_normals, swapped_points, normals, m.skin.num_vertices);
+    m.warp.warp(frame, kept(from, shown), kept(to, shown), out.window, background);
   } else {
     background = frame(out.window).clone();
   }
