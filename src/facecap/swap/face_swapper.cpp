@@ -13,6 +13,7 @@
 #include "facecap/model/regions.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
 #include "facecap/refine/refiner.hpp"
+#include "facecap/render/outline_distance.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/render/uv_raster.hpp"
@@ -27,6 +28,7 @@
 #include "facecap/swap/noise_matching.hpp"
 #include "facecap/swap/occlusion_mask.hpp"
 #include "facecap/swap/residual_shading.hpp"
+#include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/size_match.hpp"
 #include "facecap/swap/skin_texture.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
@@ -451,12 +453,21 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   cv::Mat render(out.window.size(), CV_32FC3, cv::Scalar::all(0));
   out.alpha = cv::Mat(out.window.size(), CV_32F, cv::Scalar(0));
   const float texels = float(m.map.size - 1);
+  // The silhouette fade's band: a tenth of the face's width (a cylinder's
+  // surface turns 53 degrees from the view ray, where the fade ends, a
+  // tenth of its width inside its outline).
+  const cv::Mat outline_px = outline_distance(buffers);
+  cv::Mat turned(out.window.size(), CV_32F, cv::Scalar(1));  // undrawn: no surface facing the camera
+  const SilhouetteFade fade{m.options.silhouette_fade_start,
+                            std::max(2.0f, 0.1f * float(projected_bounds(swapped_points, target.camera).width))};
   parallel_for(
       out.window.height,
       [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
           auto* colour = render.ptr<cv::Vec3f>(y);
           float* a = out.alpha.ptr<float>(y);
+          const float* outline = outline_px.ptr<float>(y);
+          float* turn = turned.ptr<float>(y);
           for (int x = 0; x < out.window.width; ++x) {
             const size_t i = size_t(y) * out.window.width + x;
             const int tri = buffers.triangle[i];
@@ -480,15 +491,14 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
               light *= sample_bilinear_channels<1>(ratio_gains, coord.x() * ratio_texels,
                                                    (1.0f - coord.y()) * ratio_texels)[0];
             colour[x] = cv::Vec3f(s[0] * light[0], s[1] * light[1], s[2] * light[2]);
-            // Fade where the surface turns away too: the silhouette (the side of
-            // the jaw, the cheek under a turned head) is no UV boundary.
             const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
-            const float facing = std::clamp((-normal.dot(ray) - m.options.silhouette_fade_start) / 0.3f, 0.0f, 1.0f);
-            a[x] = s[3] * facing * facing * (3 - 2 * facing);
+            turn[x] = fade.turned(-normal.dot(ray));
+            a[x] = s[3] * (1 - fade.near_outline(outline[x]) * turn[x]);
           }
         }
       },
       16);
+  soften_turned_away(render, turned, outline_px, fade);
   t.render_ms += ms_since(start) - appearance_ms - ratio_ms - occlusion_ms;
 
   if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {

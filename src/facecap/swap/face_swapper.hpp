@@ -28,12 +28,9 @@ struct SwapOptions {
   // counted from the first with final lighting (TargetFrame::lighting_final).
   int appearance_frames = 5;
   float fade_texels = 40.0f;  // width of the alpha fade at the face boundary, in texels
-  // Where the surface turns away (the jaw and cheek silhouette, no UV
-  // boundary), alpha fades in from this cosine between the normal and the
-  // view ray over the next 0.3. Starting the fade at 0.3 (72 degrees) rather
-  // than 0.1 keeps the blend's outer edge on the new face's skin, inside the
-  // jawline the background warp brings along: seam ratio 2.2 / 2.3 -> 1.1 /
-  // 0.9 on address_720p_a / _b (eval swap, Biden / Obama, 30 frames).
+  // Near the outline, where the surface turns away, alpha fades in from
+  // this cosine between the normal and the view ray over the next 0.3
+  // (silhouette_fade.hpp).
   float silhouette_fade_start = 0.3f;
   double noise_sigma = 2.0;     // texels: the residual of eq. 6.4 is what a blur of this size removes
   bool warp_background = true;  // §6.3; off: the new face is laid over the unwarped frame

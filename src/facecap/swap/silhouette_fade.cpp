@@ -1,0 +1,52 @@
+#include "facecap/swap/silhouette_fade.hpp"
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+namespace facecap {
+
+namespace {
+
+// Two passes of a box filter, `width` wide, whose variance (width^2 - 1) / 6
+// is a Gaussian's of the given sigma: much cheaper than the Gaussian's taps.
+void two_box_blur(const cv::Mat& in, cv::Mat& out, double sigma) {
+  const int width = std::max(1, 2 * int(std::lround(0.5 * (std::sqrt(6 * sigma * sigma + 1) - 1))) + 1);
+  cv::boxFilter(in, out, -1, cv::Size(width, width), cv::Point(-1, -1), true, cv::BORDER_REPLICATE);
+  cv::boxFilter(out, out, -1, cv::Size(width, width), cv::Point(-1, -1), true, cv::BORDER_REPLICATE);
+}
+
+}  // namespace
+
+void soften_turned_away(cv::Mat& render, const cv::Mat& turned, const cv::Mat& outline_px, const SilhouetteFade& fade) {
+  // Where the render changes, and by how much: the surface turned away
+  // inside the band (1 - near_outline, a clamped ramp of the distance).
+  cv::Mat inside;
+  outline_px.convertTo(inside, CV_32F, 1.0 / fade.band_px, -1.0);
+  inside = cv::min(cv::max(inside, 0.0), 1.0);
+  const cv::Mat change = turned.mul(inside);
+  const cv::Rect box = cv::boundingRect(change > 0);
+  if (box.empty()) return;
+  // The colours around it, over three sigmas more.
+  const double sigma = std::max(1.0, fade.band_px / 8.0);
+  const int reach = int(std::ceil(3 * sigma));
+  const cv::Rect roi = cv::Rect(box.x - reach, box.y - reach, box.width + 2 * reach, box.height + 2 * reach) &
+                       cv::Rect(0, 0, render.cols, render.rows);
+  const cv::Mat facing = 1.0f - turned(roi);
+  cv::Mat facing3, weighted, weight;
+  cv::merge(std::vector<cv::Mat>(3, facing), facing3);
+  two_box_blur(render(roi).mul(facing3), weighted, sigma);
+  two_box_blur(facing, weight, sigma);
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    auto* colour = render.ptr<cv::Vec3f>(y);
+    const float* g = change.ptr<float>(y);
+    const auto* around = weighted.ptr<cv::Vec3f>(y - roi.y) - roi.x;
+    const float* w = weight.ptr<float>(y - roi.y) - roi.x;
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (g[x] <= 0 || w[x] < 1e-3f) continue;
+      colour[x] = colour[x] * (1 - g[x]) + around[x] * (g[x] / w[x]);
+    }
+  }
+}
+
+}  // namespace facecap
