@@ -8,20 +8,21 @@ namespace facecap {
 
 TEST(SilhouetteFade, TurnedAwaySurfaceFadesOnlyNearTheOutline) {
   const SilhouetteFade fade{0.3f, 10.0f};
+  const auto alpha = [&](float facing, float outline_px) { return fade.alpha(fade.turned(facing), outline_px); };
   // Facing the camera: opaque anywhere.
-  for (float d : {0.0f, 5.0f, 15.0f, 40.0f}) EXPECT_FLOAT_EQ(fade(1.0f, d), 1.0f) << d;
+  for (float d : {0.0f, 5.0f, 15.0f, 40.0f}) EXPECT_FLOAT_EQ(alpha(1.0f, d), 1.0f) << d;
   // Grazing (below the start), at the outline and within the band: clear.
-  EXPECT_FLOAT_EQ(fade(0.1f, 0.0f), 0.0f);
-  EXPECT_FLOAT_EQ(fade(0.1f, 10.0f), 0.0f);
+  EXPECT_FLOAT_EQ(alpha(0.1f, 0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(alpha(0.1f, 10.0f), 0.0f);
   // Past the band it eases off, and from twice the band the surface stays
   // opaque however it turns (the underside of the nose).
-  EXPECT_NEAR(fade(0.1f, 15.0f), 0.5f, 1e-6f);
-  EXPECT_FLOAT_EQ(fade(0.1f, 20.0f), 1.0f);
-  EXPECT_FLOAT_EQ(fade(-0.5f, 60.0f), 1.0f);
+  EXPECT_NEAR(alpha(0.1f, 15.0f), 0.5f, 1e-6f);
+  EXPECT_FLOAT_EQ(alpha(0.1f, 20.0f), 1.0f);
+  EXPECT_FLOAT_EQ(alpha(-0.5f, 60.0f), 1.0f);
   // Within the band, the smooth step from the start over the next 0.3.
-  EXPECT_NEAR(fade(0.45f, 0.0f), 0.5f, 1e-6f);
-  EXPECT_LT(fade(0.35f, 0.0f), fade(0.45f, 0.0f));
-  EXPECT_FLOAT_EQ(fade(0.6f, 0.0f), 1.0f);
+  EXPECT_NEAR(alpha(0.45f, 0.0f), 0.5f, 1e-6f);
+  EXPECT_LT(alpha(0.35f, 0.0f), alpha(0.45f, 0.0f));
+  EXPECT_FLOAT_EQ(alpha(0.6f, 0.0f), 1.0f);
 }
 
 // Inside the outline, a dark strip of surface turned away (the underside of

@@ -493,7 +493,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             colour[x] = cv::Vec3f(s[0] * light[0], s[1] * light[1], s[2] * light[2]);
             const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
             turn[x] = fade.turned(-normal.dot(ray));
-            a[x] = s[3] * (1 - fade.near_outline(outline[x]) * turn[x]);
+            a[x] = s[3] * fade.alpha(turn[x], outline[x]);
           }
         }
       },

@@ -28,8 +28,9 @@ struct SilhouetteFade {
   float start = 0.3f;     // SwapOptions::silhouette_fade_start
   float band_px = 10.0f;  // a tenth of the face's projected width
 
-  // How far the surface turns away: 0 facing the camera (cosine `start` +
-  // 0.3 and above), 1 from `start` down, a smooth step between.
+  // How far the surface turns away, from the cosine between its normal and
+  // the direction to the camera: 0 facing the camera (`start` + 0.3 and
+  // above), 1 from `start` down, a smooth step between.
   float turned(float facing) const {
     const float f = std::clamp((facing - start) / 0.3f, 0.0f, 1.0f);
     return 1.0f - f * f * (3.0f - 2.0f * f);
@@ -37,18 +38,18 @@ struct SilhouetteFade {
   // 1 within band_px of the outline, 0 from twice that inside.
   float near_outline(float outline_px) const { return std::clamp(2.0f - outline_px / band_px, 0.0f, 1.0f); }
 
-  // The factor on the texture's alpha: facing, the cosine between the
-  // surface normal and the direction to the camera; outline_px, the pixel's
+  // The factor on the texture's alpha, from turned() and the pixel's
   // distance inside the render's outline (outline_distance()).
-  float operator()(float facing, float outline_px) const { return 1.0f - near_outline(outline_px) * turned(facing); }
+  float alpha(float turned, float outline_px) const { return 1.0f - near_outline(outline_px) * turned; }
 };
 
 // Where the surface turns away inside the outline (`turned`, CV_32F, as
 // SilhouetteFade::turned, and 1 where nothing is drawn; `outline_px` as
 // outline_distance()), the render (CV_32FC3) takes the mean colour of the
 // surface around it that faces the camera: a normalised blur (two box
-// filters, as a Gaussian of band_px / 8), weighed by 1 - turned. (The openings inside the outline,
-// where nothing is drawn and the alpha is 0, take it too.)
+// filters, as a Gaussian of band_px / 8), weighed by 1 - turned. (The
+// openings inside the outline, where nothing is drawn and the alpha is 0,
+// take it too.)
 void soften_turned_away(cv::Mat& render, const cv::Mat& turned, const cv::Mat& outline_px, const SilhouetteFade& fade);
 
 }  // namespace facecap
