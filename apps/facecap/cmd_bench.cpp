@@ -280,19 +280,18 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file or image folder")->required();
-  cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
+  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
   cmd->add_flag("--all-faces", a->all_faces,
                 "Every face, on one decoding pass (as transform --all-faces): the shared capture stages, each "
                 "face's, and the edit's summed over the faces");
   cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
   cmd->callback([a, &global] {
-    const auto to = parse_emotion(a->to);
-    if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
+    const Emotion to = emotion_argument("--to", a->to);
     const FaceModel model = load_model(global);
     TransformJobOptions o;
     o.capture.max_frames = a->max_frames;
     o.capture.quiet = true;
-    o.transform.schedule = ExpressionSchedule::constant(*to, 1.0);
+    o.transform.schedule = ExpressionSchedule::constant(to, 1.0);
     o.description = "benchmark";
     const TempDir scratch("facecap-bench");
     const auto start = std::chrono::steady_clock::now();

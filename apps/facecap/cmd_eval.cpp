@@ -265,7 +265,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--video", a->video, "Footage of a speaking face")->required();
-  cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
+  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
   cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
       ->check(CLI::IsMember({"cyclegan", "linear"}))
       ->capture_default_str();
@@ -276,16 +276,15 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("-o,--output", a->output, "Keep the transformed video here (default: a temporary file)");
   cmd->add_option("--models", a->options.models_dir, "Expression models folder");
   cmd->callback([a, &global] {
-    const auto to = parse_emotion(a->to);
-    if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
+    const Emotion to = emotion_argument("--to", a->to);
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     a->options.transform.method = a->method == "linear" ? MappingMethod::kLinear : MappingMethod::kCycleGan;
-    a->options.description = "neutral to " + a->to + " (eval)";
-    const TransformEval r = evaluate_transform(model, a->video, *to, a->options, a->output);
+    a->options.description = std::string("neutral to ") + to_string(to) + " (eval)";
+    const TransformEval r = evaluate_transform(model, a->video, to, a->options, a->output);
     const double n = std::max(1, r.timings.frames);
     print_json({{"video", a->video},
-                {"to", a->to},
+                {"to", to_string(to)},
                 {"method", a->method},
                 {"frames", r.frames},
                 {"valid_frames", r.valid_frames},

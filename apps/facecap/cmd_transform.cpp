@@ -41,7 +41,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                   "Output video (.mp4, .m4v, .mov or .mkv), or for a photo also an image (.png, .jpg, .jpeg) marked "
                   "as synthetic in its metadata; OUT.json is its synthetic-media sidecar")
       ->required();
-  cmd->add_option("--to", a->to, "Target expression")->capture_default_str();
+  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
   cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();
   cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")->capture_default_str();
   cmd->add_option("--schedule", a->schedule, "File of 'seconds target intensity' keys with transitions between them");
@@ -75,34 +75,27 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                   "instead of --to; repeat for more faces")
       ->type_name("K=EMOTION")
       ->needs(all_faces)
-      ->check(face_value_check([](const std::string& emotion) {
-        if (!parse_emotion(emotion))
-          throw Error(
-              "the expression must be one of neutral, anger, disgust, fear, happiness, sadness, surprise, "
-              "not '" +
-              emotion + "'");
-      }));
+      ->check(face_value_check([](const std::string& emotion) { emotion_argument("the expression", emotion); }));
   cmd->add_option("--face-schedule", a->face_schedule,
                   "--all-faces: give face K a schedule of its own, K=FILE (as --schedule); repeat for more faces")
       ->type_name("K=FILE")
       ->needs(all_faces)
       ->check(face_value_check());
   cmd->callback([a, &global] {
-    const auto to = parse_emotion(a->to), from = parse_emotion(a->from);
-    if (!to) throw Error("--to must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
-    if (!from) throw Error("--from must be one of neutral, anger, disgust, fear, happiness, sadness, surprise");
+    const Emotion to = emotion_argument("--to", a->to), from = emotion_argument("--from", a->from);
     if (!(a->intensity >= 0 && a->intensity <= 1)) throw Error("--intensity must be between 0 and 1");
     if (a->window < 0 || a->window > 10) throw Error("--window must be between 0 and 10");
     TransformJobOptions& o = a->options;
-    o.transform.from = *from;
+    o.transform.from = from;
     o.transform.schedule =
-        a->schedule.empty() ? ExpressionSchedule::constant(*to, a->intensity) : ExpressionSchedule::read(a->schedule);
+        a->schedule.empty() ? ExpressionSchedule::constant(to, a->intensity) : ExpressionSchedule::read(a->schedule);
     o.transform.method = a->method == "linear" ? MappingMethod::kLinear : MappingMethod::kCycleGan;
     o.transform.window = a->window;
     o.plot = a->plot;
     o.gltf = a->gltf;
     if (!a->models.empty()) o.models_dir = a->models;
-    o.description = a->schedule.empty() ? a->from + " to " + a->to : "schedule " + a->schedule;
+    o.description =
+        a->schedule.empty() ? std::string(to_string(from)) + " to " + to_string(to) : "schedule " + a->schedule;
     // Faces with an expression of their own.
     auto add_face = [&o](const std::pair<int, std::string>& face, const ExpressionSchedule& schedule,
                          const std::string& description) {
@@ -112,7 +105,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     for (const std::string& text : a->face_to) {
       const auto face = parse_face_value(text);
       const Emotion target = *parse_emotion(face.second);  // checked as parsed
-      add_face(face, ExpressionSchedule::constant(target, a->intensity), a->from + " to " + face.second);
+      add_face(face, ExpressionSchedule::constant(target, a->intensity),
+               std::string(to_string(from)) + " to " + to_string(target));
     }
     for (const std::string& text : a->face_schedule) {
       const auto face = parse_face_value(text);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "facecap/expr/emotions.hpp"
 #include "facecap/model/face_model.hpp"
 #include "facecap/refine/compute_device.hpp"
 #include "facecap/swap/face_swapper.hpp"
@@ -36,6 +37,9 @@ FaceModel load_model(const GlobalOptions& global);
 void print_json(const nlohmann::json& j);
 // Parses "WxH"; throws facecap::Error naming --size otherwise.
 void parse_size(const std::string& s, int& width, int& height);
+// An expression named on the command line (parse_emotion's names); throws
+// facecap::Error naming `option` and the choices otherwise.
+Emotion emotion_argument(const std::string& option, const std::string& value);
 // --init-frames: the frames the identity and focal length are solved from
 // (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
 void add_init_frames_option(CLI::App& cmd, int& init_frames);

@@ -9,6 +9,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_tracker.hpp"
+#include "facecap/expr/emotions.hpp"
 #include "facecap/model/model_cache.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/identity_file.hpp"
@@ -37,6 +38,12 @@ void parse_size(const std::string& s, int& w, int& h) {
   if (std::sscanf(s.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0) {
     throw Error("--size must look like 640x480, got '" + s + "'");
   }
+}
+
+Emotion emotion_argument(const std::string& option, const std::string& value) {
+  const std::optional<Emotion> e = parse_emotion(value);
+  if (!e) throw Error(option + " must be one of " + emotion_choices() + ", not '" + value + "'");
+  return *e;
 }
 
 void add_init_frames_option(CLI::App& cmd, int& init_frames) {

@@ -245,6 +245,25 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
   }
 }
 
+// The expression may be named by its adjective, in any case; an unknown one
+// is refused with the choices, before any work.
+TEST(Cli, TransformTakesAnAdjectiveAndNamesTheChoicesOtherwise) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const std::string out = (dir.path() / "out.mp4").string();
+  const RunResult bad = run("transform " + video.string() + " --to contempt -o " + out);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("--to must be one of"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("happy"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("not 'contempt'"), std::string::npos) << bad.out;
+  const RunResult good = run("transform " + video.string() + " --to Happy --max-frames 8 -o " + out);
+  ASSERT_EQ(good.code, 0) << good.out;
+  std::ifstream sidecar(out + ".json");
+  const std::string text((std::istreambuf_iterator<char>(sidecar)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("neutral to happiness"), std::string::npos) << text;
+}
+
 // An output path that is a folder is refused up front, by name, for the
 // video and for the glTF of both edits; the folder is left alone.
 TEST(Cli, EditsRefuseAFolderAsTheirOutput) {

@@ -16,6 +16,21 @@ TEST(Emotions, NamesRoundTripAndUnknownIsRejected) {
   EXPECT_EQ(all_emotions().size(), 6u);
 }
 
+TEST(Emotions, AdjectivesNameTheirEmotion) {
+  EXPECT_EQ(parse_emotion("happy"), Emotion::kHappiness);
+  EXPECT_EQ(parse_emotion("Sad"), Emotion::kSadness);
+  EXPECT_EQ(parse_emotion("angry"), Emotion::kAnger);
+  EXPECT_EQ(parse_emotion("afraid"), Emotion::kFear);
+  EXPECT_EQ(parse_emotion("scared"), Emotion::kFear);
+  EXPECT_EQ(parse_emotion("disgusted"), Emotion::kDisgust);
+  EXPECT_EQ(parse_emotion("SURPRISED"), Emotion::kSurprise);
+  EXPECT_FALSE(parse_emotion("happ").has_value());
+  // The choices an error message lists are all taken.
+  const std::string choices = emotion_choices();
+  for (const char* name : {"happiness", "happy", "surprised", "neutral"})
+    EXPECT_NE(choices.find(name), std::string::npos) << name;
+}
+
 TEST(Emotions, HappinessIsDefinedByTheSmile) {
   auto shapes = defining_shapes(Emotion::kHappiness);
   std::sort(shapes.begin(), shapes.end());

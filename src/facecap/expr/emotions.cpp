@@ -78,7 +78,18 @@ std::optional<Emotion> parse_emotion(const std::string& name) {
                     Emotion::kSadness, Emotion::kSurprise}) {
     if (lower == to_string(e)) return e;
   }
+  static const std::pair<const char*, Emotion> kAdjectives[] = {
+      {"happy", Emotion::kHappiness},   {"sad", Emotion::kSadness}, {"angry", Emotion::kAnger},
+      {"afraid", Emotion::kFear},       {"scared", Emotion::kFear}, {"disgusted", Emotion::kDisgust},
+      {"surprised", Emotion::kSurprise}};
+  for (const auto& [adjective, e] : kAdjectives)
+    if (lower == adjective) return e;
   return std::nullopt;
+}
+
+const char* emotion_choices() {
+  return "neutral, anger, disgust, fear, happiness, sadness, surprise (or happy, sad, angry, afraid, disgusted, "
+         "surprised)";
 }
 
 const std::vector<Emotion>& all_emotions() {

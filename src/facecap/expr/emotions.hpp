@@ -18,7 +18,11 @@ namespace facecap {
 enum class Emotion { kNeutral, kAnger, kDisgust, kFear, kHappiness, kSadness, kSurprise };
 
 const char* to_string(Emotion e);
+// The name (to_string's, any case) or its adjective: happy, sad, angry,
+// afraid or scared, disgusted, surprised.
 std::optional<Emotion> parse_emotion(const std::string& name);
+// What parse_emotion takes, in words for an error message.
+const char* emotion_choices();
 const std::vector<Emotion>& all_emotions();  // the six besides neutral
 
 // The prototype: ICT shape names with their relative activation.
