@@ -1,9 +1,12 @@
 // The wrinkle prediction's coating transfer (§6.1.2) on a mesh the size of
-// a 720p face's finest 4-8 level (about 33k vertices).
+// a 720p face's finest 4-8 level (about 33k vertices), and the render's
+// silhouette fade on a window the size of a 720p swap's.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include "facecap/render/outline_distance.hpp"
+#include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 #include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
 
@@ -42,6 +45,50 @@ void BM_CoatingTransferSolve(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(t.solve(base, coating));
 }
 BENCHMARK(BM_CoatingTransferSolve)->Unit(benchmark::kMillisecond);
+
+// A 720p swap's window (420 x 560) with a face-sized ellipse drawn, two eye
+// openings and a mouth in it, and a band of surface turned away (a nose's
+// underside) inside.
+constexpr int kWindowWidth = 420, kWindowHeight = 560;
+
+RasterBuffers face_window() {
+  RasterBuffers b;
+  b.resize(kWindowWidth, kWindowHeight);
+  const auto in_ellipse = [](int x, int y, float cx, float cy, float rx, float ry) {
+    const float u = (x - cx) / rx, v = (y - cy) / ry;
+    return u * u + v * v <= 1.0f;
+  };
+  for (int y = 0; y < b.height; ++y) {
+    for (int x = 0; x < b.width; ++x) {
+      const bool face = in_ellipse(x, y, 210, 280, 150, 200);
+      const bool opening = in_ellipse(x, y, 150, 230, 25, 10) || in_ellipse(x, y, 270, 230, 25, 10) ||
+                           in_ellipse(x, y, 210, 380, 45, 12);
+      if (face && !opening) b.triangle[size_t(y) * b.width + x] = 0;
+    }
+  }
+  return b;
+}
+
+void BM_OutlineDistance720p(benchmark::State& state) {
+  const RasterBuffers b = face_window();
+  for (auto _ : state) benchmark::DoNotOptimize(outline_distance(b));
+}
+BENCHMARK(BM_OutlineDistance720p)->Unit(benchmark::kMillisecond);
+
+void BM_SoftenTurnedAway720p(benchmark::State& state) {
+  const RasterBuffers b = face_window();
+  const cv::Mat outline = outline_distance(b);
+  cv::Mat turned(kWindowHeight, kWindowWidth, CV_32F, cv::Scalar(0));
+  turned(cv::Rect(170, 300, 80, 20)).setTo(1.0f);  // the nose's underside
+  const cv::Mat render(kWindowHeight, kWindowWidth, CV_32FC3, cv::Scalar(180, 140, 120));
+  const SilhouetteFade fade{0.3f, 30.0f};
+  for (auto _ : state) {
+    cv::Mat r = render.clone();
+    soften_turned_away(r, turned, outline, fade);
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_SoftenTurnedAway720p)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace facecap
