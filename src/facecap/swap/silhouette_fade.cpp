@@ -1,5 +1,6 @@
 #include "facecap/swap/silhouette_fade.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -19,14 +20,22 @@ void two_box_blur(const cv::Mat& in, cv::Mat& out, double sigma) {
 }  // namespace
 
 void soften_turned_away(cv::Mat& render, const cv::Mat& turned, const cv::Mat& outline_px, const SilhouetteFade& fade) {
-  // Where the render changes, and by how much: the surface turned away
-  // inside the band (1 - near_outline, a clamped ramp of the distance).
-  cv::Mat inside;
-  outline_px.convertTo(inside, CV_32F, 1.0 / fade.band_px, -1.0);
-  inside = cv::min(cv::max(inside, 0.0), 1.0);
-  const cv::Mat change = turned.mul(inside);
-  const cv::Rect box = cv::boundingRect(change > 0);
-  if (box.empty()) return;
+  // Where the render changes, and by how much: the surface turned away,
+  // away from the outline (1 - near_outline), and the box around it.
+  cv::Mat change(render.size(), CV_32F);
+  int x0 = render.cols, y0 = render.rows, x1 = -1, y1 = -1;
+  for (int y = 0; y < render.rows; ++y) {
+    const float* t = turned.ptr<float>(y);
+    const float* d = outline_px.ptr<float>(y);
+    float* g = change.ptr<float>(y);
+    for (int x = 0; x < render.cols; ++x) {
+      g[x] = t[x] * (1.0f - fade.near_outline(d[x]));
+      if (g[x] <= 0) continue;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  }
+  if (x1 < 0) return;
+  const cv::Rect box(cv::Point(x0, y0), cv::Point(x1 + 1, y1 + 1));
   // The colours around it, over three sigmas more.
   const double sigma = std::max(1.0, fade.band_px / 8.0);
   const int reach = int(std::ceil(3 * sigma));
