@@ -1,11 +1,13 @@
 // The wrinkle prediction's coating transfer (§6.1.2) on a mesh the size of
 // a 720p face's finest 4-8 level (about 33k vertices), and the render's
-// silhouette fade on a window the size of a 720p swap's.
+// silhouette fade and the background warp on a window the size of a 720p
+// swap's.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
 #include "facecap/render/outline_distance.hpp"
+#include "facecap/swap/background_warp.hpp"
 #include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 #include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
@@ -89,6 +91,30 @@ void BM_SoftenTurnedAway720p(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SoftenTurnedAway720p)->Unit(benchmark::kMillisecond);
+
+// The background warp of a 720p swap: 100 anchors (36 on a face-sized
+// outline, 64 inside it) that the new face moves by up to 12 px, the
+// window above, the frame 1280 x 720.
+void BM_BackgroundWarp720p(benchmark::State& state) {
+  cv::Mat frame(720, 1280, CV_8UC3);
+  cv::RNG(3).fill(frame, cv::RNG::UNIFORM, 0, 255);
+  const cv::Rect window(430, 80, kWindowWidth, kWindowHeight);
+  const cv::Point2f centre(640, 360);
+  std::vector<cv::Point2f> from, to;
+  for (int k = 0; k < 100; ++k) {
+    const float angle = 6.2831853f * float(k % 36) / 36, radius = k < 36 ? 1.0f : 0.2f + 0.7f * float(k - 36) / 64;
+    const cv::Point2f p = centre + cv::Point2f(150 * radius * std::cos(angle + k), 200 * radius * std::sin(angle + k));
+    from.push_back(p);
+    to.push_back(centre + cv::Point2f(0.92f * (p.x - centre.x), p.y - centre.y + 4 * std::sin(0.05f * p.x)));
+  }
+  BackgroundWarp warp;
+  cv::Mat out;
+  for (auto _ : state) {
+    warp.warp(frame, from, to, window, out);
+    benchmark::DoNotOptimize(out);
+  }
+}
+BENCHMARK(BM_BackgroundWarp720p)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace facecap

@@ -1,5 +1,6 @@
 #include "facecap/swap/background_warp.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -8,14 +9,8 @@
 
 namespace facecap {
 
-std::vector<cv::Point2f> window_border(const cv::Rect& w) {
-  const float x0 = w.x, y0 = w.y, x1 = w.x + w.width - 1, y1 = w.y + w.height - 1;
-  const float xm = 0.5f * (x0 + x1), ym = 0.5f * (y0 + y1);
-  return {{x0, y0}, {xm, y0}, {x1, y0}, {x1, ym}, {x1, y1}, {xm, y1}, {x0, y1}, {x0, ym}};
-}
-
 std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
-                                    const cv::Rect& w) {
+                                    const cv::Rect& w, float scale) {
   if (from.empty()) return {};
   cv::Point2f c(0, 0);
   for (const cv::Point2f& p : from) c += p;
@@ -23,7 +18,7 @@ std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const 
   float reach = 0;
   for (const auto* set : {&from, &to})
     for (const cv::Point2f& p : *set) reach = std::max(reach, float(cv::norm(p - c)));
-  const float r = kRingScale * reach;
+  const float r = scale * reach;
   const float x0 = w.x + 2.0f, y0 = w.y + 2.0f, x1 = w.x + w.width - 3.0f, y1 = w.y + w.height - 3.0f;
   std::vector<cv::Point2f> ring;
   for (int k = 0; k < kRingPoints; ++k) {
@@ -40,37 +35,72 @@ std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const 
   return ring;
 }
 
-void BackgroundWarp::triangulate(const std::vector<cv::Point2f>& points, const cv::Rect& window) {
-  cv::Subdiv2D subdiv(cv::Rect(window.x - 2, window.y - 2, window.width + 4, window.height + 4));
-  std::vector<int> id_of;  // Subdiv2D vertex id -> our point index
-  for (size_t i = 0; i < points.size(); ++i) {
-    const int id = subdiv.insert(points[i]);
-    if (id >= static_cast<int>(id_of.size())) id_of.resize(id + 1, -1);
-    id_of[id] = static_cast<int>(i);  // a duplicate point maps to its last index
-  }
-  std::vector<cv::Vec6f> list;
-  subdiv.getTriangleList(list);
-  triangles_.clear();
-  for (const cv::Vec6f& t : list) {
-    cv::Vec3i tri;
-    bool ok = true;
-    for (int k = 0; k < 3 && ok; ++k) {
-      int edge = 0, vertex = 0;
-      const int r = subdiv.locate(cv::Point2f(t[2 * k], t[2 * k + 1]), edge, vertex);
-      ok = r == cv::Subdiv2D::PTLOC_VERTEX && vertex < static_cast<int>(id_of.size()) && id_of[vertex] >= 0;
-      if (ok) tri[k] = id_of[vertex];
+namespace {
+
+// The thin-plate kernel of squared distance: r^2 log r^2 (twice the usual
+// r^2 log r, which the weights absorb).
+inline double thin_plate(double r2) { return r2 > 0 ? r2 * std::log(r2) : 0.0; }
+
+// Whether p lies inside the ring: the ring's points go round its centre at
+// equal angles, so the side of p's sector's chord decides.
+bool inside_ring(const std::vector<cv::Point2f>& ring, cv::Point2f centre, cv::Point2f p) {
+  const int n = static_cast<int>(ring.size());
+  float angle = std::atan2(p.y - centre.y, p.x - centre.x);
+  if (angle < 0) angle += 6.2831853f;
+  const int k = std::min(n - 1, static_cast<int>(angle * float(n) / 6.2831853f));
+  const cv::Point2f a = ring[k], b = ring[(k + 1) % n];
+  return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) >= 0;
+}
+
+}  // namespace
+
+bool BackgroundWarp::fit(const std::vector<cv::Point2f>& points, const std::vector<cv::Point2f>& offsets) {
+  // Interpolating thin-plate spline (Bookstein 1989): f(p) = a0 + a1 x + a2 y
+  // + sum_i w_i U(|p - p_i|), with K w + P a = offsets and P^T w = 0, in
+  // coordinates centred on the ring and scaled to it, for conditioning.
+  const int n = static_cast<int>(points.size());
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n + 3, n + 3);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + 3, 2);
+  for (int i = 0; i < n; ++i) {
+    const double xi = (points[i].x - centre_.x) / scale_, yi = (points[i].y - centre_.y) / scale_;
+    for (int j = 0; j < i; ++j) {
+      const double dx = xi - (points[j].x - centre_.x) / scale_, dy = yi - (points[j].y - centre_.y) / scale_;
+      system(i, j) = system(j, i) = thin_plate(dx * dx + dy * dy);
     }
-    if (ok) triangles_.push_back(tri);
+    system(i, n) = system(n, i) = 1;
+    system(i, n + 1) = system(n + 1, i) = xi;
+    system(i, n + 2) = system(n + 2, i) = yi;
+    rhs(i, 0) = offsets[i].x;
+    rhs(i, 1) = offsets[i].y;
   }
+  const Eigen::MatrixXd solution = system.partialPivLu().solve(rhs);
+  if (!solution.allFinite()) return false;
+  controls_.resize(n, 4);
+  for (int i = 0; i < n; ++i) {
+    controls_.row(i) << float((points[i].x - centre_.x) / scale_), float((points[i].y - centre_.y) / scale_),
+        float(solution(i, 0)), float(solution(i, 1));
+  }
+  for (int k = 0; k < 3; ++k) {
+    affine_x_[k] = float(solution(n + k, 0));
+    affine_y_[k] = float(solution(n + k, 1));
+  }
+  return true;
+}
+
+cv::Point2f BackgroundWarp::offset_at(cv::Point2f p, Eigen::ArrayXf& kernel) const {
+  const float x = float((p.x - centre_.x) / scale_), y = float((p.y - centre_.y) / scale_);
+  // With Eigen's packet log, the sum over the controls is vectorised.
+  kernel = (controls_.col(0).array() - x).square() + (controls_.col(1).array() - y).square();
+  kernel *= (kernel + 1e-30f).log();
+  return {affine_x_[0] + affine_x_[1] * x + affine_x_[2] * y + (controls_.col(2).array() * kernel).sum(),
+          affine_y_[0] + affine_y_[1] * x + affine_y_[2] * y + (controls_.col(3).array() * kernel).sum()};
 }
 
 void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from,
                           const std::vector<cv::Point2f>& to, cv::Rect window, cv::Mat& out) {
   window &= cv::Rect(0, 0, frame.cols, frame.rows);
-  // Anchors, then the fixed ring (the same points in both sets), then the
-  // border. An anchor outside the window in either face (one cut off by the
-  // frame's edge) is left out, since the border holds still: all the
-  // destination points lie in the window, and their triangles tile it.
+  // The anchors kept: inside the window in both faces (the window's border
+  // holds still), and one of two that land within a pixel of each other.
   std::vector<cv::Point2f> src, dst;
   const auto inside = [&](const cv::Point2f& p) {
     return p.x >= window.x && p.y >= window.y && p.x <= window.x + window.width - 1 &&
@@ -78,57 +108,80 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
   };
   for (size_t k = 0; k < std::min(from.size(), to.size()); ++k) {
     if (!inside(from[k]) || !inside(to[k])) continue;
+    const auto near = [&](const cv::Point2f& q) { return cv::norm(q - to[k]) < 1.0; };
+    if (std::any_of(dst.begin(), dst.end(), near)) continue;
     src.push_back(from[k]);
     dst.push_back(to[k]);
   }
-  const auto ring = fixed_ring(src, dst, window);
-  const auto border = window_border(window);
-  for (const auto* fixed : {&ring, &border}) {
-    src.insert(src.end(), fixed->begin(), fixed->end());
-    dst.insert(dst.end(), fixed->begin(), fixed->end());
+  controls_.resize(0, 4);
+  if (src.empty() || window.empty()) {
+    out = frame(window).clone();
+    return;
   }
-  triangulate(dst, window);
-  // Identity map, then each destination triangle samples its source
-  // triangle (a later triangle overwriting an earlier one on their shared
-  // edge). On the pool in bands of rows, each band visiting the triangles in
-  // their order, so the map does not depend on the thread count.
-  map_x_.create(window.size(), CV_32F);
-  map_y_.create(window.size(), CV_32F);
+  const std::vector<cv::Point2f> ring = fixed_ring(src, dst, window);
+  const std::vector<cv::Point2f> outer = fixed_ring(src, dst, window, kOuterRingScale);
+  centre_ = cv::Point2f(0, 0);
+  for (const cv::Point2f& p : src) centre_ += p;
+  centre_ *= 1.0f / float(src.size());
+  scale_ = 1.0;
+  for (const cv::Point2f& p : outer) scale_ = std::max(scale_, cv::norm(p - centre_));
+
+  // The map from each output pixel back into the frame: its offset is the
+  // spline through the anchors' (source minus destination) and the rings'
+  // zero inside the outer ring, and zero beyond it.
+  std::vector<cv::Point2f> points = dst, offsets(dst.size());
+  for (size_t k = 0; k < dst.size(); ++k) offsets[k] = src[k] - dst[k];
+  for (const auto* fixed : {&ring, &outer}) {
+    for (const cv::Point2f& p : *fixed) {
+      const auto near = [&](const cv::Point2f& q) { return cv::norm(q - p) < 1.0; };
+      if (std::none_of(points.begin(), points.end(), near)) points.push_back(p);
+    }
+  }
+  offsets.resize(points.size(), cv::Point2f(0, 0));
+  // Anchors all in one place leave the rings there too: nothing to fit.
+  if (points.size() < 3 || !fit(points, offsets)) {
+    controls_.resize(0, 4);
+    out = frame(window).clone();
+    return;
+  }
+
+  // The spline on a grid of nodes `step` pixels apart (each at the centre
+  // of its step x step block), then resized to the pixels by bicubic
+  // interpolation.
+  const int step = std::clamp(window.width / kGridNodesAcross, 1, 8);
+  const int nodes_x = (window.width + step - 1) / step, nodes_y = (window.height + step - 1) / step;
+  grid_x_.create(nodes_y, nodes_x, CV_32F);
+  grid_y_.create(nodes_y, nodes_x, CV_32F);
   parallel_for(
-      window.height,
-      [&](int band_begin, int band_end) {
-        for (int y = band_begin; y < band_end; ++y) {
-          float* mx = map_x_.ptr<float>(y);
-          float* my = map_y_.ptr<float>(y);
-          for (int x = 0; x < window.width; ++x) {
-            mx[x] = float(window.x + x);
-            my[x] = float(window.y + y);
-          }
-        }
-        for (const cv::Vec3i& t : triangles_) {
-          const cv::Point2f d[3] = {dst[t[0]], dst[t[1]], dst[t[2]]};
-          const cv::Point2f s[3] = {src[t[0]], src[t[1]], src[t[2]]};
-          const float area = (d[1].x - d[0].x) * (d[2].y - d[0].y) - (d[1].y - d[0].y) * (d[2].x - d[0].x);
-          if (std::abs(area) < 1e-3f) continue;
-          const int x0 = std::max(window.x, int(std::floor(std::min({d[0].x, d[1].x, d[2].x}))));
-          const int x1 = std::min(window.x + window.width - 1, int(std::ceil(std::max({d[0].x, d[1].x, d[2].x}))));
-          const int y0 = std::max(window.y + band_begin, int(std::floor(std::min({d[0].y, d[1].y, d[2].y}))));
-          const int y1 = std::min(window.y + band_end - 1, int(std::ceil(std::max({d[0].y, d[1].y, d[2].y}))));
-          for (int y = y0; y <= y1; ++y) {
-            float* mx = map_x_.ptr<float>(y - window.y);
-            float* my = map_y_.ptr<float>(y - window.y);
-            for (int x = x0; x <= x1; ++x) {
-              const float w0 = ((d[1].x - x) * (d[2].y - y) - (d[1].y - y) * (d[2].x - x)) / area;
-              const float w1 = ((d[2].x - x) * (d[0].y - y) - (d[2].y - y) * (d[0].x - x)) / area;
-              const float w2 = 1.0f - w0 - w1;
-              if (w0 < -1e-4f || w1 < -1e-4f || w2 < -1e-4f) continue;
-              mx[x - window.x] = w0 * s[0].x + w1 * s[1].x + w2 * s[2].x;
-              my[x - window.x] = w0 * s[0].y + w1 * s[1].y + w2 * s[2].y;
-            }
+      nodes_y,
+      [&](int begin, int end) {
+        Eigen::ArrayXf kernel(controls_.rows());
+        for (int j = begin; j < end; ++j) {
+          float* gx = grid_x_.ptr<float>(j);
+          float* gy = grid_y_.ptr<float>(j);
+          for (int i = 0; i < nodes_x; ++i) {
+            const cv::Point2f p(window.x + step * i + 0.5f * (step - 1), window.y + step * j + 0.5f * (step - 1));
+            const cv::Point2f o = inside_ring(outer, centre_, p) ? offset_at(p, kernel) : cv::Point2f(0, 0);
+            gx[i] = o.x;
+            gy[i] = o.y;
           }
         }
       },
-      32);
+      4);
+  const cv::Size fine(nodes_x * step, nodes_y * step);
+  const cv::Rect crop(0, 0, window.width, window.height);
+  cv::resize(grid_x_, fine_x_, fine, 0, 0, cv::INTER_CUBIC);
+  cv::resize(grid_y_, fine_y_, fine, 0, 0, cv::INTER_CUBIC);
+  map_x_ = fine_x_(crop);
+  map_y_ = fine_y_(crop);
+  for (int y = 0; y < window.height; ++y) {
+    float* mx = map_x_.ptr<float>(y);
+    float* my = map_y_.ptr<float>(y);
+    for (int x = 0; x < window.width; ++x) {
+      mx[x] += float(window.x + x);
+      my[x] += float(window.y + y);
+    }
+  }
   cv::remap(frame, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
 }
 

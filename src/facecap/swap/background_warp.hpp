@@ -1,29 +1,33 @@
 #pragma once
-// Background warp of §6.3: the target frame is cut into triangles between
-// the projections of anchor vertices (landmarks and the face boundary), a
-// ring of fixed points around them and the border of a surrounding window,
-// and each triangle is mapped affinely from where the target face has those
-// vertices to where the swapped face has them, so that a wider or narrower
-// face does not leave the old one showing. The ring (kRingPoints points at
-// kRingScale times the anchors' largest distance from their centre, inside
-// the window) holds still: the warp fades out over a band around the face
-// and the background beyond it is left as it was (without the ring, the
-// bookshelf behind a speaker bent by 5 grey levels on average, 40 px and more
-// from the face).
+// Background warp of §6.3: the target frame is moved so that the
+// projections of anchor vertices (landmarks and the face boundary) go from
+// where the target face has them to where the swapped face has them, so
+// that a wider or narrower face does not leave the old one showing. A ring
+// of fixed points (kRingPoints points at kRingScale times the anchors'
+// largest distance from their centre, inside the window) holds still, and
+// the background beyond a second such ring (kOuterRingScale) is left as it
+// was: the warp fades out over a band around the face (without the ring,
+// the bookshelf behind a speaker bent by 5 grey levels on average, 40 px
+// and more from the face).
 //
-// Departure from §6.3, which triangulates the target's points once and
-// keeps that topology: here the Delaunay triangulation is of the destination
-// points, each frame. As the head turns, and where the new face's shape
-// differs from the target's, anchors move past their neighbours, and a
-// triangle laid out on the target's points turns over in the destination:
-// it overlaps its neighbours and leaves pixels that no triangle covers,
-// which kept the unwarped frame (the old cheek in notches beside the new
-// jaw). Triangles of the destination tile the window whatever the anchors
-// do, so the map is continuous; where the source points of one have
-// crossed, its content is mirrored instead, which anchors_facing() keeps
-// rare. The share of the window's pixels where the map jumps more than 4 px
-// to a neighbour (200 frames, with anchors_facing()): Biden into
-// emotions_pexels 0.134 % -> 0.010 %, into address_720p_b 0.090 % -> 0.000 %.
+// Departure from §6.3, which maps the triangles between those points
+// affinely, with the topology of the target's first frame: here the map is
+// a thin-plate spline through them (Bookstein 1989), fitted each frame. An
+// affine map per triangle is continuous but creased along every edge, and
+// between the outline and the ring the triangles are long slivers fanning
+// out from a few ring points: where neighbouring anchors move differently
+// (the temple of a narrower face), strands of hair crossing them bent into
+// zigzags. The spline is smooth everywhere and exact at the anchors. Over
+// 120 frames of Obama's portrait into emotions_pexels / address_720p_b:
+// share of the window's pixels whose map bends by more than 0.5 px from
+// one pixel to the next (second difference) 0.78 % / 0.16 % -> 0.012 % /
+// 0.002 %; the largest such bend 18.0 / 14.9 px -> 0.98 / 1.46 px; pixels
+// where it jumps more than 4 px (a tear) 0.015 % / 0.002 % -> 0.0004 % /
+// 0.0002 %. The triangles, laid out on the target's points, also turned
+// over where anchors moved past their neighbours, which the destination's
+// Delaunay triangulation had mended since; a spline has no triangles to
+// turn.
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -40,33 +44,46 @@ class BackgroundWarp {
   void warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
             cv::Rect window, cv::Mat& out);
 
-  // The last warp's triangles.
-  int triangle_count() const { return static_cast<int>(triangles_.size()); }
+  // The last warp's spline control points: the anchors kept and the rings.
+  int control_count() const { return static_cast<int>(controls_.rows()); }
 
  private:
-  void triangulate(const std::vector<cv::Point2f>& points, const cv::Rect& window);
+  // Fits the spline through `offsets` at `points`; false where it has no
+  // finite solution.
+  bool fit(const std::vector<cv::Point2f>& points, const std::vector<cv::Point2f>& offsets);
+  // The spline's offset at pixel p; `kernel` is scratch space.
+  cv::Point2f offset_at(cv::Point2f p, Eigen::ArrayXf& kernel) const;
 
-  std::vector<cv::Vec3i> triangles_;  // indices into the kept anchors, then the ring, then the 8 border points
-  cv::Mat map_x_, map_y_;
+  cv::Point2f centre_;
+  double scale_ = 1;
+  // Per control point: x, y (centred, scaled), weights of the x and y offsets.
+  Eigen::Matrix<float, Eigen::Dynamic, 4> controls_;
+  float affine_x_[3] = {}, affine_y_[3] = {};
+  cv::Mat grid_x_, grid_y_, fine_x_, fine_y_, map_x_, map_y_;
 };
 
-// The 8 border points of a window (corners and edge midpoints), which stay put.
-std::vector<cv::Point2f> window_border(const cv::Rect& window);
-
-constexpr int kRingPoints = 24;
+// The spline is evaluated on a grid of about this many nodes across the
+// window (nodes at most 8 px apart) and interpolated bicubically between.
+constexpr int kGridNodesAcross = 48;
+constexpr int kRingPoints = 32;
 constexpr float kRingScale = 1.3f;
-// The fixed ring around both anchor sets: centred on the `from` anchors'
-// centroid, kRingScale times the largest anchor distance (of `from` or `to`)
+// The second ring, beyond which the offset is zero: between the two the
+// spline levels out, so that the warp ends without a crease (cut at the
+// first ring, the largest bend there in the tests' narrowed disc was 0.75
+// px against 0.38).
+constexpr float kOuterRingScale = 1.5f;
+// A fixed ring around both anchor sets: centred on the `from` anchors'
+// centroid, `scale` times the largest anchor distance (of `from` or `to`)
 // from it, each point pulled inside the window by 2 px where it would leave it.
 std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
-                                    const cv::Rect& window);
+                                    const cv::Rect& window, float scale = kRingScale);
 
 // Which anchors (vertex indices; those from `skin_vertices` on, which have
 // no normal here, are kept) face the camera in both the target's mesh and
 // the swapped one (camera space, with their vertex normals). One turned
 // away lies behind its face's visible surface: its projection falls inside
 // the outline, or across it past the anchors on the outline, and the
-// triangles between them turn over. With the destination triangulation
+// triangles between them turned over. With the destination triangulation
 // alone, such triangles squeezed the target's outline against the new one:
 // the seam ratio of Obama into address_720p_b (eval swap, 30 frames) went
 // 1.49 -> 1.54; leaving these anchors out too, 1.41 (whole clip 1.175 ->

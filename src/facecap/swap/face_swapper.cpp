@@ -205,9 +205,12 @@ struct FaceSwapper::Impl {
         millimetres_per_uv(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace));
     if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
     if (options.keep_occluders) occlusion.emplace(skin, mm_per_uv);
+    // The warp's anchors: the landmarks and every second boundary vertex
+    // (every third raised the seam ratio of Obama into address_720p_b,
+    // 30 frames, 1.38 -> 1.43; every one lowered it to 1.36 for 0.7 ms more).
     anchors = model.landmarks.vertices;
     for (int v = 0, k = 0; v < skin.num_vertices; ++v) {
-      if (boundary[v] && (k++ % 3 == 0)) anchors.push_back(v);
+      if (boundary[v] && (k++ % 2 == 0)) anchors.push_back(v);
     }
     std::vector<std::optional<Vec2f>> vertex_uvs(skin.num_vertices);
     for (size_t t = 0; t < skin.triangles.size(); ++t)
