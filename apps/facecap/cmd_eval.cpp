@@ -2,6 +2,7 @@
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
+#include "facecap/pipeline/photo_identity_eval.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/swap_eval.hpp"
 #include "facecap/pipeline/synth_landmark_eval.hpp"
@@ -76,6 +77,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     std::string size = "1280x720";
     bool true_focal = false;
     bool map_size = false;
+    int photos = 0;
     std::string face_photo;
     TrackEvalOptions options;
   };
@@ -103,6 +105,11 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
+  cmd->add_option("--photos", a->photos,
+                  "--synthetic: instead, fit every K-th frame alone, as a photo (a swap's source) is, and report "
+                  "how far each photo's identity lies from the true face (size removed), for calm and expressive "
+                  "faces")
+      ->check(CLI::PositiveNumber);
   add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
     const FaceModel model = load_model(global);
@@ -134,6 +141,19 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
           (a->options.synth.focal > 0 ? a->options.synth.focal : 1.1 * a->options.synth.width);
     }
     a->options.capture.fit.unbiased_size = !a->map_size;
+    if (a->photos > 0) {
+      if (a->landmarks != "truth") throw Error("eval track --photos fits the true landmarks; drop --landmarks dlib");
+      const PhotoIdentityEvalResult r = evaluate_photo_identity_synthetic(model, a->options, a->photos);
+      print_json({{"frames", a->options.frames},
+                  {"seed", a->options.seed},
+                  {"photos", r.photos},
+                  {"shape_error_mm", r.shape_error_mm},
+                  {"shape_error_calm_mm", r.shape_error_calm_mm},
+                  {"shape_error_expressive_mm", r.shape_error_expressive_mm},
+                  {"weights_mae", r.weights_mae},
+                  {"expression_mae_expressive", r.expression_mae_expressive}});
+      return;
+    }
     const TrackEvalResult r = evaluate_track_synthetic(model, a->options);
     print_json({{"frames", r.frames},
                 {"seed", a->options.seed},

@@ -34,12 +34,23 @@ std::vector<cv::Point2f> disc(cv::Point2f c) {
   return p;
 }
 
+const cv::Rect kWindow(40, 20, 160, 160);
+
 // A frame whose pixels hold their own coordinates: a warp's output is its map.
 cv::Mat coordinates() {
   cv::Mat frame(200, 240, CV_32FC3);
   for (int y = 0; y < frame.rows; ++y)
     for (int x = 0; x < frame.cols; ++x) frame.at<cv::Vec3f>(y, x) = cv::Vec3f(float(x), float(y), 0);
   return frame;
+}
+
+// The map of a warp moving the anchors `from` to `to` in the window
+// (40, 20, 160 x 160): the output of warping coordinates().
+cv::Mat warp_map(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to) {
+  BackgroundWarp warp;
+  cv::Mat out;
+  warp.warp(coordinates(), from, to, kWindow, out);
+  return out;
 }
 
 }  // namespace
@@ -110,14 +121,10 @@ TEST(BackgroundWarp, TheBackgroundBeyondTheRingStaysPut) {
 // and leaves pixels that keep the unwarped frame. The frame holds each
 // pixel's own coordinates, so the output is the map itself.
 TEST(BackgroundWarp, AnAnchorMovedPastItsNeighboursLeavesNoTear) {
-  const cv::Mat frame = coordinates();
   const auto from = ring({120, 100}, 40, 12);  // the centre is the last point
   std::vector<cv::Point2f> to = from;
   to.back() = {172, 104};  // past the ring's point at (160, 100)
-  const cv::Rect window(40, 20, 160, 160);
-  BackgroundWarp warp;
-  cv::Mat out;
-  warp.warp(frame, from, to, window, out);
+  const cv::Mat out = warp_map(from, to);
   // Neighbouring pixels sample the frame at most a few pixels apart (the
   // warp stretches nothing more than 40 px of source over 12 px), where a
   // tear puts an unwarped pixel next to one carried 50 px.
@@ -131,7 +138,7 @@ TEST(BackgroundWarp, AnAnchorMovedPastItsNeighboursLeavesNoTear) {
   }
   EXPECT_LT(worst, 8.0);
   // The moved anchor carries the frame's centre with it.
-  const cv::Vec3f at_anchor = out.at<cv::Vec3f>(104 - window.y, 172 - window.x);
+  const cv::Vec3f at_anchor = out.at<cv::Vec3f>(104 - kWindow.y, 172 - kWindow.x);
   EXPECT_NEAR(at_anchor[0], 120.0f, 1.0f);
   EXPECT_NEAR(at_anchor[1], 100.0f, 1.0f);
 }
@@ -188,17 +195,13 @@ std::vector<cv::Point2f> narrowed(const std::vector<cv::Point2f>& disc_points, c
 }
 
 TEST(BackgroundWarp, EachAnchorCarriesItsOwnPixel) {
-  const cv::Mat frame = coordinates();
   const cv::Point2f centre(120, 100);
   const auto from = disc(centre);
   const auto to = narrowed(from, centre, false);
-  const cv::Rect window(40, 20, 160, 160);
-  BackgroundWarp warp;
-  cv::Mat out;
-  warp.warp(frame, from, to, window, out);
+  const cv::Mat out = warp_map(from, to);
   for (size_t k = 0; k < to.size(); ++k) {
     cv::Mat sampled;
-    cv::getRectSubPix(out, cv::Size(1, 1), to[k] - cv::Point2f(window.tl()), sampled);
+    cv::getRectSubPix(out, cv::Size(1, 1), to[k] - cv::Point2f(kWindow.tl()), sampled);
     const cv::Vec3f s = sampled.at<cv::Vec3f>(0, 0);
     EXPECT_LT(cv::norm(cv::Point2f(s[0], s[1]) - from[k]), 0.1) << k;
   }
@@ -211,18 +214,13 @@ TEST(BackgroundWarp, EachAnchorCarriesItsOwnPixel) {
 // outline, the map's second difference from pixel to pixel stays under
 // 1.5 px, where the triangles gave 3.6.
 TEST(BackgroundWarp, TheMapBeyondTheOutlineHasNoCreases) {
-  const cv::Mat frame = coordinates();
   const cv::Point2f centre(120, 100);
   const auto from = disc(centre);
-  const auto to = narrowed(from, centre, true);
-  const cv::Rect window(40, 20, 160, 160);
-  BackgroundWarp warp;
-  cv::Mat out;
-  warp.warp(frame, from, to, window, out);
+  const cv::Mat out = warp_map(from, narrowed(from, centre, true));
   double worst = 0;
   for (int y = 1; y + 1 < out.rows; ++y) {
     for (int x = 1; x + 1 < out.cols; ++x) {
-      if (cv::norm(cv::Point2f(float(x + window.x), float(y + window.y)) - centre) < 42) continue;
+      if (cv::norm(cv::Point2f(float(x + kWindow.x), float(y + kWindow.y)) - centre) < 42) continue;
       const cv::Vec3f m = out.at<cv::Vec3f>(y, x);
       const cv::Vec3f across = out.at<cv::Vec3f>(y, x - 1) + out.at<cv::Vec3f>(y, x + 1) - 2 * m;
       const cv::Vec3f down = out.at<cv::Vec3f>(y - 1, x) + out.at<cv::Vec3f>(y + 1, x) - 2 * m;
@@ -235,15 +233,11 @@ TEST(BackgroundWarp, TheMapBeyondTheOutlineHasNoCreases) {
 // Anchors all on one point put the rings there too, which leaves the spline
 // nothing to fit: the window is left as it was, with no NaN in it.
 TEST(BackgroundWarp, AnchorsInOnePlaceLeaveTheFrame) {
-  const cv::Mat frame = coordinates();
-  const std::vector<cv::Point2f> from(5, cv::Point2f(120, 100)), to = from;
-  const cv::Rect window(40, 20, 160, 160);
-  BackgroundWarp warp;
-  cv::Mat out;
-  warp.warp(frame, from, to, window, out);
-  ASSERT_EQ(out.size(), window.size());
+  const std::vector<cv::Point2f> from(5, cv::Point2f(120, 100));
+  const cv::Mat out = warp_map(from, from);
+  ASSERT_EQ(out.size(), kWindow.size());
   cv::Mat d;
-  cv::absdiff(out, frame(window), d);
+  cv::absdiff(out, coordinates()(kWindow), d);
   double worst = 0;
   cv::minMaxLoc(d.reshape(1), nullptr, &worst);
   EXPECT_EQ(worst, 0.0);

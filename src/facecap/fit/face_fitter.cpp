@@ -127,6 +127,7 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
   const double frame_weight = weights.identity_evidence_frames / double(std::max<size_t>(1, observed.size()));
   weights.sigma_landmark /= std::sqrt(frame_weight);
   weights.sigma_expression /= std::sqrt(frame_weight);
+  if (observed.size() == 1) weights.sigma_expression *= weights.photo_expression_sigma_factor;
   std::vector<std::unique_ptr<FrameEnergy>> energies;
   for (const Landmarks& lm : observed) {
     energies.push_back(std::make_unique<FrameEnergy>(basis_, weights, lm, pp, identity, focal, nullptr));

@@ -18,6 +18,7 @@ void FitWeights::check() const {
   positive(identity_sigma_factor, "identity_sigma_factor");
   positive(identity_evidence_frames, "identity_evidence_frames");
   positive(sigma_expression, "sigma_expression");
+  positive(photo_expression_sigma_factor, "photo_expression_sigma_factor");
   positive(sigma_eye_look, "sigma_eye_look");
   positive(sigma_temporal_expression, "sigma_temporal_expression");
   positive(sigma_temporal_rotation_deg, "sigma_temporal_rotation_deg");

@@ -54,6 +54,23 @@ struct FitWeights {
   //    3.35 from 90 weighed in full).
   double identity_evidence_frames = 30.0;
   double sigma_expression = 0.6;  // prior on each weight (mean 0)
+  // An identity solved from one photo: its expression prior's sigma is this
+  // many times what the frame weight above gives it. One photo cannot tell
+  // the face's shape from its expression, and with the prior at a video
+  // frame's strength the shape took in part of a smile (Obama's portrait:
+  // mouthSmile 0.41, and every swap from it grinned). Each frame of
+  // synthetic performances fitted alone (`eval track --synthetic 90
+  // --photos 3`, seeds 1-6, 180 photos), neutral-face error with the size
+  // removed: factor 1 / 1.25 / 1.5 / 1.75 / 2 / 3 gave 1.580 / 1.546 /
+  // 1.534 / 1.533 / 1.540 / 1.581 mm; at 1.5 the most expressive half
+  // 1.674 -> 1.584 mm, the calmest 1.486 -> 1.484, every seed better or
+  // the same. On real photos, the identity's distance to the same person's
+  // video identity: Obama's portrait to address_720p_a / _b 8.16 / 7.64 ->
+  // 6.94 / 6.37 (smile 0.41 -> 0.51), the clips' frame 0 to their own clip
+  // 3.11 -> 3.04, 2.08 -> 1.98. Self-swap means (`eval swap --self`, a
+  // clip's frame 0 as the photo): address_720p_a 4.54 -> 4.24, _b 7.49 ->
+  // 7.58, emotions_pexels (a crying first frame) 11.06 -> 11.45.
+  double photo_expression_sigma_factor = 1.5;
   // Where the irises show a gaze, the eight eyeLook weights are pulled toward
   // its weights (eye_look.hpp) with this sigma (0.35: 10.5 degrees, about
   // the gaze's error with dlib's landmarks). `eval track --synthetic 90`,
@@ -84,8 +101,8 @@ enum class JawCorrespondence {
 
 struct CoarseFitOptions {
   FitWeights weights;
-  int identity_modes = 50;           // leading ICT identity modes fitted (DESIGN.md)
-  int init_frames = 30;              // frames for the joint identity + focal solve
+  int identity_modes = 50;  // leading ICT identity modes fitted (DESIGN.md)
+  int init_frames = 30;     // frames for the joint identity + focal solve
   // Frames without a face the solve waits through for its init_frames: past
   // this many it solves from the faces it has (or, with none, lets the frames
   // go as lost), so that a face seen briefly does not hold every later frame,
