@@ -116,6 +116,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     a->options.capture.quiet = global.quiet;
     if (!a->video.empty()) {
       if (!a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
+      if (a->photos > 0) throw Error("eval track --photos fits synthetic frames: use it with --synthetic N");
       const VideoEvalResult r = evaluate_track_video(model, a->video, a->options.capture);
       const StageTimings& t = r.summary.timings;
       print_json({{"video", a->video},
