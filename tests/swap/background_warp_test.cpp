@@ -230,6 +230,33 @@ TEST(BackgroundWarp, TheMapBeyondTheOutlineHasNoCreases) {
   EXPECT_LT(worst, 1.5);
 }
 
+// Around a feature (an eye, the mouth) the triangles' map holds: what lies
+// between its points moves with them as the face's mesh edges do, where the
+// spline bends between sparse anchors (12 on a circle moved by 6 px: up to
+// 1.6 px off a translation 10 px from the centre).
+TEST(BackgroundWarp, AroundAFeatureTheTrianglesMapHolds) {
+  const auto from = ring({120, 100}, 40, 12);
+  std::vector<cv::Point2f> to = from;
+  for (auto& p : to) p += cv::Point2f(6, 0);
+  const std::vector<cv::Point2f> outline(to.begin(), to.end() - 1);  // the circle, without its centre
+  BackgroundWarp warp;
+  cv::Mat out;
+  warp.warp(coordinates(), from, to, kWindow, out, {outline});
+  double worst = 0;
+  for (int y = 75; y <= 125; ++y) {
+    for (int x = 101; x <= 151; ++x) {  // within 25 px of the moved centre (126, 100)
+      if (cv::norm(cv::Point2f(float(x), float(y)) - cv::Point2f(126, 100)) > 25) continue;
+      const cv::Vec3f p = out.at<cv::Vec3f>(y - kWindow.y, x - kWindow.x);
+      worst = std::max(worst, double(cv::norm(cv::Point2f(p[0] - (x - 6), p[1] - y))));
+    }
+  }
+  EXPECT_LT(worst, 0.05);
+  // Without the feature, the spline alone.
+  const cv::Mat spline = warp_map(from, to);
+  const cv::Vec3f p = spline.at<cv::Vec3f>(100 - kWindow.y, 136 - kWindow.x);
+  EXPECT_GT(cv::norm(cv::Point2f(p[0] - 130, p[1] - 100)), 0.3);
+}
+
 // Anchors all on one point put the rings there too, which leaves the spline
 // nothing to fit: the window is left as it was, with no NaN in it.
 TEST(BackgroundWarp, AnchorsInOnePlaceLeaveTheFrame) {

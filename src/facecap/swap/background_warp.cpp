@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "facecap/core/parallel.hpp"
+#include "facecap/swap/piecewise_affine_map.hpp"
 
 namespace facecap {
 
@@ -97,7 +99,8 @@ cv::Point2f BackgroundWarp::offset_at(cv::Point2f p, Eigen::ArrayXf& kernel) con
 }
 
 void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& from,
-                          const std::vector<cv::Point2f>& to, cv::Rect window, cv::Mat& out) {
+                          const std::vector<cv::Point2f>& to, cv::Rect window, cv::Mat& out,
+                          const std::vector<std::vector<cv::Point2f>>& features) {
   window &= cv::Rect(0, 0, frame.cols, frame.rows);
   // The anchors kept: inside the window in both faces (the window's border
   // holds still), and one of two that land within a pixel of each other.
@@ -182,7 +185,66 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
       my[x] += float(window.y + y);
     }
   }
+  if (!features.empty()) {
+    // The fixed points of the triangles: the inner ring and the window's
+    // border, which tile the window with the anchors.
+    const std::vector<cv::Point2f> border = window_border(window);
+    for (const auto* fixed : {&ring, &border}) {
+      src.insert(src.end(), fixed->begin(), fixed->end());
+      dst.insert(dst.end(), fixed->begin(), fixed->end());
+    }
+    keep_triangles_around(features, src, dst, window);
+  }
   cv::remap(frame, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+}
+
+void BackgroundWarp::keep_triangles_around(const std::vector<std::vector<cv::Point2f>>& features,
+                                           const std::vector<cv::Point2f>& src, const std::vector<cv::Point2f>& dst,
+                                           const cv::Rect& window) {
+  const int margin = std::max(1, cvRound(kFeatureMargin * window.width));
+  const int feather = margin / 2 + 1;
+  const cv::Rect whole(0, 0, window.width, window.height);
+  std::optional<PiecewiseAffineMap> triangles;
+  for (const std::vector<cv::Point2f>& feature : features) {
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& p : feature) {
+      if (std::isfinite(p.x) && std::isfinite(p.y))
+        polygon.emplace_back(cvRound(p.x) - window.x, cvRound(p.y) - window.y);
+    }
+    if (polygon.size() < 3) continue;
+    // The feature grown by the margin (its outline drawn that thick), and
+    // the edge feathered over a third of the margin each way: where the
+    // weight is 1 the triangles' map holds, where it is 0 the spline's.
+    const cv::Rect bounds = cv::boundingRect(polygon);
+    const int reach = margin + feather;
+    const cv::Rect region =
+        cv::Rect(bounds.x - reach, bounds.y - reach, bounds.width + 2 * reach, bounds.height + 2 * reach) & whole;
+    if (region.empty()) continue;
+    for (cv::Point& p : polygon) p -= region.tl();
+    cv::Mat mask(region.size(), CV_8U, cv::Scalar(0));
+    cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
+    cv::polylines(mask, std::vector<std::vector<cv::Point>>{polygon}, true, cv::Scalar(255), 2 * margin + 1);
+    cv::Mat weight;
+    mask.convertTo(weight, CV_32F, 1.0 / 255);
+    cv::GaussianBlur(weight, weight, cv::Size(0, 0), std::max(0.5, margin / 3.0));
+    if (!triangles) triangles.emplace(src, dst, window);
+    // Pixels no triangle covers (none, where the points tile the window)
+    // keep the spline's map.
+    map_x_(region).copyTo(pa_x_);
+    map_y_(region).copyTo(pa_y_);
+    triangles->fill(region, pa_x_, pa_y_);
+    for (int y = 0; y < region.height; ++y) {
+      const float* w = weight.ptr<float>(y);
+      const float* ax = pa_x_.ptr<float>(y);
+      const float* ay = pa_y_.ptr<float>(y);
+      float* mx = map_x_.ptr<float>(region.y + y) + region.x;
+      float* my = map_y_.ptr<float>(region.y + y) + region.x;
+      for (int x = 0; x < region.width; ++x) {
+        mx[x] += w[x] * (ax[x] - mx[x]);
+        my[x] += w[x] * (ay[x] - my[x]);
+      }
+    }
+  }
 }
 
 std::vector<bool> anchors_facing(const std::vector<int>& anchors, const Positions& target_points,

@@ -113,6 +113,16 @@ std::vector<cv::Point2f> kept(const std::vector<cv::Point2f>& points, const std:
   return out;
 }
 
+// The eyes' and the mouth's outlines among the warp's anchors, whose first
+// 68 are the landmarks (iBUG 36-41, 42-47 and 48-59).
+std::vector<std::vector<cv::Point2f>> feature_outlines(const std::vector<cv::Point2f>& anchors) {
+  if (anchors.size() < 60) return {};
+  const auto run = [&](int first, int last) {
+    return std::vector<cv::Point2f>(anchors.begin() + first, anchors.begin() + last + 1);
+  };
+  return {run(36, 41), run(42, 47), run(48, 59)};
+}
+
 }  // namespace
 
 struct FaceSwapper::Impl {
@@ -524,7 +534,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     }
     const std::vector<bool> shown =
         anchors_facing(m.anchors, target_points, target_normals, swapped_points, normals, m.skin.num_vertices);
-    m.warp.warp(frame, kept(from, shown), kept(to, shown), out.window, background);
+    m.warp.warp(frame, kept(from, shown), kept(to, shown), out.window, background, feature_outlines(to));
   } else {
     background = frame(out.window).clone();
   }
