@@ -100,6 +100,12 @@ enum class JawCorrespondence {
 };
 
 struct CoarseFitOptions {
+  // A still image: its one frame solves the identity and the focal length.
+  void set_single_image() {
+    still = true;
+    init_frames = 1;
+  }
+
   FitWeights weights;
   int identity_modes = 50;  // leading ICT identity modes fitted (DESIGN.md)
   int init_frames = 30;     // frames for the joint identity + focal solve
@@ -113,7 +119,7 @@ struct CoarseFitOptions {
   double focal_guess = 0.0;          // pixels; 0 = 1.0 x the larger image side
   bool focal_known = false;          // hold focal_guess fixed (a calibrated camera)
   double lost_landmark_error = 0.1;  // NME of the fit against its landmarks above which a frame counts as lost
-  bool still = false;                // a single image: one frame, stronger focal prior
+  bool still = false;                // a single image: one frame, stronger focal prior (set_single_image)
   JawCorrespondence jaw = JawCorrespondence::kSlide;
   // Move the solved identity's size from the joint posterior's mode to where
   // its mass lies (identity_size.hpp). Synthetic sweeps (`eval track

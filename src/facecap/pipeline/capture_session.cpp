@@ -17,10 +17,7 @@ std::string unreadable_frames_note(const CaptureSummary& summary, const std::str
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink) {
   const auto start = std::chrono::steady_clock::now();
   const InputInfo info = source.info();
-  if (info.kind == InputKind::kImage) {
-    options.fit.still = true;
-    options.fit.init_frames = 1;
-  }
+  if (info.kind == InputKind::kImage) options.fit.set_single_image();
   const LandmarkDetector landmark_detector;
   FaceCapture face(model, landmark_detector, options, info, sink);
   const double setup_ms = ms_since(start);

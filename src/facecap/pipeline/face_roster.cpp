@@ -101,10 +101,7 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
   const auto start = std::chrono::steady_clock::now();
   AllFacesSummary summary;
   summary.input = source.info();
-  if (summary.input.kind == InputKind::kImage) {
-    options.fit.still = true;
-    options.fit.init_frames = 1;
-  }
+  if (summary.input.kind == InputKind::kImage) options.fit.set_single_image();
   // A capture searches every frame for a face it lost a moment ago (as one
   // face's capture does), and otherwise only where the roster searches.
   const int recent_frames = options.tracker.follow_frames;

@@ -21,13 +21,9 @@ PhotoIdentityEvalResult evaluate_photo_identity_synthetic(const FaceModel& model
   const SynthPerformance perf = make_performance(model, so);
   const SynthRenderer renderer(model, perf);
   // As capture fits a still image (capture_session.cpp), from the truth's
-  // landmarks: the model's own jaw convention, no detector offset to allow
-  // for (as evaluate_track_synthetic).
-  CoarseFitOptions fit = options.capture.fit;
-  fit.still = true;
-  fit.init_frames = 1;
-  fit.jaw = JawCorrespondence::kMarch;
-  fit.weights.identity_sigma_factor = 1.0;
+  // landmarks.
+  CoarseFitOptions fit = fit_options_for_true_landmarks(options.capture.fit);
+  fit.set_single_image();
   std::mt19937_64 rng(perf.options.seed * 31 + 7);
   std::normal_distribution<float> noise(0.0f, float(options.landmark_noise_px));
   const Positions true_neutral = model.evaluate(perf.identity, Eigen::VectorXf(), regions::kFace);

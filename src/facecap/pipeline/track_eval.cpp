@@ -29,14 +29,8 @@ std::vector<CoarseFit> fit_performance(const FaceModel& model, const SynthPerfor
   std::vector<CoarseFit> fits;
   if (o.landmarks == LandmarkSource::kTruth) {
     const SynthRenderer renderer(model, perf);
-    // The truth follows the model's own landmark definition: the jaw
-    // landmarks are the marched silhouette vertices (a dlib run slides along
-    // the outline instead), and there is no detector-convention offset for
-    // the identity solve to allow for.
-    CoarseFitOptions fit = o.capture.fit;
-    fit.jaw = JawCorrespondence::kMarch;
-    fit.weights.identity_sigma_factor = 1.0;
-    CoarseTracker tracker(model, fit, perf.options.width, perf.options.height);
+    CoarseTracker tracker(model, fit_options_for_true_landmarks(o.capture.fit), perf.options.width,
+                          perf.options.height);
     std::mt19937_64 rng(perf.options.seed * 31 + 7);
     std::normal_distribution<float> noise(0.0f, float(o.landmark_noise_px));
     // The irises are found on the rendered frames inside the same noisy landmarks.
@@ -115,6 +109,12 @@ double centred_rms_mm(const Positions& truth, const Positions& fitted, bool fit_
 }
 
 }  // namespace
+
+CoarseFitOptions fit_options_for_true_landmarks(CoarseFitOptions fit) {
+  fit.jaw = JawCorrespondence::kMarch;
+  fit.weights.identity_sigma_factor = 1.0;
+  return fit;
+}
 
 TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options) {
   TrackEvalResult r;

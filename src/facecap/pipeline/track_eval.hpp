@@ -76,6 +76,12 @@ struct TrackEvalResult {
 
 TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options);
 
+// `fit` for the synthetic truth's landmarks: they follow the model's own
+// landmark definition (the jaw landmarks are the marched silhouette
+// vertices, where a dlib run slides along the outline instead), and there
+// is no detector-convention offset for the identity solve to allow for.
+CoarseFitOptions fit_options_for_true_landmarks(CoarseFitOptions fit);
+
 struct VideoEvalResult {
   int frames = 0;
   int lost_frames = 0;
