@@ -11,12 +11,16 @@
 
 namespace facecap {
 
+cv::Point2f ring_centre(const std::vector<cv::Point2f>& from) {
+  cv::Point2f c(0, 0);
+  for (const cv::Point2f& p : from) c += p;
+  return from.empty() ? c : c * (1.0f / float(from.size()));
+}
+
 std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
                                     const cv::Rect& w, float scale) {
   if (from.empty()) return {};
-  cv::Point2f c(0, 0);
-  for (const cv::Point2f& p : from) c += p;
-  c *= 1.0f / float(from.size());
+  const cv::Point2f c = ring_centre(from);
   float reach = 0;
   for (const auto* set : {&from, &to})
     for (const cv::Point2f& p : *set) reach = std::max(reach, float(cv::norm(p - c)));
@@ -38,6 +42,11 @@ std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const 
 }
 
 namespace {
+
+// Whether a point lies within a pixel of one of `points`.
+bool near_any(const std::vector<cv::Point2f>& points, cv::Point2f p) {
+  return std::any_of(points.begin(), points.end(), [&](const cv::Point2f& q) { return cv::norm(q - p) < 1.0; });
+}
 
 // The thin-plate kernel of squared distance: r^2 log r^2 (twice the usual
 // r^2 log r, which the weights absorb).
@@ -111,8 +120,7 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
   };
   for (size_t k = 0; k < std::min(from.size(), to.size()); ++k) {
     if (!inside(from[k]) || !inside(to[k])) continue;
-    const auto near = [&](const cv::Point2f& q) { return cv::norm(q - to[k]) < 1.0; };
-    if (std::any_of(dst.begin(), dst.end(), near)) continue;
+    if (near_any(dst, to[k])) continue;
     src.push_back(from[k]);
     dst.push_back(to[k]);
   }
@@ -123,9 +131,7 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
   }
   const std::vector<cv::Point2f> ring = fixed_ring(src, dst, window);
   const std::vector<cv::Point2f> outer = fixed_ring(src, dst, window, kOuterRingScale);
-  centre_ = cv::Point2f(0, 0);
-  for (const cv::Point2f& p : src) centre_ += p;
-  centre_ *= 1.0f / float(src.size());
+  centre_ = ring_centre(src);
   scale_ = 1.0;
   for (const cv::Point2f& p : outer) scale_ = std::max(scale_, cv::norm(p - centre_));
 
@@ -135,10 +141,8 @@ void BackgroundWarp::warp(const cv::Mat& frame, const std::vector<cv::Point2f>& 
   std::vector<cv::Point2f> points = dst, offsets(dst.size());
   for (size_t k = 0; k < dst.size(); ++k) offsets[k] = src[k] - dst[k];
   for (const auto* fixed : {&ring, &outer}) {
-    for (const cv::Point2f& p : *fixed) {
-      const auto near = [&](const cv::Point2f& q) { return cv::norm(q - p) < 1.0; };
-      if (std::none_of(points.begin(), points.end(), near)) points.push_back(p);
-    }
+    for (const cv::Point2f& p : *fixed)
+      if (!near_any(points, p)) points.push_back(p);
   }
   offsets.resize(points.size(), cv::Point2f(0, 0));
   // Anchors all in one place leave the rings there too: nothing to fit.

@@ -96,9 +96,11 @@ constexpr float kOuterRingScale = 1.5f;
 // How far around a feature (times the window's width: about 12 px at 720p)
 // the triangles' map is kept; see the header's note.
 constexpr float kFeatureMargin = 0.025f;
-// A fixed ring around both anchor sets: centred on the `from` anchors'
-// centroid, `scale` times the largest anchor distance (of `from` or `to`)
-// from it, each point pulled inside the window by 2 px where it would leave it.
+// The centre of the fixed rings: the `from` anchors' centroid.
+cv::Point2f ring_centre(const std::vector<cv::Point2f>& from);
+// A fixed ring around both anchor sets: centred on ring_centre(from),
+// `scale` times the largest anchor distance (of `from` or `to`) from it,
+// each point pulled inside the window by 2 px where it would leave it.
 std::vector<cv::Point2f> fixed_ring(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
                                     const cv::Rect& window, float scale = kRingScale);
 
