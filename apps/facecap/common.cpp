@@ -228,8 +228,12 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
       ->capture_default_str();
   cmd.add_flag_callback(
       "--no-occlusion", [&swap] { swap.keep_occluders = false; },
-      "Paint the new face over whatever covers the target's face (a microphone, a cup, hair: covers of another "
-      "colour than the skin; a hand in the same light is not found either way) rather than leave it in front");
+      "Paint the new face over whatever covers the target's face (a microphone, a cup, hair, a hand) rather than "
+      "leave it in front");
+  cmd.add_flag_callback(
+      "--no-moving-covers", [&swap] { swap.moving_covers = false; },
+      "Find covers by their colour alone: not a hand of the skin's own colour moving across the face, which the "
+      "optical flow finds (8-13 ms a frame on 2 cores); a hand that rests for seconds is lost either way");
   cmd.add_flag_callback(
       "--no-grade-match", [&swap] { swap.match_grade = false; },
       "Keep the photo's range of skin hues where the target shows a narrower one (a desaturated or sepia grade); "

@@ -69,6 +69,7 @@ void FaceSwapStream::take(const RefinedFrame& r) {
   t.camera = r.camera;
   t.lighting = r.refinement->lighting;
   t.lighting_final = r.refinement->albedo_final;
+  t.index = f.index;
   if (options_.wrinkles) {
     t.fine = r.refinement->positions;
     t.hierarchy = &stage_->refiner().hierarchy();

@@ -25,6 +25,7 @@
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/light_colour.hpp"
 #include "facecap/swap/lit_vertices.hpp"
+#include "facecap/swap/moving_cover.hpp"
 #include "facecap/swap/noise_matching.hpp"
 #include "facecap/swap/occlusion_mask.hpp"
 #include "facecap/swap/residual_shading.hpp"
@@ -73,36 +74,6 @@ std::vector<float> uncovered(const TriangleMesh& mesh, std::vector<float> seen, 
     }
   }
   return seen;
-}
-
-// How covered the target face is (the OcclusionMask grid `cover`) at each
-// pixel of a window of `size` that `camera` sees, where the target's
-// `points` (the skin mesh's vertices in camera space) show: CV_32F.
-cv::Mat covered_pixels(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
-                       const cv::Mat& cover) {
-  RasterBuffers buffers;
-  buffers.resize(size.width, size.height);
-  rasterize(points, skin.triangles, camera, buffers);
-  cv::Mat out(size, CV_32F, cv::Scalar(0));
-  parallel_for(
-      size.height,
-      [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-          float* o = out.ptr<float>(y);
-          for (int x = 0; x < size.width; ++x) {
-            const size_t i = size_t(y) * size.width + x;
-            const int tri = buffers.triangle[i];
-            if (tri < 0) continue;
-            const Vec2f b = buffers.bary[i];
-            const Triangle& uv = skin.triangle_uvs[tri];
-            const Vec2f coord =
-                (1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]];
-            o[x] = cover_at(cover, coord);
-          }
-        }
-      },
-      16);
-  return out;
 }
 
 // The points whose `keep` is set, in order.
@@ -164,6 +135,8 @@ struct FaceSwapper::Impl {
   std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
   std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
   std::optional<OcclusionMask> occlusion;   // SwapOptions::keep_occluders
+  std::optional<MovingCover> moving;        // SwapOptions::moving_covers
+  int last_index = -1;                      // the last swapped frame's TargetFrame::index
 
   // Follows the target's identity (fixed once its tracker has solved it).
   void update_target_identity(const Eigen::VectorXf& identity) {
@@ -214,7 +187,10 @@ struct FaceSwapper::Impl {
     const double mm_per_uv =
         millimetres_per_uv(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace));
     if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
-    if (options.keep_occluders) occlusion.emplace(skin, mm_per_uv);
+    if (options.keep_occluders) {
+      occlusion.emplace(skin, mm_per_uv);
+      if (options.moving_covers) moving.emplace(skin, occlusion->grid());
+    }
     // The warp's anchors: the landmarks and every second boundary vertex
     // (every third raised the seam ratio of Obama into address_720p_b,
     // 30 frames, 1.38 -> 1.43; every one lowered it to 1.36 for 0.7 ms more).
@@ -401,7 +377,14 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     skin_now = FaceTexture{seen.albedo, seen.weight.clone()};
     drop_non_skin(*skin_now);
     if (appearance_frame) m.occlusion->add_reference(seen);
-    cover = m.occlusion->covered(seen);
+    cv::Mat moving;
+    if (m.moving) {
+      // Motion is measured between consecutive frames only.
+      if (target.index >= 0 && m.last_index >= 0 && target.index != m.last_index + 1) m.moving->reset();
+      m.last_index = target.index;
+      moving = m.moving->update(frame, target_points, target.camera, seen.weight);
+    }
+    cover = m.occlusion->covered(seen, moving);
     skin_now->weight.setTo(0, cover > 0);  // the expression ratio's change is the face's, not a cover's
     occlusion_ms = ms_since(t0);
     t.occlusion_ms += occlusion_ms;
@@ -569,7 +552,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     // The covers stay in front, where the frame has them: neither the new
     // face nor the background's warp moves them.
     t0 = std::chrono::steady_clock::now();
-    cv::Mat in_front = covered_pixels(m.skin, target_points, window, out.window.size(), cover);
+    cv::Mat in_front = cover_in_image(m.skin, target_points, window, out.window.size(), cover);
     // Across the openings of the skin mesh (the mouth, the eyes) where a
     // cover lies on both sides of them: up to 6 % of the window each way
     // (the window is about 1.4 face widths: some 12 mm).

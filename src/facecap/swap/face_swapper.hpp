@@ -90,6 +90,10 @@ struct SwapOptions {
   // front of the new face (occlusion_mask.hpp); off: the new face is laid
   // over it, as in the paper (`swap --no-occlusion`).
   bool keep_occluders = true;
+  // With it, also what moves across the target's face other than the face
+  // (a hand of the skin's own colour: moving_cover.hpp), at 8-13 ms a frame
+  // (`swap --no-moving-covers`: off).
+  bool moving_covers = true;
   // Narrow the photo's range of skin hues to the target's (chroma_spread.hpp)
   // before the albedo adaptation: a graded, desaturated video shows less
   // colour in its faces than a photo (`swap --no-grade-match`: off).
@@ -119,6 +123,11 @@ struct TargetFrame {
   // lighting estimates shift with it). The appearance gathered under
   // provisional lighting is used, then gathered again once it is final.
   bool lighting_final = true;
+  // The frame's number in the target; where it does not follow the last
+  // swapped frame's (a frame without a face between), what moves across
+  // the face is looked for afresh (moving_cover.hpp). -1: unknown, taken
+  // to follow.
+  int index = -1;
   // With SwapOptions::wrinkles: the refined face at the hierarchy's finest
   // level (camera space) and the hierarchy it lives on.
   Positions fine;

@@ -7,7 +7,9 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/image_sampling.hpp"
+#include "facecap/core/parallel.hpp"
 #include "facecap/core/statistics.hpp"
+#include "facecap/render/rasterizer.hpp"
 
 namespace facecap {
 
@@ -33,6 +35,33 @@ int texels(float mm, double texels_per_mm) { return static_cast<int>(std::lround
 float cover_at(const cv::Mat& cover, const Vec2f& uv) {
   const Vec2f texel = uv_to_texel(uv, cover.cols);
   return sample_bilinear_channels<1>(cover, texel.x(), texel.y())[0];
+}
+
+cv::Mat cover_in_image(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
+                       const cv::Mat& cover) {
+  RasterBuffers buffers;
+  buffers.resize(size.width, size.height);
+  rasterize(points, skin.triangles, camera, buffers);
+  cv::Mat out(size, CV_32F, cv::Scalar(0));
+  parallel_for(
+      size.height,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          float* o = out.ptr<float>(y);
+          for (int x = 0; x < size.width; ++x) {
+            const size_t i = size_t(y) * size.width + x;
+            const int tri = buffers.triangle[i];
+            if (tri < 0) continue;
+            const Vec2f b = buffers.bary[i];
+            const Triangle& uv = skin.triangle_uvs[tri];
+            const Vec2f coord =
+                (1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]];
+            o[x] = cover_at(cover, coord);
+          }
+        }
+      },
+      16);
+  return out;
 }
 
 OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options)
@@ -80,7 +109,7 @@ void OcclusionMask::add_reference(const FaceTexture& seen) {
   weight_sum_ += seen.weight;
 }
 
-cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
+cv::Mat OcclusionMask::covered(const FaceTexture& seen, const cv::Mat& moving) const {
   const int n = grid_.map.size;
   cv::Mat out(n, n, CV_32F, cv::Scalar(0));
   if (low_.empty() || seen.empty()) return out;
@@ -125,6 +154,7 @@ cv::Mat OcclusionMask::covered(const FaceTexture& seen) const {
       if (outside > options_.min_log_change) f[x] = 255;
     }
   }
+  if (!moving.empty()) found.setTo(255, (moving > 0.5f) & (seen.weight > 0));
   const int speck = texels(0.5f * options_.min_extent_mm, grid_.texels_per_mm);
   if (speck > 0) cv::morphologyEx(found, found, cv::MORPH_OPEN, disc(speck));
   if (cv::countNonZero(found) == 0) return out;

@@ -46,6 +46,12 @@ struct OcclusionOptions {
 // A covered() grid's value at a UV point (bilinear).
 float cover_at(const cv::Mat& cover, const Vec2f& uv);
 
+// A covered() grid drawn into a window of `size` that `camera` sees: at
+// each pixel where the skin mesh (`points`, its vertices in camera space)
+// shows, the grid's value at its UV (CV_32F; 0 elsewhere).
+cv::Mat cover_in_image(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
+                       const cv::Mat& cover);
+
 class OcclusionMask {
  public:
   // `skin`: the face's triangles with UVs; `mm_per_uv`: millimetres on the
@@ -63,10 +69,12 @@ class OcclusionMask {
 
   // How covered each texel is (CV_32F, 0..1, grid_size() square over UV
   // [0, 1]^2, row 0 at v = 1) in a frame unshaded by unshade(); all zero
-  // before any reference.
-  cv::Mat covered(const FaceTexture& seen) const;
+  // before any reference. `moving`: MovingCover's evidence on the grid,
+  // covered where above one half whatever its colour (empty: none).
+  cv::Mat covered(const FaceTexture& seen, const cv::Mat& moving = {}) const;
 
   int grid_size() const { return grid_.map.size; }
+  const MillimetreGrid& grid() const { return grid_; }
 
  private:
   OcclusionOptions options_;

@@ -1,0 +1,298 @@
+#include "facecap/swap/moving_cover.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include "facecap/core/error.hpp"
+#include "facecap/core/image_sampling.hpp"
+#include "facecap/swap/occlusion_mask.hpp"
+
+namespace facecap {
+
+namespace {
+
+// About this many of the skin's vertices sample the disagreement the
+// whole face shares.
+constexpr int kSampledVertices = 1500;
+// Rounds of the trimmed least squares.
+constexpr int kFitRounds = 4;
+
+// Each texel's image position (CV_32FC2) and depth in cm (CV_32F, 0 where
+// no triangle covers the texel).
+void texel_positions(const UvTexelMap& map, const std::vector<Triangle>& triangles, const Positions& points,
+                     const PinholeCamera& camera, cv::Mat& image_xy, cv::Mat& depth) {
+  image_xy.create(map.size, map.size, CV_32FC2);
+  depth.create(map.size, map.size, CV_32F);
+  for (int y = 0; y < map.size; ++y) {
+    auto* xy = image_xy.ptr<cv::Vec2f>(y);
+    float* z = depth.ptr<float>(y);
+    for (int x = 0; x < map.size; ++x) {
+      const int i = map.index(x, y);
+      if (map.triangle[i] < 0) {
+        xy[x] = {0, 0};
+        z[x] = 0;
+        continue;
+      }
+      const Vec3f p = map.interpolate(triangles, points, i);
+      const Vec2f q = camera.project(p);
+      xy[x] = {q.x(), q.y()};
+      z[x] = p.z() > 0 ? p.z() : 0;
+    }
+  }
+}
+
+// The image box around the texels `seen` marks, grown by `margin` px.
+cv::Rect seen_bounds(const cv::Mat& image_xy, const cv::Mat& seen, int margin) {
+  float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+  for (int y = 0; y < seen.rows; ++y) {
+    const auto* xy = image_xy.ptr<cv::Vec2f>(y);
+    const float* s = seen.ptr<float>(y);
+    for (int x = 0; x < seen.cols; ++x) {
+      if (s[x] <= 0) continue;
+      x0 = std::min(x0, xy[x][0]);
+      x1 = std::max(x1, xy[x][0]);
+      y0 = std::min(y0, xy[x][1]);
+      y1 = std::max(y1, xy[x][1]);
+    }
+  }
+  if (x1 < x0) return {};
+  return cv::Rect(cv::Point(int(std::floor(x0)) - margin, int(std::floor(y0)) - margin),
+                  cv::Point(int(std::ceil(x1)) + margin + 1, int(std::ceil(y1)) + margin + 1));
+}
+
+// A sampled vertex's position this frame and its disagreement (pixels):
+// where the flow says its pixel was in the last frame, less where the
+// model says the vertex was.
+struct VertexSample {
+  Vec2f at, disagreement;
+};
+
+// d(p) = A [p - origin; 1] (2 x 3).
+struct AffineField {
+  Eigen::Matrix<float, 2, 3> a = Eigen::Matrix<float, 2, 3>::Zero();
+  Vec2f origin = Vec2f::Zero();
+  Vec2f operator()(const Vec2f& p) const {
+    const Vec2f q = p - origin;
+    return a * Vec3f(q.x(), q.y(), 1.0f);
+  }
+};
+
+// The tracking's own error moves the whole face a little (most where a
+// hand hides the landmarks): the affine field over the image that the
+// face's disagreements share is the tracking's, not a cover's. Fitted by
+// least squares, then refitted to the samples within twice the median
+// distance of the last fit (at least half a pixel), three times: a cover's
+// samples, which disagree by more, fall out.
+AffineField shared_disagreement(const std::vector<VertexSample>& samples) {
+  AffineField field;
+  const int m = int(samples.size());
+  if (m < 3) return field;
+  for (const VertexSample& s : samples) field.origin += s.at;
+  field.origin /= float(m);
+  std::vector<float> distance(m, 0.0f);
+  float limit = std::numeric_limits<float>::max();
+  for (int round = 0; round < kFitRounds; ++round) {
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    Eigen::Matrix<double, 3, 2> rhs = Eigen::Matrix<double, 3, 2>::Zero();
+    for (int i = 0; i < m; ++i) {
+      if (distance[i] > limit) continue;
+      const Vec2f q = samples[i].at - field.origin;
+      const Eigen::Vector3d p(q.x(), q.y(), 1.0);
+      normal += p * p.transpose();
+      rhs += p * samples[i].disagreement.cast<double>().transpose();
+    }
+    const Eigen::LDLT<Eigen::Matrix3d> solve(normal);
+    if (solve.info() != Eigen::Success || !(solve.rcond() > 1e-9)) break;
+    field.a = solve.solve(rhs).transpose().cast<float>();
+    for (int i = 0; i < m; ++i) distance[i] = (samples[i].disagreement - field(samples[i].at)).norm();
+    std::vector<float> sorted = distance;
+    std::nth_element(sorted.begin(), sorted.begin() + m / 2, sorted.end());
+    limit = std::max(0.5f, 2.0f * sorted[m / 2]);
+  }
+  return field;
+}
+
+}  // namespace
+
+struct MovingCover::State {
+  TriangleMesh skin;
+  UvTexelMap map;
+  double texels_per_mm = 0;
+  std::vector<int> sampled;       // the vertices that sample the shared disagreement
+  std::vector<int> vertex_texel;  // per vertex, a texel at its UV (-1: none)
+  cv::Ptr<cv::DISOpticalFlow> flow;
+  // The last frame: its grey image, its texels' and vertices' image
+  // positions, and its evidence drawn into the image over `evidence_box`.
+  cv::Mat grey, image_xy;
+  Eigen::Matrix2Xf vertex_xy;
+  cv::Mat evidence_image;
+  cv::Rect evidence_box;
+};
+
+MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, MovingCoverOptions options)
+    : options_(options), state_(std::make_unique<State>()) {
+  if (!(options_.min_motion_mm > 0 && options_.half_life_frames > 0 && options_.flow_width >= 16 &&
+        options_.min_extent_mm >= 0))
+    throw Error("moving cover: needs a positive motion and half-life, and a flow window of 16 px or more");
+  State& s = *state_;
+  s.skin = skin;
+  s.map = grid.map;
+  s.texels_per_mm = grid.texels_per_mm;
+  // The medium preset: the fast ones, at this window, found a tenth as
+  // much of a skin-coloured hand (SwapJob.AHandOfTheSkinsOwnColourStaysInFront).
+  s.flow = cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_MEDIUM);
+  s.vertex_texel.assign(skin.num_vertices, -1);
+  for (size_t t = 0; t < skin.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = skin.triangles[t][c];
+      if (s.vertex_texel[v] >= 0) continue;
+      const Vec2f texel = uv_to_texel(skin.uvs[skin.triangle_uvs[t][c]], grid.map.size);
+      const int x = std::clamp(int(std::lround(texel.x())), 0, grid.map.size - 1);
+      const int y = std::clamp(int(std::lround(texel.y())), 0, grid.map.size - 1);
+      s.vertex_texel[v] = grid.map.index(x, y);
+    }
+  }
+  std::vector<int> used;
+  for (int v = 0; v < skin.num_vertices; ++v)
+    if (s.vertex_texel[v] >= 0) used.push_back(v);
+  const size_t stride = std::max<size_t>(1, used.size() / kSampledVertices);
+  for (size_t i = 0; i < used.size(); i += stride) s.sampled.push_back(used[i]);
+}
+
+MovingCover::~MovingCover() = default;
+MovingCover::MovingCover(MovingCover&&) noexcept = default;
+MovingCover& MovingCover::operator=(MovingCover&&) noexcept = default;
+
+void MovingCover::reset() {
+  state_->grey = cv::Mat();
+  state_->image_xy = cv::Mat();
+  state_->evidence_image = cv::Mat();
+}
+
+cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera,
+                            const cv::Mat& seen) {
+  State& s = *state_;
+  const int n = s.map.size;
+  cv::Mat evidence(n, n, CV_32F, cv::Scalar(0));
+  cv::Mat grey, image_xy, depth;
+  cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+  texel_positions(s.map, s.skin.triangles, points, camera, image_xy, depth);
+  Eigen::Matrix2Xf vertex_xy(2, points.cols());
+  for (int v = 0; v < points.cols(); ++v) vertex_xy.col(v) = camera.project(Vec3f(points.col(v)));
+  const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
+  const cv::Rect face_box = seen_bounds(image_xy, seen, 8) & frame_rect;
+
+  if (!s.grey.empty() && s.grey.size() == grey.size() && face_box.area() > 0) {
+    // The flow from this frame back to the last and forward again, over
+    // both frames' face windows, at most flow_width wide.
+    const cv::Rect box = (face_box | s.evidence_box) & frame_rect;
+    const float scale = std::min(1.0f, float(options_.flow_width) / float(box.width));
+    cv::Mat now_small, last_small, back, ahead;
+    cv::resize(grey(box), now_small, cv::Size(), scale, scale, cv::INTER_AREA);
+    cv::resize(s.grey(box), last_small, cv::Size(), scale, scale, cv::INTER_AREA);
+    s.flow->calc(now_small, last_small, back);
+    s.flow->calc(last_small, now_small, ahead);
+    auto flow_at = [&](const cv::Mat& flow, const Vec2f& p) {
+      const cv::Vec2f f = sample_bilinear_channels<2>(flow, scale * (p.x() - box.x), scale * (p.y() - box.y));
+      return Vec2f(f[0], f[1]);  // in the flow's pixels
+    };
+    // Where the flow says the pixel at `at` was in the last frame.
+    auto came_from = [&](const Vec2f& at) -> Vec2f { return at + flow_at(back, at) / scale; };
+    // How far the flow forward from there misses `at`, against the
+    // tolerance of Sundaram, Brox and Keutzer (ECCV 2010): |w + w'|^2 <
+    // share (|w|^2 + |w'|^2) + 0.5 px^2 in the flow's pixels, share 0.01
+    // theirs. It fails where the pixel was hidden in one of the frames (the
+    // mouth opening or closing, what a hand uncovers), where the flow is
+    // the smoothing's guess.
+    auto consistent = [&](const Vec2f& at, const Vec2f& from, float share) {
+      const Vec2f w = flow_at(back, at), w_ahead = flow_at(ahead, from);
+      return (w + w_ahead).squaredNorm() < share * (w.squaredNorm() + w_ahead.squaredNorm()) + 0.5f;
+    };
+    // The last frame's evidence where a pixel came from (0 outside it).
+    auto carried_at = [&](const Vec2f& from) {
+      const float ex = from.x() - s.evidence_box.x, ey = from.y() - s.evidence_box.y;
+      if (s.evidence_image.empty() || ex < 0 || ey < 0 || ex > s.evidence_image.cols - 1 ||
+          ey > s.evidence_image.rows - 1)
+        return 0.0f;
+      return sample_bilinear_channels<1>(s.evidence_image, ex, ey)[0];
+    };
+
+    // What the whole face's disagreement shares, from sampled vertices
+    // that this frame sees and that no cover held in the last.
+    std::vector<VertexSample> samples;
+    for (const int v : s.sampled) {
+      if (reinterpret_cast<const float*>(seen.data)[s.vertex_texel[v]] <= 0) continue;
+      const Vec2f at = vertex_xy.col(v);
+      const Vec2f from = came_from(at);
+      if (carried_at(from) >= 0.5f) continue;
+      samples.push_back({at, from - s.vertex_xy.col(v)});
+    }
+    const AffineField shared = shared_disagreement(samples);
+
+    // Per texel: moving across the face (`slow`, and `fast` for a cover not
+    // found before), and the last frame's evidence carried along the flow,
+    // fading, where the flow holds both ways.
+    const float keep = std::exp2(-1.0f / options_.half_life_frames);
+    const float mm_per_px_cm = 10.0f / float(camera.focal);  // times depth (cm): mm per pixel
+    cv::Mat slow(n, n, CV_8U, cv::Scalar(0)), fast(n, n, CV_8U, cv::Scalar(0));
+    for (int y = 0; y < n; ++y) {
+      const auto* xy = image_xy.ptr<cv::Vec2f>(y);
+      const auto* last_xy = s.image_xy.ptr<cv::Vec2f>(y);
+      const float* z = depth.ptr<float>(y);
+      const float* w = seen.ptr<float>(y);
+      float* e = evidence.ptr<float>(y);
+      uchar* is_slow = slow.ptr<uchar>(y);
+      uchar* is_fast = fast.ptr<uchar>(y);
+      for (int x = 0; x < n; ++x) {
+        if (w[x] <= 0 || z[x] <= 0) continue;
+        const Vec2f at(xy[x][0], xy[x][1]);
+        const Vec2f from = came_from(at);
+        const bool holds = consistent(at, from, 0.01f);
+        // Where the flow says the pixel was, less where the model says its
+        // surface point was and what the whole face shares.
+        const float moved_mm = (from - Vec2f(last_xy[x][0], last_xy[x][1]) - shared(at)).norm() * z[x] * mm_per_px_cm;
+        if (holds && moved_mm > options_.min_motion_mm) is_slow[x] = 255;
+        // A hand moving fast leaves its own flow imprecise (little texture,
+        // large steps): a new cover needs a round trip within a quarter of
+        // the flow's length only, which what it uncovers fails (the flow
+        // there goes with the hand both ways).
+        if (moved_mm > options_.new_cover_motion_mm && (holds || consistent(at, from, 0.25f))) is_fast[x] = 255;
+        if (holds) e[x] = keep * carried_at(from);
+      }
+    }
+    // A new cover moves fast over min_extent_mm at least (narrower or
+    // slower: the tracking's own slips, at the lips most); a cover already
+    // found grows into what moves slower beside it (hysteresis, as Canny's
+    // edges).
+    const int radius = int(std::lround(0.5 * options_.min_extent_mm * s.texels_per_mm));
+    if (radius > 0)
+      cv::morphologyEx(fast, fast, cv::MORPH_OPEN,
+                       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
+    slow |= fast;
+    const cv::Mat seeds = fast | ((evidence >= 0.5f) & slow);
+    cv::Mat labels;
+    const int count = cv::connectedComponents(slow, labels, 8, CV_32S);
+    std::vector<uchar> seeded(count, 0);
+    const auto* label = reinterpret_cast<const int*>(labels.data);
+    for (int i = 0; i < n * n; ++i)
+      if (seeds.data[i]) seeded[label[i]] = 1;
+    seeded[0] = 0;  // the background
+    auto* e = reinterpret_cast<float*>(evidence.data);
+    for (int i = 0; i < n * n; ++i)
+      if (seeded[label[i]]) e[i] = 1.0f;
+  }
+  s.grey = grey;
+  s.image_xy = image_xy;
+  s.vertex_xy = vertex_xy;
+  s.evidence_box = face_box;
+  s.evidence_image = face_box.area() > 0 ? cover_in_image(s.skin, points, camera.cropped(face_box.x, face_box.y),
+                                                          face_box.size(), evidence)
+                                         : cv::Mat();
+  return evidence;
+}
+
+}  // namespace facecap

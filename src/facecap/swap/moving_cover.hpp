@@ -1,0 +1,70 @@
+#pragma once
+// What moves across the target's face other than the face itself (a hand
+// wiping an eye, fingers over the mouth), found by its motion where its
+// colour gives it away no better than the skin's own: a hand in the same
+// light as the face is the cover OcclusionMask's colour test cannot see.
+// A departure from the paper, whose swap (§6.3) paints over what covers
+// the face.
+//
+// Each frame, the dense optical flow (DIS, Kroeger et al., ECCV 2016)
+// from this frame's face window back to the last frame's says where each
+// surface point's pixel came from; the tracked model says where the point
+// itself was. What the whole face's disagreement shares (an affine field:
+// the tracking a little off, most where a hand hides the landmarks) is
+// taken out. A new cover disagrees by more than new_cover_motion_mm over
+// min_extent_mm at least; a cover already found grows into what disagrees
+// by more than min_motion_mm beside it (hysteresis). Where the flow back
+// and forward again does not return to its pixel, the pixel was hidden in
+// one of the frames (the mouth opening, what a hand uncovers) and the flow
+// is a guess: growth and carrying need the round trip, a new cover only
+// within a quarter of the flow's length (its own flow is rough). The last
+// frame's evidence is carried along the flow, fading by half every
+// half_life_frames frames: a hand that rests stays found for a while. The
+// lips' and the jaw's own motion, which the tracking follows a little
+// late, is no cover on the talking heads of ../shared/data.
+//
+// Its cost: two flows of at most flow_width pixels across, 8-13 ms a frame
+// on 2 cores (SwapOptions::moving_covers turns it off).
+#include <memory>
+#include <opencv2/core.hpp>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/core/geometry.hpp"
+#include "facecap/core/mesh.hpp"
+#include "facecap/render/uv_raster.hpp"
+
+namespace facecap {
+
+struct MovingCoverOptions {
+  float min_motion_mm = 3.0f;        // the flow against the model's motion, per frame, beside a cover
+  float new_cover_motion_mm = 6.0f;  // as much for a cover not found before
+  float min_extent_mm = 8.0f;        // and over this width at least
+  float half_life_frames = 48.0f;    // how fast evidence that is not renewed fades
+  int flow_width = 192;              // the face window is scaled to at most this width for the flow
+};
+
+class MovingCover {
+ public:
+  // `skin` with UVs; `grid` the texel map the evidence lives on (the
+  // OcclusionMask's).
+  MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, MovingCoverOptions options = {});
+  ~MovingCover();
+  MovingCover(MovingCover&&) noexcept;
+  MovingCover& operator=(MovingCover&&) noexcept;
+
+  // This frame's evidence (CV_32F, 0..1, on the grid) from `frame` (BGR8)
+  // and the target's skin vertices in camera space; `seen`: the grid's
+  // texels the frame sees (CV_32F, > 0). None on the first frame after
+  // construction or reset().
+  cv::Mat update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera, const cv::Mat& seen);
+
+  // Forget the last frame (a frame without a face between).
+  void reset();
+
+ private:
+  struct State;
+  MovingCoverOptions options_;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace facecap

@@ -1,0 +1,146 @@
+// What moves across the face other than the face: found by the optical
+// flow against the tracked surface's own motion, carried while it rests,
+// and nothing where the face alone moves, or the tracking is a little off.
+#include "facecap/swap/moving_cover.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+#include "facecap/core/error.hpp"
+#include "swap/unit_square.hpp"
+
+namespace facecap {
+
+namespace {
+
+using test::unit_square;
+
+// A flat "face" 12.8 cm square, 60 cm from a 640x480 camera of focal 800
+// px: 171 px across, 0.75 mm a pixel; its UV grid 1 mm a texel (128).
+constexpr float kHalfCm = 6.4f, kDepthCm = 60.0f;
+const PinholeCamera kCamera = PinholeCamera::centered(800.0, 640, 480);
+
+MillimetreGrid grid() { return millimetre_grid(unit_square(), 128.0, 1.0); }
+
+// Grainy texture (grey 60-200), blurred to a few pixels' grain.
+cv::Mat grain(int size, int seed) {
+  cv::Mat t(size, size, CV_32F);
+  cv::RNG(seed).fill(t, cv::RNG::NORMAL, 130.0, 40.0);
+  cv::GaussianBlur(t, t, cv::Size(0, 0), 2.0);
+  cv::Mat out;
+  cv::normalize(t, t, 60, 200, cv::NORM_MINMAX);
+  t.convertTo(out, CV_8U);
+  return out;
+}
+
+// The square's corners (UV (0,0), (1,0), (1,1), (0,1); v up) moved by
+// `offset_cm` sideways.
+Positions square_points(float offset_cm) {
+  Positions p(3, 4);
+  p.col(0) = Vec3f(-kHalfCm + offset_cm, kHalfCm, kDepthCm);
+  p.col(1) = Vec3f(kHalfCm + offset_cm, kHalfCm, kDepthCm);
+  p.col(2) = Vec3f(kHalfCm + offset_cm, -kHalfCm, kDepthCm);
+  p.col(3) = Vec3f(-kHalfCm + offset_cm, -kHalfCm, kDepthCm);
+  return p;
+}
+
+// The frame: the face's texture on the square at `offset_cm`, and a disc
+// of its own texture (moving with it) centred at `cover` (pixels) if any.
+cv::Mat frame(float offset_cm, std::optional<cv::Point> cover = std::nullopt) {
+  static const cv::Mat face = grain(171, 1), hand = grain(240, 2);
+  cv::Mat image(480, 640, CV_8UC3, cv::Scalar(40, 40, 40));
+  const float px_per_cm = float(kCamera.focal) / kDepthCm;
+  const cv::Point2f top_left(float(kCamera.cx) + (offset_cm - kHalfCm) * px_per_cm,
+                             float(kCamera.cy) - kHalfCm * px_per_cm);
+  cv::Mat warp = (cv::Mat_<double>(2, 3) << 1, 0, top_left.x, 0, 1, top_left.y);
+  cv::Mat grey(image.size(), CV_8U, cv::Scalar(40));
+  cv::warpAffine(face, grey, warp, image.size(), cv::INTER_LINEAR, cv::BORDER_TRANSPARENT);
+  if (cover) {
+    cv::Mat disc(image.size(), CV_8U, cv::Scalar(0));
+    cv::circle(disc, *cover, 55, cv::Scalar(255), cv::FILLED);  // 8 cm: a palm
+    cv::Mat moved;
+    warp = (cv::Mat_<double>(2, 3) << 1, 0, cover->x - 120, 0, 1, cover->y - 120);
+    cv::warpAffine(hand, moved, warp, image.size());
+    moved.copyTo(grey, disc);
+  }
+  cv::cvtColor(grey, image, cv::COLOR_GRAY2BGR);
+  return image;
+}
+
+// The evidence at an image point of the square at `offset_cm`.
+float evidence_at(const cv::Mat& evidence, cv::Point p, float offset_cm) {
+  const float px_per_cm = float(kCamera.focal) / kDepthCm;
+  const float u = (p.x - float(kCamera.cx) - (offset_cm - kHalfCm) * px_per_cm) / (2 * kHalfCm * px_per_cm);
+  const float row = (p.y - float(kCamera.cy) + kHalfCm * px_per_cm) / (2 * kHalfCm * px_per_cm);
+  return evidence.at<float>(cvRound(row * (evidence.rows - 1)), cvRound(u * (evidence.cols - 1)));
+}
+
+double largest(const cv::Mat& m) {
+  double hi = 0;
+  cv::minMaxLoc(m, nullptr, &hi);
+  return hi;
+}
+
+}  // namespace
+
+TEST(MovingCover, ACoverSlidingAcrossTheFaceIsFoundAndStaysFoundWhileItRests) {
+  const MillimetreGrid g = grid();
+  MovingCover mover(unit_square(), g);
+  const cv::Mat seen(g.map.size, g.map.size, CV_32F, cv::Scalar(1));
+  const Positions still = square_points(0);
+  EXPECT_EQ(largest(mover.update(frame(0), still, kCamera, seen)), 0.0);  // no last frame
+  EXPECT_EQ(largest(mover.update(frame(0), still, kCamera, seen)), 0.0);  // nothing moves
+  // In from the left at 12 px (9 mm) a frame, then resting.
+  cv::Point cover(180, 250);
+  cv::Mat e;
+  for (int i = 0; i < 8; ++i) {
+    cover.x += 12;
+    e = mover.update(frame(0, cover), still, kCamera, seen);
+  }
+  EXPECT_GT(evidence_at(e, cover, 0), 0.99f);
+  EXPECT_EQ(evidence_at(e, {cover.x + 75, cover.y}, 0), 0.0f);  // beside it
+  EXPECT_EQ(evidence_at(e, {320, 190}, 0), 0.0f);
+  for (int i = 0; i < 24; ++i) e = mover.update(frame(0, cover), still, kCamera, seen);
+  const float rested = evidence_at(e, cover, 0);  // half a half-life on
+  EXPECT_GT(rested, 0.6f);
+  EXPECT_LT(rested, 0.8f);
+  // It leaves downward, fast: what it uncovered is no cover.
+  for (int i = 0; i < 8; ++i) {
+    cover.y += 20;
+    e = mover.update(frame(0, cover), still, kCamera, seen);
+  }
+  EXPECT_LT(evidence_at(e, {cover.x, 250}, 0), 0.5f);
+  // After reset() nothing is carried.
+  mover.reset();
+  EXPECT_EQ(largest(mover.update(frame(0), still, kCamera, seen)), 0.0);
+}
+
+TEST(MovingCover, TheFaceMovingOrItsTrackingALittleOffIsNoCover) {
+  const MillimetreGrid g = grid();
+  MovingCover mover(unit_square(), g);
+  const cv::Mat seen(g.map.size, g.map.size, CV_32F, cv::Scalar(1));
+  // The face moves 6 px (4.5 mm) a frame and the model with it.
+  for (int i = 0; i < 10; ++i) {
+    const float offset = 0.45f * i;
+    EXPECT_EQ(largest(mover.update(frame(offset), square_points(offset), kCamera, seen)), 0.0) << i;
+  }
+  // The face moves and the model stays (the tracking 3 mm a frame late):
+  // the whole face shares the disagreement.
+  mover.reset();
+  for (int i = 0; i < 10; ++i) {
+    EXPECT_EQ(largest(mover.update(frame(0.3f * i), square_points(0), kCamera, seen)), 0.0) << i;
+  }
+}
+
+TEST(MovingCover, RejectsImpossibleOptions) {
+  MovingCoverOptions o;
+  o.half_life_frames = 0;
+  EXPECT_THROW(MovingCover(unit_square(), grid(), o), Error);
+  o = {};
+  o.flow_width = 4;
+  EXPECT_THROW(MovingCover(unit_square(), grid(), o), Error);
+}
+
+}  // namespace facecap
