@@ -1,13 +1,16 @@
 // The wrinkle prediction's coating transfer (§6.1.2) on a mesh the size of
-// a 720p face's finest 4-8 level (about 33k vertices), and the render's
+// a 720p face's finest 4-8 level (about 33k vertices), the render's
 // silhouette fade and the background warp on a window the size of a 720p
-// swap's.
+// swap's, and the moving cover's flow on a face as wide as a 720p one.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
 #include "facecap/render/outline_distance.hpp"
+
 #include "facecap/swap/background_warp.hpp"
+#include "facecap/swap/moving_cover.hpp"
 #include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 #include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
@@ -115,6 +118,41 @@ void BM_BackgroundWarp720p(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_BackgroundWarp720p)->Unit(benchmark::kMillisecond);
+
+// A flat face 25 cm square (a UV grid of 250 texels, as the ICT face's at
+// 1 mm) 80 cm from a 1280x720 camera of focal 1000 px: 312 px across, its
+// grain moving 3 px a frame while the model stays (the tracking's error,
+// which the shared field takes out).
+void BM_MovingCover720p(benchmark::State& state) {
+  constexpr int kSide = 60;
+  TriangleMesh skin;
+  skin.num_vertices = (kSide + 1) * (kSide + 1);
+  skin.triangles = test::square_grid(kSide);
+  skin.triangle_uvs = skin.triangles;
+  Positions points(3, skin.num_vertices);
+  for (int y = 0; y <= kSide; ++y) {
+    for (int x = 0; x <= kSide; ++x) {
+      const float u = float(x) / kSide, v = float(y) / kSide;
+      skin.uvs.emplace_back(u, v);
+      points.col(y * (kSide + 1) + x) = Vec3f(25 * (u - 0.5f), -25 * (v - 0.5f), 80);
+    }
+  }
+  const MillimetreGrid grid = millimetre_grid(skin, 250.0, 1.0);
+  const PinholeCamera camera = PinholeCamera::centered(1000.0, 1280, 720);
+  cv::Mat texture(720, 1400, CV_8U);
+  cv::RNG(5).fill(texture, cv::RNG::UNIFORM, 60, 200);
+  cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
+  cv::Mat frames[2];
+  for (int k = 0; k < 2; ++k) cv::cvtColor(texture(cv::Rect(3 * k, 0, 1280, 720)), frames[k], cv::COLOR_GRAY2BGR);
+  const cv::Mat seen(grid.map.size, grid.map.size, CV_32F, cv::Scalar(1));
+  MovingCover mover(skin, grid);
+  int k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(mover.update(frames[k], points, camera, seen));
+    k = 1 - k;
+  }
+}
+BENCHMARK(BM_MovingCover720p)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace facecap

@@ -9,6 +9,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/image_sampling.hpp"
+#include "facecap/core/parallel.hpp"
 #include "facecap/swap/occlusion_mask.hpp"
 
 namespace facecap {
@@ -27,23 +28,42 @@ void texel_positions(const UvTexelMap& map, const std::vector<Triangle>& triangl
                      const PinholeCamera& camera, cv::Mat& image_xy, cv::Mat& depth) {
   image_xy.create(map.size, map.size, CV_32FC2);
   depth.create(map.size, map.size, CV_32F);
-  for (int y = 0; y < map.size; ++y) {
-    auto* xy = image_xy.ptr<cv::Vec2f>(y);
-    float* z = depth.ptr<float>(y);
-    for (int x = 0; x < map.size; ++x) {
-      const int i = map.index(x, y);
-      if (map.triangle[i] < 0) {
-        xy[x] = {0, 0};
-        z[x] = 0;
-        continue;
-      }
-      const Vec3f p = map.interpolate(triangles, points, i);
-      const Vec2f q = camera.project(p);
-      xy[x] = {q.x(), q.y()};
-      z[x] = p.z() > 0 ? p.z() : 0;
-    }
-  }
+  parallel_for(
+      map.size,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          auto* xy = image_xy.ptr<cv::Vec2f>(y);
+          float* z = depth.ptr<float>(y);
+          for (int x = 0; x < map.size; ++x) {
+            const int i = map.index(x, y);
+            if (map.triangle[i] < 0) {
+              xy[x] = {0, 0};
+              z[x] = 0;
+              continue;
+            }
+            const Vec3f p = map.interpolate(triangles, points, i);
+            const Vec2f q = camera.project(p);
+            xy[x] = {q.x(), q.y()};
+            z[x] = p.z() > 0 ? p.z() : 0;
+          }
+        }
+      },
+      16);
 }
+
+// A window of the image scaled by `scale` (as cv::resize maps pixel
+// centres): its pixel coordinates for an image point.
+struct ScaledWindow {
+  cv::Point origin;
+  float scale = 1;
+  Vec2f operator()(const Vec2f& p) const {
+    return {(p.x() - origin.x + 0.5f) * scale - 0.5f, (p.y() - origin.y + 0.5f) * scale - 0.5f};
+  }
+  // The camera that sees the window.
+  PinholeCamera camera(const PinholeCamera& c) const {
+    return {c.focal * scale, (c.cx - origin.x + 0.5) * scale - 0.5, (c.cy - origin.y + 0.5) * scale - 0.5};
+  }
+};
 
 // The image box around the texels `seen` marks, grown by `margin` px.
 cv::Rect seen_bounds(const cv::Mat& image_xy, const cv::Mat& seen, int margin) {
@@ -129,8 +149,9 @@ struct MovingCover::State {
   // positions, and its evidence drawn into the image over `evidence_box`.
   cv::Mat grey, image_xy;
   Eigen::Matrix2Xf vertex_xy;
-  cv::Mat evidence_image;
-  cv::Rect evidence_box;
+  cv::Mat evidence_image;  // at evidence_window's scale
+  cv::Rect evidence_box;   // in the image, unscaled
+  ScaledWindow evidence_window;
 };
 
 MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, MovingCoverOptions options)
@@ -190,35 +211,24 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
     // The flow from this frame back to the last and forward again, over
     // both frames' face windows, at most flow_width wide.
     const cv::Rect box = (face_box | s.evidence_box) & frame_rect;
-    const float scale = std::min(1.0f, float(options_.flow_width) / float(box.width));
+    const ScaledWindow window{box.tl(), std::min(1.0f, float(options_.flow_width) / float(box.width))};
     cv::Mat now_small, last_small, back, ahead;
-    cv::resize(grey(box), now_small, cv::Size(), scale, scale, cv::INTER_AREA);
-    cv::resize(s.grey(box), last_small, cv::Size(), scale, scale, cv::INTER_AREA);
+    cv::resize(grey(box), now_small, cv::Size(), window.scale, window.scale, cv::INTER_AREA);
+    cv::resize(s.grey(box), last_small, cv::Size(), window.scale, window.scale, cv::INTER_AREA);
     s.flow->calc(now_small, last_small, back);
     s.flow->calc(last_small, now_small, ahead);
+    // The flow at an image point, in the flow's pixels.
     auto flow_at = [&](const cv::Mat& flow, const Vec2f& p) {
-      const cv::Vec2f f = sample_bilinear_channels<2>(flow, scale * (p.x() - box.x), scale * (p.y() - box.y));
-      return Vec2f(f[0], f[1]);  // in the flow's pixels
+      const Vec2f q = window(p);
+      const cv::Vec2f f = sample_bilinear_channels<2>(flow, q.x(), q.y());
+      return Vec2f(f[0], f[1]);
     };
-    // Where the flow says the pixel at `at` was in the last frame.
-    auto came_from = [&](const Vec2f& at) -> Vec2f { return at + flow_at(back, at) / scale; };
-    // How far the flow forward from there misses `at`, against the
-    // tolerance of Sundaram, Brox and Keutzer (ECCV 2010): |w + w'|^2 <
-    // share (|w|^2 + |w'|^2) + 0.5 px^2 in the flow's pixels, share 0.01
-    // theirs. It fails where the pixel was hidden in one of the frames (the
-    // mouth opening or closing, what a hand uncovers), where the flow is
-    // the smoothing's guess.
-    auto consistent = [&](const Vec2f& at, const Vec2f& from, float share) {
-      const Vec2f w = flow_at(back, at), w_ahead = flow_at(ahead, from);
-      return (w + w_ahead).squaredNorm() < share * (w.squaredNorm() + w_ahead.squaredNorm()) + 0.5f;
-    };
-    // The last frame's evidence where a pixel came from (0 outside it).
-    auto carried_at = [&](const Vec2f& from) {
-      const float ex = from.x() - s.evidence_box.x, ey = from.y() - s.evidence_box.y;
-      if (s.evidence_image.empty() || ex < 0 || ey < 0 || ex > s.evidence_image.cols - 1 ||
-          ey > s.evidence_image.rows - 1)
-        return 0.0f;
-      return sample_bilinear_channels<1>(s.evidence_image, ex, ey)[0];
+    // The last frame's evidence at an image point (0 outside its window).
+    auto carried_at = [&](const Vec2f& p) {
+      if (s.evidence_image.empty()) return 0.0f;
+      const Vec2f q = s.evidence_window(p);
+      if (q.x() < 0 || q.y() < 0 || q.x() > s.evidence_image.cols - 1 || q.y() > s.evidence_image.rows - 1) return 0.0f;
+      return sample_bilinear_channels<1>(s.evidence_image, q.x(), q.y())[0];
     };
 
     // What the whole face's disagreement shares, from sampled vertices
@@ -227,7 +237,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
     for (const int v : s.sampled) {
       if (reinterpret_cast<const float*>(seen.data)[s.vertex_texel[v]] <= 0) continue;
       const Vec2f at = vertex_xy.col(v);
-      const Vec2f from = came_from(at);
+      const Vec2f from = at + flow_at(back, at) / window.scale;
       if (carried_at(from) >= 0.5f) continue;
       samples.push_back({at, from - s.vertex_xy.col(v)});
     }
@@ -239,31 +249,48 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
     const float keep = std::exp2(-1.0f / options_.half_life_frames);
     const float mm_per_px_cm = 10.0f / float(camera.focal);  // times depth (cm): mm per pixel
     cv::Mat slow(n, n, CV_8U, cv::Scalar(0)), fast(n, n, CV_8U, cv::Scalar(0));
-    for (int y = 0; y < n; ++y) {
-      const auto* xy = image_xy.ptr<cv::Vec2f>(y);
-      const auto* last_xy = s.image_xy.ptr<cv::Vec2f>(y);
-      const float* z = depth.ptr<float>(y);
-      const float* w = seen.ptr<float>(y);
-      float* e = evidence.ptr<float>(y);
-      uchar* is_slow = slow.ptr<uchar>(y);
-      uchar* is_fast = fast.ptr<uchar>(y);
-      for (int x = 0; x < n; ++x) {
-        if (w[x] <= 0 || z[x] <= 0) continue;
-        const Vec2f at(xy[x][0], xy[x][1]);
-        const Vec2f from = came_from(at);
-        const bool holds = consistent(at, from, 0.01f);
-        // Where the flow says the pixel was, less where the model says its
-        // surface point was and what the whole face shares.
-        const float moved_mm = (from - Vec2f(last_xy[x][0], last_xy[x][1]) - shared(at)).norm() * z[x] * mm_per_px_cm;
-        if (holds && moved_mm > options_.min_motion_mm) is_slow[x] = 255;
-        // A hand moving fast leaves its own flow imprecise (little texture,
-        // large steps): a new cover needs a round trip within a quarter of
-        // the flow's length only, which what it uncovers fails (the flow
-        // there goes with the hand both ways).
-        if (moved_mm > options_.new_cover_motion_mm && (holds || consistent(at, from, 0.25f))) is_fast[x] = 255;
-        if (holds) e[x] = keep * carried_at(from);
-      }
-    }
+    parallel_for(
+        n,
+        [&](int y0, int y1) {
+          for (int y = y0; y < y1; ++y) {
+            const auto* xy = image_xy.ptr<cv::Vec2f>(y);
+            const auto* last_xy = s.image_xy.ptr<cv::Vec2f>(y);
+            const float* z = depth.ptr<float>(y);
+            const float* w = seen.ptr<float>(y);
+            float* e = evidence.ptr<float>(y);
+            uchar* is_slow = slow.ptr<uchar>(y);
+            uchar* is_fast = fast.ptr<uchar>(y);
+            for (int x = 0; x < n; ++x) {
+              if (w[x] <= 0 || z[x] <= 0) continue;
+              const Vec2f at(xy[x][0], xy[x][1]);
+              // Where the flow says the pixel was in the last frame, and how
+              // far the flow forward from there misses it again, against the
+              // tolerance of Sundaram, Brox and Keutzer (ECCV 2010): |w +
+              // w'|^2 < share (|w|^2 + |w'|^2) + 0.5 px^2 in the flow's
+              // pixels, share 0.01 theirs. It fails where the pixel was
+              // hidden in one of the frames (the mouth opening or closing,
+              // what a hand uncovers): there the flow is the smoothing's guess.
+              const Vec2f back_w = flow_at(back, at);
+              const Vec2f from = at + back_w / window.scale;
+              const Vec2f ahead_w = flow_at(ahead, from);
+              const float miss = (back_w + ahead_w).squaredNorm();
+              const float length = back_w.squaredNorm() + ahead_w.squaredNorm();
+              const bool holds = miss < 0.01f * length + 0.5f;
+              // Where the flow says the pixel was, less where the model says
+              // its surface point was and what the whole face shares.
+              const float moved_mm =
+                  (from - Vec2f(last_xy[x][0], last_xy[x][1]) - shared(at)).norm() * z[x] * mm_per_px_cm;
+              if (holds && moved_mm > options_.min_motion_mm) is_slow[x] = 255;
+              // A hand moving fast leaves its own flow imprecise (little
+              // texture, large steps): a new cover needs a round trip within
+              // a quarter of the flow's length only, which what it uncovers
+              // fails (the flow there goes with the hand both ways).
+              if (moved_mm > options_.new_cover_motion_mm && miss < 0.25f * length + 0.5f) is_fast[x] = 255;
+              if (holds) e[x] = keep * carried_at(from);
+            }
+          }
+        },
+        16);
     // A new cover moves fast over min_extent_mm at least (narrower or
     // slower: the tracking's own slips, at the lips most); a cover already
     // found grows into what moves slower beside it (hysteresis, as Canny's
@@ -288,10 +315,15 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
   s.grey = grey;
   s.image_xy = image_xy;
   s.vertex_xy = vertex_xy;
+  // The evidence drawn into the image, at the flow's scale (the next
+  // frame samples it where its flow says its pixels came from).
   s.evidence_box = face_box;
-  s.evidence_image = face_box.area() > 0 ? cover_in_image(s.skin, points, camera.cropped(face_box.x, face_box.y),
-                                                          face_box.size(), evidence)
-                                         : cv::Mat();
+  s.evidence_window = {face_box.tl(), std::min(1.0f, float(options_.flow_width) / float(std::max(1, face_box.width)))};
+  const cv::Size evidence_size(std::max(1, int(std::lround(face_box.width * s.evidence_window.scale))),
+                               std::max(1, int(std::lround(face_box.height * s.evidence_window.scale))));
+  s.evidence_image = face_box.area() > 0
+                         ? cover_in_image(s.skin, points, s.evidence_window.camera(camera), evidence_size, evidence)
+                         : cv::Mat();
   return evidence;
 }
 

@@ -23,8 +23,9 @@
 // lips' and the jaw's own motion, which the tracking follows a little
 // late, is no cover on the talking heads of ../shared/data.
 //
-// Its cost: two flows of at most flow_width pixels across, 8-13 ms a frame
-// on 2 cores (SwapOptions::moving_covers turns it off).
+// Its cost, mostly the two flows: 8.5 ms a frame at 720p alone (swap_bench
+// BM_MovingCover720p), about twice that beside the rest of a swap on 2
+// cores (SwapOptions::moving_covers turns it off).
 #include <memory>
 #include <opencv2/core.hpp>
 
