@@ -15,6 +15,7 @@ namespace facecap {
 
 namespace {
 
+using test::largest;
 using test::unit_square;
 
 // A flat "face" 12.8 cm square, 60 cm from a 640x480 camera of focal 800
@@ -75,12 +76,6 @@ float evidence_at(const cv::Mat& evidence, cv::Point p, float offset_cm) {
   const float u = (p.x - float(kCamera.cx) - (offset_cm - kHalfCm) * px_per_cm) / (2 * kHalfCm * px_per_cm);
   const float row = (p.y - float(kCamera.cy) + kHalfCm * px_per_cm) / (2 * kHalfCm * px_per_cm);
   return evidence.at<float>(cvRound(row * (evidence.rows - 1)), cvRound(u * (evidence.cols - 1)));
-}
-
-double largest(const cv::Mat& m) {
-  double hi = 0;
-  cv::minMaxLoc(m, nullptr, &hi);
-  return hi;
 }
 
 }  // namespace

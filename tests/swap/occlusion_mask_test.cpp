@@ -15,6 +15,7 @@ namespace {
 
 // At 128 mm per UV unit and 1 mm per texel the grid of test::unit_square()
 // is 128 texels square.
+using test::largest;
 using test::unit_square;
 
 constexpr double kMmPerUv = 128.0;
@@ -35,12 +36,6 @@ FaceTexture with_disc(FaceTexture t, cv::Point centre, int radius, cv::Vec3f col
   t.albedo = t.albedo.clone();
   cv::circle(t.albedo, centre, radius, cv::Scalar(colour[0], colour[1], colour[2]), cv::FILLED);
   return t;
-}
-
-double largest(const cv::Mat& m) {
-  double hi = 0;
-  cv::minMaxLoc(m, nullptr, &hi);
-  return hi;
 }
 
 }  // namespace
