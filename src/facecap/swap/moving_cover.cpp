@@ -145,12 +145,12 @@ struct MovingCover::State {
   std::vector<int> sampled;       // the vertices that sample the shared disagreement
   std::vector<int> vertex_texel;  // per vertex, a texel at its UV (-1: none)
   cv::Ptr<cv::DISOpticalFlow> flow;
-  // The last frame: its grey image, its texels' and vertices' image
+  // The last frame: its grey image, its texels' and sampled vertices' image
   // positions, and its evidence drawn into the image over `evidence_box`.
   cv::Mat grey, image_xy;
-  Eigen::Matrix2Xf vertex_xy;
-  cv::Mat evidence_image;  // at evidence_window's scale
-  cv::Rect evidence_box;   // in the image, unscaled
+  Eigen::Matrix2Xf sampled_xy;  // the sampled vertices', in their order
+  cv::Mat evidence_image;       // at evidence_window's scale
+  cv::Rect evidence_box;        // in the image, unscaled
   ScaledWindow evidence_window;
 };
 
@@ -163,7 +163,7 @@ MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, M
   s.skin = skin;
   s.map = grid.map;
   s.texels_per_mm = grid.texels_per_mm;
-  // The medium preset: the fast ones, at this window, found a tenth as
+  // The medium preset: the fast ones, at this window, found a sixth as
   // much of a skin-coloured hand (SwapJob.AHandOfTheSkinsOwnColourStaysInFront).
   s.flow = cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_MEDIUM);
   s.vertex_texel.assign(skin.num_vertices, -1);
@@ -202,8 +202,8 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
   cv::Mat grey, image_xy, depth;
   cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
   texel_positions(s.map, s.skin.triangles, points, camera, image_xy, depth);
-  Eigen::Matrix2Xf vertex_xy(2, points.cols());
-  for (int v = 0; v < points.cols(); ++v) vertex_xy.col(v) = camera.project(Vec3f(points.col(v)));
+  Eigen::Matrix2Xf sampled_xy(2, s.sampled.size());
+  for (size_t k = 0; k < s.sampled.size(); ++k) sampled_xy.col(k) = camera.project(Vec3f(points.col(s.sampled[k])));
   const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
   const cv::Rect face_box = seen_bounds(image_xy, seen, 8) & frame_rect;
 
@@ -234,12 +234,12 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
     // What the whole face's disagreement shares, from sampled vertices
     // that this frame sees and that no cover held in the last.
     std::vector<VertexSample> samples;
-    for (const int v : s.sampled) {
-      if (reinterpret_cast<const float*>(seen.data)[s.vertex_texel[v]] <= 0) continue;
-      const Vec2f at = vertex_xy.col(v);
+    for (size_t k = 0; k < s.sampled.size(); ++k) {
+      if (reinterpret_cast<const float*>(seen.data)[s.vertex_texel[s.sampled[k]]] <= 0) continue;
+      const Vec2f at = sampled_xy.col(k);
       const Vec2f from = at + flow_at(back, at) / window.scale;
       if (carried_at(from) >= 0.5f) continue;
-      samples.push_back({at, from - s.vertex_xy.col(v)});
+      samples.push_back({at, from - s.sampled_xy.col(k)});
     }
     const AffineField shared = shared_disagreement(samples);
 
@@ -314,7 +314,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
   }
   s.grey = grey;
   s.image_xy = image_xy;
-  s.vertex_xy = vertex_xy;
+  s.sampled_xy = sampled_xy;
   // The evidence drawn into the image, at the flow's scale (the next
   // frame samples it where its flow says its pixels came from).
   s.evidence_box = face_box;
