@@ -30,6 +30,15 @@ SwapJobOptions short_run(int frames) {
   return o;
 }
 
+// Per pixel, the largest difference over the channels of two BGR images
+// (CV_8U).
+cv::Mat largest_channel_difference(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat difference, channels[3];
+  cv::absdiff(a, b, difference);
+  cv::split(difference, channels);
+  return cv::max(cv::max(channels[0], channels[1]), channels[2]);
+}
+
 }  // namespace
 
 TEST(SeamRatio, AHardEdgeOnTheOutlineStandsOutAndHolesDoNotCount) {
@@ -265,10 +274,7 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
       if (target.index < kCoverFrom) return;
       cv::Mat disc(r.image.size(), CV_8U, cv::Scalar(0));
       cv::circle(disc, cover_centre(target.index), kRadius - 4, cv::Scalar(255), cv::FILLED);
-      cv::Mat difference, channels[3];
-      cv::absdiff(r.image, input[target.index], difference);
-      cv::split(difference, channels);
-      const cv::Mat near = cv::max(cv::max(channels[0], channels[1]), channels[2]) <= 12;
+      const cv::Mat near = largest_channel_difference(r.image, input[target.index]) <= 12;
       m.kept = double(cv::countNonZero(near & disc)) / cv::countNonZero(disc);
     };
     const SwapSummary s = run_swap(*model, photo.string(), (dir.path() / "covered").string(),
@@ -410,12 +416,7 @@ TEST(SwapJob, AHandOfTheSkinsOwnColourStaysInFront) {
   };
   const std::map<int, Out> kept = swap(true), painted = swap(false);
   ASSERT_EQ(int(kept.size()), kFrames);
-  auto changed = [](const cv::Mat& a, const cv::Mat& b) {
-    cv::Mat difference, channels[3];
-    cv::absdiff(a, b, difference);
-    cv::split(difference, channels);
-    return cv::Mat(cv::max(cv::max(channels[0], channels[1]), channels[2]) > 12);
-  };
+  auto changed = [](const cv::Mat& a, const cv::Mat& b) { return cv::Mat(largest_channel_difference(a, b) > 12); };
   double kept_sum = 0;
   int kept_frames = 0;
   for (const auto& [i, out] : kept) {
