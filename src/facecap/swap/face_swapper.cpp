@@ -136,7 +136,6 @@ struct FaceSwapper::Impl {
   std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
   std::optional<OcclusionMask> occlusion;   // SwapOptions::keep_occluders
   std::optional<MovingCover> moving;        // SwapOptions::moving_covers
-  int last_index = -1;                      // the last swapped frame's TargetFrame::index
 
   // Follows the target's identity (fixed once its tracker has solved it).
   void update_target_identity(const Eigen::VectorXf& identity) {
@@ -377,13 +376,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     skin_now = FaceTexture{seen.albedo, seen.weight.clone()};
     drop_non_skin(*skin_now);
     if (appearance_frame) m.occlusion->add_reference(seen);
-    cv::Mat moving;
-    if (m.moving) {
-      // Motion is measured between consecutive frames only.
-      if (target.index >= 0 && m.last_index >= 0 && target.index != m.last_index + 1) m.moving->reset();
-      m.last_index = target.index;
-      moving = m.moving->update(frame, target_points, target.camera, seen.weight);
-    }
+    const cv::Mat moving =
+        m.moving ? m.moving->update(frame, target_points, target.camera, seen.weight, target.index) : cv::Mat();
     cover = m.occlusion->covered(seen, moving);
     skin_now->weight.setTo(0, cover > 0);  // the expression ratio's change is the face's, not a cover's
     occlusion_ms = ms_since(t0);

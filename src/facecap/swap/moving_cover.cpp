@@ -152,6 +152,7 @@ struct MovingCover::State {
   cv::Mat evidence_image;       // at evidence_window's scale
   cv::Rect evidence_box;        // in the image, unscaled
   ScaledWindow evidence_window;
+  int last_index = -1;  // the last frame's number (-1: unknown)
 };
 
 MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, MovingCoverOptions options)
@@ -195,8 +196,11 @@ void MovingCover::reset() {
 }
 
 cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera,
-                            const cv::Mat& seen) {
+                            const cv::Mat& seen, int frame_index) {
   State& s = *state_;
+  // Motion is measured between consecutive frames only.
+  if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
+  s.last_index = frame_index;
   const int n = s.map.size;
   cv::Mat evidence(n, n, CV_32F, cv::Scalar(0));
   cv::Mat grey, image_xy, depth;

@@ -55,11 +55,14 @@ class MovingCover {
 
   // This frame's evidence (CV_32F, 0..1, on the grid) from `frame` (BGR8)
   // and the target's skin vertices in camera space; `seen`: the grid's
-  // texels the frame sees (CV_32F, > 0). None on the first frame after
-  // construction or reset().
-  cv::Mat update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera, const cv::Mat& seen);
+  // texels the frame sees (CV_32F, > 0). `frame_index`: its number in the
+  // video; one that does not follow the last frame's (a frame without a
+  // face between) starts afresh, as reset() does; -1: unknown, taken to
+  // follow. None on the first frame after construction or reset().
+  cv::Mat update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera, const cv::Mat& seen,
+                 int frame_index = -1);
 
-  // Forget the last frame (a frame without a face between).
+  // Forget the last frame.
   void reset();
 
  private:
