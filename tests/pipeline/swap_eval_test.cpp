@@ -426,18 +426,18 @@ TEST(SwapJob, AHandOfTheSkinsOwnColourStaysInFront) {
       EXPECT_LT(out.covered, 0.005) << i;  // nothing moves across the face yet
     }
     if (i >= kGone + 4) {
-      EXPECT_LT(out.covered, 0.02) << i;  // what the hand uncovered is the new face's again (0.011 at most)
+      EXPECT_LT(out.covered, 0.02) << i;  // what the hand uncovered is the new face's again (0.007 at most)
     }
     if (area < 2000) continue;  // the hand mostly below the face
     const double share = 1.0 - double(cv::countNonZero(on_face & changed(out.image, input[i]))) / area;
     if (i > kRest && i < kLeave) {
-      EXPECT_GT(share, 0.35) << i;  // resting, trembling: 0.41-0.97, fading until the tracking slips at frame 46
+      EXPECT_GT(share, 0.35) << i;  // resting, trembling: 0.52-0.97, fading until the tracking slips at frame 46
     }
     kept_sum += share;
     ++kept_frames;
   }
   ASSERT_GT(kept_frames, 25);
-  // 0.623 (the colour test alone: 0).
+  // 0.668 (the colour test alone: 0).
   EXPECT_GT(kept_sum / kept_frames, 0.5);
 }
 

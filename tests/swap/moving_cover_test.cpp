@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "facecap/core/error.hpp"
+#include "facecap/swap/face_flow.hpp"
 #include "swap/unit_square.hpp"
 
 namespace facecap {
@@ -127,6 +128,72 @@ TEST(MovingCover, TheFaceMovingOrItsTrackingALittleOffIsNoCover) {
   for (int i = 0; i < 10; ++i) {
     EXPECT_EQ(largest(mover.update(frame(0.3f * i), square_points(0), kCamera, seen)), 0.0) << i;
   }
+}
+
+// The swap computes the flow on another thread beforehand (FaceSwapStream):
+// the same evidence as the cover's own.
+TEST(MovingCover, AFlowComputedBeforehandGivesTheSameEvidence) {
+  const MillimetreGrid g = grid();
+  MovingCover own(unit_square(), g), given(unit_square(), g);
+  FaceFlow flow;
+  const cv::Mat seen(g.map.size, g.map.size, CV_32F, cv::Scalar(1));
+  cv::Point cover(180, 250);
+  double found = 0;
+  for (int i = 0; i < 12; ++i) {
+    if (i != 6) cover.x += 12;  // frame 7 is missing: both start again
+    const int index = i < 7 ? i : i + 1;
+    const float offset = 0.1f * i;
+    const cv::Mat image = frame(offset, cover);
+    const Positions points = square_points(offset);
+    const FlowPair pair = flow.next(image, facing_box(unit_square(), points, kCamera, image.size(), 8), index);
+    const cv::Mat a = own.update(image, points, kCamera, seen, index);
+    const cv::Mat b = given.update(image, points, kCamera, seen, index, &pair);
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << i;
+    if (i == 7) {
+      EXPECT_EQ(largest(b), 0.0);  // no last frame
+    }
+    found = std::max(found, largest(b));
+  }
+  EXPECT_GT(found, 0.99);
+}
+
+TEST(FaceFlow, FollowsTheFaceBothWaysAndStartsAgainAcrossAGap) {
+  const Positions points = square_points(0);
+  const cv::Rect box = facing_box(unit_square(), points, kCamera, {640, 480}, 8);
+  FaceFlow flow;
+  EXPECT_TRUE(flow.next(frame(0), box, 0).empty());  // no last frame
+  // The face 0.45 cm (6 px) to the right.
+  const FlowPair pair = flow.next(frame(0.45f), box, 1);
+  ASSERT_FALSE(pair.empty());
+  EXPECT_EQ(pair.index, 1);
+  const Vec2f centre = pair.window(Vec2f(320, 240));
+  const cv::Vec2f back = pair.back.at<cv::Vec2f>(cvRound(centre.y()), cvRound(centre.x()));
+  const cv::Vec2f ahead = pair.ahead.at<cv::Vec2f>(cvRound(centre.y()), cvRound(centre.x()));
+  const float shift = 6.0f * pair.window.scale;
+  EXPECT_NEAR(back[0], -shift, 0.3f);
+  EXPECT_NEAR(ahead[0], shift, 0.3f);
+  EXPECT_NEAR(back[1], 0.0f, 0.3f);
+  EXPECT_LE(pair.back.cols, 192);                        // the window scaled to the flow's width
+  EXPECT_TRUE(flow.next(frame(0.45f), box, 3).empty());  // frame 2 missing
+  EXPECT_FALSE(flow.next(frame(0.45f), box, 4).empty());
+  flow.reset();
+  EXPECT_TRUE(flow.next(frame(0.45f), box, 5).empty());
+  EXPECT_TRUE(flow.next(frame(0.45f), cv::Rect(), 6).empty());  // no face
+  EXPECT_THROW(FaceFlow(8), Error);
+}
+
+// The box around what faces the camera: 171 px across at the image's
+// centre, 8 px more each side; none for the square turned away.
+TEST(FaceFlow, TheFacingBoxHoldsTheSkinThatFacesTheCamera) {
+  const Positions points = square_points(0);
+  EXPECT_EQ(facing_box(unit_square(), points, kCamera, {640, 480}, 8),
+            cv::Rect(cv::Point(226, 146), cv::Point(415, 335)));
+  // Cut to the image.
+  EXPECT_EQ(facing_box(unit_square(), points, kCamera, {400, 300}, 8),
+            cv::Rect(cv::Point(226, 146), cv::Point(400, 300)));
+  TriangleMesh away = unit_square();
+  for (Triangle& t : away.triangles) std::swap(t[1], t[2]);
+  EXPECT_TRUE(facing_box(away, points, kCamera, {640, 480}, 8).empty());
 }
 
 TEST(MovingCover, RejectsImpossibleOptions) {

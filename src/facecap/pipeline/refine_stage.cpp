@@ -58,6 +58,7 @@ void RefineStage::finish() {
   join_all();
   timings_.refine_ms = first_.refine_ms + second_.refine_ms;
   timings_.coarse_ms = first_.coarse_ms;
+  timings_.prepare_ms = second_.prepare_ms;
   timings_.consumer_ms = first_.consumer_ms + third_.consumer_ms;
   timings_.startup_ms = first_.startup_ms;
   timings_.first_refine_ms = first_.first_refine_ms;
@@ -134,6 +135,11 @@ void RefineStage::run_second_half() {
         const auto t0 = std::chrono::steady_clock::now();
         out.refinement = refiner_.finish_frame(std::move(*h->pending));
         second_.refine_ms += ms_since(t0);
+      }
+      if (prepare_) {
+        const auto t0 = std::chrono::steady_clock::now();
+        prepare_(out);
+        second_.prepare_ms += ms_since(t0);
       }
       if (!refined_frames_.push(std::move(out))) break;  // the third thread failed
     }

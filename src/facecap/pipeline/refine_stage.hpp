@@ -7,6 +7,7 @@
 // coarsest level (Refiner::begin_frame) while the second solves the previous
 // frame's finer levels (Refiner::finish_frame) and the third runs the
 // consumer on the frame before that.
+#include <any>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -30,6 +31,8 @@ struct RefinedFrame {
   // started its albedo and lighting again here, and so should a consumer
   // whatever it learns across frames.
   bool starts_shot = false;
+  // What the stage's prepare hook (RefineStage::on_prepare) made of the frame.
+  std::any prepared;
 };
 
 // Where the stage's threads spend a run, to tell whether capture and
@@ -37,6 +40,7 @@ struct RefinedFrame {
 struct RefineStageTimings {
   double refine_ms = 0;         // the refinement's work: Refiner::begin_frame() and finish_frame()
   double coarse_ms = 0;         // the coarse face in camera space for it
+  double prepare_ms = 0;        // the prepare hook (on_prepare)
   double consumer_ms = 0;       // the consumer (writers), shot ends included
   double startup_ms = 0;        // from the stage's start to its first frame: capture's own start-up (identity solve)
   double first_refine_ms = 0;   // the first frame's first half, which builds the mesh hierarchy (in refine_ms too)
@@ -58,6 +62,12 @@ class RefineStage {
   // keeps per shot (the glTF's albedo) is still the last shot's here. Set it
   // before the first push().
   void on_shot_end(std::function<void()> hook) { shot_end_ = std::move(hook); }
+
+  // Runs on the stage's second thread on each frame, in frame order, after
+  // its refinement and before the consumer takes it, beside the consumer's
+  // work on the frame before: what a consumer can compute ahead (the swap's
+  // face flow) goes into RefinedFrame::prepared. Set it before the first push().
+  void on_prepare(std::function<void(RefinedFrame&)> hook) { prepare_ = std::move(hook); }
 
   // Queues a frame (blocks while the queue is full). Rethrows a failure of any of its threads.
   void push(const CapturedFrame& frame);
@@ -93,6 +103,7 @@ class RefineStage {
   Refiner refiner_;
   Consumer consumer_;
   std::function<void()> shot_end_;
+  std::function<void(RefinedFrame&)> prepare_;
   BoundedQueue<CapturedFrame> queue_;
   BoundedQueue<Handoff> handoff_;
   BoundedQueue<RefinedFrame> refined_frames_;  // from the second thread to the third

@@ -377,7 +377,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     drop_non_skin(*skin_now);
     if (appearance_frame) m.occlusion->add_reference(seen);
     const cv::Mat moving =
-        m.moving ? m.moving->update(frame, target_points, target.camera, seen.weight, target.index) : cv::Mat();
+        m.moving ? m.moving->update(frame, target_points, target.camera, seen.weight, target.index, target.flow)
+                 : cv::Mat();
     cover = m.occlusion->covered(seen, moving);
     skin_now->weight.setTo(0, cover > 0);  // the expression ratio's change is the face's, not a cover's
     occlusion_ms = ms_since(t0);

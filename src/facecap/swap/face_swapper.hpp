@@ -22,6 +22,8 @@
 
 namespace facecap {
 
+struct FlowPair;  // face_flow.hpp
+
 struct SwapOptions {
   int texture_size = 1024;  // UV texture of the face
   // Target frames over which the appearance is harmonised, then held,
@@ -129,6 +131,9 @@ struct TargetFrame {
   // the face is looked for afresh (moving_cover.hpp). -1: unknown, taken
   // to follow.
   int index = -1;
+  // This frame's face flow (moving_cover.hpp's `flow`), computed beforehand
+  // on another thread; null: the swap computes it.
+  const FlowPair* flow = nullptr;
   // With SwapOptions::wrinkles: the refined face at the hierarchy's finest
   // level (camera space) and the hierarchy it lives on.
   Positions fine;

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/video/tracking.hpp>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
+#include "facecap/swap/face_flow.hpp"
 #include "facecap/swap/occlusion_mask.hpp"
 
 namespace facecap {
@@ -50,20 +50,6 @@ void texel_positions(const UvTexelMap& map, const std::vector<Triangle>& triangl
       },
       16);
 }
-
-// A window of the image scaled by `scale` (as cv::resize maps pixel
-// centres): its pixel coordinates for an image point.
-struct ScaledWindow {
-  cv::Point origin;
-  float scale = 1;
-  Vec2f operator()(const Vec2f& p) const {
-    return {(p.x() - origin.x + 0.5f) * scale - 0.5f, (p.y() - origin.y + 0.5f) * scale - 0.5f};
-  }
-  // The camera that sees the window.
-  PinholeCamera camera(const PinholeCamera& c) const {
-    return {c.focal * scale, (c.cx - origin.x + 0.5) * scale - 0.5, (c.cy - origin.y + 0.5) * scale - 0.5};
-  }
-};
 
 // The image box around the texels `seen` marks, grown by `margin` px.
 cv::Rect seen_bounds(const cv::Mat& image_xy, const cv::Mat& seen, int margin) {
@@ -144,13 +130,12 @@ struct MovingCover::State {
   double texels_per_mm = 0;
   std::vector<int> sampled;       // the vertices that sample the shared disagreement
   std::vector<int> vertex_texel;  // per vertex, a texel at its UV (-1: none)
-  cv::Ptr<cv::DISOpticalFlow> flow;
-  // The last frame: its grey image, its texels' and sampled vertices' image
-  // positions, and its evidence drawn into the image over `evidence_box`.
-  cv::Mat grey, image_xy;
+  FaceFlow flow;                  // where update() is given none
+  // The last frame: its texels' and sampled vertices' image positions, and
+  // its evidence drawn into the image over its face box.
+  cv::Mat image_xy;
   Eigen::Matrix2Xf sampled_xy;  // the sampled vertices', in their order
-  cv::Mat evidence_image;       // at evidence_window's scale
-  cv::Rect evidence_box;        // in the image, unscaled
+  cv::Mat evidence_image;       // at evidence_window's scale (empty: no evidence)
   ScaledWindow evidence_window;
   int last_index = -1;  // the last frame's number (-1: unknown)
 };
@@ -164,9 +149,7 @@ MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, M
   s.skin = skin;
   s.map = grid.map;
   s.texels_per_mm = grid.texels_per_mm;
-  // The medium preset: the fast ones, at this window, found a sixth as
-  // much of a skin-coloured hand (SwapJob.AHandOfTheSkinsOwnColourStaysInFront).
-  s.flow = cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_MEDIUM);
+  s.flow = FaceFlow(options_.flow_width);
   s.vertex_texel.assign(skin.num_vertices, -1);
   for (size_t t = 0; t < skin.triangles.size(); ++t) {
     for (int c = 0; c < 3; ++c) {
@@ -190,41 +173,39 @@ MovingCover::MovingCover(MovingCover&&) noexcept = default;
 MovingCover& MovingCover::operator=(MovingCover&&) noexcept = default;
 
 void MovingCover::reset() {
-  state_->grey = cv::Mat();
+  state_->flow.reset();
   state_->image_xy = cv::Mat();
   state_->evidence_image = cv::Mat();
 }
 
 cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera,
-                            const cv::Mat& seen, int frame_index) {
+                            const cv::Mat& seen, int frame_index, const FlowPair* flow) {
   State& s = *state_;
   // Motion is measured between consecutive frames only.
   if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
   s.last_index = frame_index;
   const int n = s.map.size;
   cv::Mat evidence(n, n, CV_32F, cv::Scalar(0));
-  cv::Mat grey, image_xy, depth;
-  cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+  cv::Mat image_xy, depth;
   texel_positions(s.map, s.skin.triangles, points, camera, image_xy, depth);
   Eigen::Matrix2Xf sampled_xy(2, s.sampled.size());
   for (size_t k = 0; k < s.sampled.size(); ++k) sampled_xy.col(k) = camera.project(Vec3f(points.col(s.sampled[k])));
   const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
   const cv::Rect face_box = seen_bounds(image_xy, seen, 8) & frame_rect;
 
-  if (!s.grey.empty() && s.grey.size() == grey.size() && face_box.area() > 0) {
-    // The flow from this frame back to the last and forward again, over
-    // both frames' face windows, at most flow_width wide.
-    const cv::Rect box = (face_box | s.evidence_box) & frame_rect;
-    const ScaledWindow window{box.tl(), std::min(1.0f, float(options_.flow_width) / float(box.width))};
-    cv::Mat now_small, last_small, back, ahead;
-    cv::resize(grey(box), now_small, cv::Size(), window.scale, window.scale, cv::INTER_AREA);
-    cv::resize(s.grey(box), last_small, cv::Size(), window.scale, window.scale, cv::INTER_AREA);
-    s.flow->calc(now_small, last_small, back);
-    s.flow->calc(last_small, now_small, ahead);
+  FlowPair own;
+  if (!flow) {
+    own = s.flow.next(frame, facing_box(s.skin, points, camera, frame.size(), 8), frame_index);
+    flow = &own;
+  }
+
+  if (!flow->empty() && !s.image_xy.empty() && face_box.area() > 0) {
+    const ScaledWindow& window = flow->window;
+    const cv::Mat &back = flow->back, &ahead = flow->ahead;
     // The flow at an image point, in the flow's pixels.
-    auto flow_at = [&](const cv::Mat& flow, const Vec2f& p) {
+    auto flow_at = [&](const cv::Mat& field, const Vec2f& p) {
       const Vec2f q = window(p);
-      const cv::Vec2f f = sample_bilinear_channels<2>(flow, q.x(), q.y());
+      const cv::Vec2f f = sample_bilinear_channels<2>(field, q.x(), q.y());
       return Vec2f(f[0], f[1]);
     };
     // The last frame's evidence at an image point (0 outside its window).
@@ -316,16 +297,16 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
     for (int i = 0; i < n * n; ++i)
       if (seeded[label[i]]) e[i] = 1.0f;
   }
-  s.grey = grey;
   s.image_xy = image_xy;
   s.sampled_xy = sampled_xy;
   // The evidence drawn into the image, at the flow's scale (the next
-  // frame samples it where its flow says its pixels came from).
-  s.evidence_box = face_box;
+  // frame samples it where its flow says its pixels came from); none
+  // drawn where there is none (most frames: the drawing, a rasterisation
+  // of the skin, took 2-3 ms a frame beside a 720p swap).
   s.evidence_window = {face_box.tl(), std::min(1.0f, float(options_.flow_width) / float(std::max(1, face_box.width)))};
   const cv::Size evidence_size(std::max(1, int(std::lround(face_box.width * s.evidence_window.scale))),
                                std::max(1, int(std::lround(face_box.height * s.evidence_window.scale))));
-  s.evidence_image = face_box.area() > 0
+  s.evidence_image = face_box.area() > 0 && cv::countNonZero(evidence) > 0
                          ? cover_in_image(s.skin, points, s.evidence_window.camera(camera), evidence_size, evidence)
                          : cv::Mat();
   return evidence;

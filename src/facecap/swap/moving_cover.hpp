@@ -6,8 +6,8 @@
 // A departure from the paper, whose swap (§6.3) paints over what covers
 // the face.
 //
-// Each frame, the dense optical flow (DIS, Kroeger et al., ECCV 2016)
-// from this frame's face window back to the last frame's says where each
+// Each frame, the dense optical flow (face_flow.hpp) from this frame's
+// face window back to the last frame's says where each
 // surface point's pixel came from; the tracked model says where the point
 // itself was. What the whole face's disagreement shares (an affine field:
 // the tracking a little off, most where a hand hides the landmarks) is
@@ -23,9 +23,12 @@
 // lips' and the jaw's own motion, which the tracking follows a little
 // late, is no cover on the talking heads of ../shared/data.
 //
-// Its cost, mostly the two flows: 8.5 ms a frame at 720p alone (swap_bench
-// BM_MovingCover720p), about twice that beside the rest of a swap on 2
-// cores (SwapOptions::moving_covers turns it off).
+// Its cost at 720p alone (swap_bench BM_MovingCover720p): 7 ms a frame, of
+// which the two flows take 3 on two cores (5 on one); a swap computes the
+// flows beside the last frame's swap, on another thread
+// (FaceSwapStream), and the rest, 3 ms alone, two to three times that
+// beside the rest of a swap on 2 cores (SwapOptions::moving_covers turns
+// it off).
 #include <memory>
 #include <opencv2/core.hpp>
 
@@ -33,6 +36,7 @@
 #include "facecap/core/geometry.hpp"
 #include "facecap/core/mesh.hpp"
 #include "facecap/render/uv_raster.hpp"
+#include "facecap/swap/face_flow.hpp"
 
 namespace facecap {
 
@@ -59,8 +63,10 @@ class MovingCover {
   // video; one that does not follow the last frame's (a frame without a
   // face between) starts afresh, as reset() does; -1: unknown, taken to
   // follow. None on the first frame after construction or reset().
+  // `flow`: this frame's FaceFlow::next() of the skin's facing_box() (8 px
+  // margin), computed beforehand (on another thread); null: computed here.
   cv::Mat update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera, const cv::Mat& seen,
-                 int frame_index = -1);
+                 int frame_index = -1, const FlowPair* flow = nullptr);
 
   // Forget the last frame.
   void reset();
