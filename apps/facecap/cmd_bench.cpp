@@ -257,10 +257,10 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
                  {"swap_fps_with_appearance", with_appearance_ms > 0 ? 1000.0 / with_appearance_ms : 0.0},
                  {"lighting_ms_per_frame", timings.lighting_ms / n},
                  {"lighting_note", "the target's SH lighting, and with --wrinkles its displacement solve"},
-                 {"face_flow_ms_per_frame", timings.face_flow_ms / n},
-                 {"face_flow_note",
-                  "the moving covers' optical flow, on the lighting stage's second thread beside the "
-                  "swap of the frame before (not in swap_ms_per_frame)"},
+                 {"preparation_ms_per_frame", timings.preparation_ms / n},
+                 {"preparation_note",
+                  "the target unshaded for the occlusion mask and its moving covers (optical flow), on the "
+                  "lighting stage's second thread beside the swap of the frame before (not in swap_ms_per_frame)"},
                  {"tracked_first", a->tracked_first},
                  {"timing_note",
                   a->tracked_first ? "the target was captured first: the swap's stages ran without capture beside them"

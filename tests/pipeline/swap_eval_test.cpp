@@ -280,6 +280,8 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
     const SwapSummary s = run_swap(*model, photo.string(), (dir.path() / "covered").string(),
                                    dir.path() / (keep_occluders ? "kept.mp4" : "painted.mp4"), o);
     EXPECT_EQ(s.timings.swapped, kFrames);
+    // The covers were looked for beside the swap (FramePreparation), and only with the occlusion mask on.
+    EXPECT_EQ(s.timings.preparation_ms > 0, keep_occluders);
     return frames;
   };
   const std::map<int, Measured> kept = swap(true), painted = swap(false);
@@ -412,6 +414,8 @@ TEST(SwapJob, AHandOfTheSkinsOwnColourStaysInFront) {
     const SwapSummary s = run_swap(*model, photo.string(), (dir.path() / "hand").string(),
                                    dir.path() / (keep_occluders ? "kept.mp4" : "painted.mp4"), o);
     EXPECT_EQ(s.timings.swapped, kFrames);
+    // The covers were looked for beside the swap (FramePreparation), and only with the occlusion mask on.
+    EXPECT_EQ(s.timings.preparation_ms > 0, keep_occluders);
     return frames;
   };
   const std::map<int, Out> kept = swap(true), painted = swap(false);

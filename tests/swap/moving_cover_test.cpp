@@ -130,33 +130,6 @@ TEST(MovingCover, TheFaceMovingOrItsTrackingALittleOffIsNoCover) {
   }
 }
 
-// The swap computes the flow on another thread beforehand (FaceSwapStream):
-// the same evidence as the cover's own.
-TEST(MovingCover, AFlowComputedBeforehandGivesTheSameEvidence) {
-  const MillimetreGrid g = grid();
-  MovingCover own(unit_square(), g), given(unit_square(), g);
-  FaceFlow flow;
-  const cv::Mat seen(g.map.size, g.map.size, CV_32F, cv::Scalar(1));
-  cv::Point cover(180, 250);
-  double found = 0;
-  for (int i = 0; i < 12; ++i) {
-    if (i != 6) cover.x += 12;  // frame 7 is missing: both start again
-    const int index = i < 7 ? i : i + 1;
-    const float offset = 0.1f * i;
-    const cv::Mat image = frame(offset, cover);
-    const Positions points = square_points(offset);
-    const FlowPair pair = flow.next(image, facing_box(unit_square(), points, kCamera, image.size(), 8), index);
-    const cv::Mat a = own.update(image, points, kCamera, seen, index);
-    const cv::Mat b = given.update(image, points, kCamera, seen, index, &pair);
-    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << i;
-    if (i == 7) {
-      EXPECT_EQ(largest(b), 0.0);  // no last frame
-    }
-    found = std::max(found, largest(b));
-  }
-  EXPECT_GT(found, 0.99);
-}
-
 TEST(FaceFlow, FollowsTheFaceBothWaysAndStartsAgainAcrossAGap) {
   const Positions points = square_points(0);
   const cv::Rect box = facing_box(unit_square(), points, kCamera, {640, 480}, 8);

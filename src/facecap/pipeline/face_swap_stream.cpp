@@ -1,7 +1,7 @@
 #include "facecap/pipeline/face_swap_stream.hpp"
 
 #include "facecap/pipeline/refine_eval.hpp"
-#include "facecap/swap/skin_texture.hpp"
+#include "facecap/swap/frame_preparation.hpp"
 
 namespace facecap {
 
@@ -41,17 +41,16 @@ FaceSwapStream::FaceSwapStream(const FaceModel& model, const cv::Mat& photo, con
   // pipelining); frames reach it and leave it in order, so the results are
   // those of one thread.
   stage_ = std::make_unique<RefineStage>(model, target_refinement(options), [this](const RefinedFrame& r) { take(r); });
-  // The face flow of each frame, which the moving covers read, on the
-  // stage's second thread beside the swap of the frame before it: the
-  // swap's thread is the pipeline's slowest, and the flow needs only the
-  // frames and where the face is.
-  if (options.keep_occluders && options.moving_covers) {
-    skin_ = skin_mesh(model);
+  // Each frame's unshading onto the occlusion grid and its moving covers
+  // (frame_preparation.hpp), on the stage's second thread beside the swap
+  // of the frame before: the swap's thread is the pipeline's slowest, and
+  // these need only the frame, the tracked face and its lighting.
+  preparation_ = swapper_.make_preparation();
+  if (preparation_) {
     stage_->on_prepare([this](RefinedFrame& r) {
-      if (r.starts_shot) flow_.reset();  // the swapper starts again too
+      if (r.starts_shot) preparation_->reset();  // the swapper starts again too
       if (!r.refinement || r.frame.image.empty()) return;
-      r.prepared =
-          flow_.next(r.frame.image, facing_box(skin_, r.coarse, r.camera, r.frame.image.size(), 8), r.frame.index);
+      r.prepared = preparation_->prepare(r.frame.image, r.coarse, r.camera, r.refinement->lighting, r.frame.index);
     });
   }
 }
@@ -64,7 +63,7 @@ void FaceSwapStream::finish() { stage_->finish(); }
 
 double FaceSwapStream::lighting_ms() const { return stage_->refine_ms(); }
 
-double FaceSwapStream::face_flow_ms() const { return stage_->timings().prepare_ms; }
+double FaceSwapStream::preparation_ms() const { return stage_->timings().prepare_ms; }
 
 void FaceSwapStream::take(const RefinedFrame& r) {
   const CapturedFrame& f = r.frame;
@@ -86,7 +85,7 @@ void FaceSwapStream::take(const RefinedFrame& r) {
   t.lighting = r.refinement->lighting;
   t.lighting_final = r.refinement->albedo_final;
   t.index = f.index;
-  t.flow = std::any_cast<FlowPair>(&r.prepared);
+  t.prepared = std::any_cast<PreparedFrame>(&r.prepared);
   if (options_.wrinkles) {
     t.fine = r.refinement->positions;
     t.hierarchy = &stage_->refiner().hierarchy();

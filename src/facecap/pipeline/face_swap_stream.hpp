@@ -10,8 +10,8 @@
 
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
-#include "facecap/swap/face_flow.hpp"
 #include "facecap/swap/face_swapper.hpp"
+#include "facecap/swap/frame_preparation.hpp"
 
 namespace facecap {
 
@@ -42,7 +42,7 @@ class FaceSwapStream {
   // After finish(): the swap's stages summed, the lighting's, and the frames swapped.
   const SwapTimings& timings() const { return timings_; }
   double lighting_ms() const;
-  double face_flow_ms() const;  // the moving covers' face flow, beside the swap
+  double preparation_ms() const;  // the frames' preparation (frame_preparation.hpp), beside the swap
   int swapped() const { return swapped_; }
 
  private:
@@ -54,8 +54,7 @@ class FaceSwapStream {
   SwapOptions options_;
   Output output_;
   FaceSwapper swapper_;
-  TriangleMesh skin_;  // skin_mesh(): where the face flow looks
-  FaceFlow flow_;      // used on the stage's second thread only
+  std::unique_ptr<FramePreparation> preparation_;  // used on the stage's second thread only
   std::function<void()> shot_end_;
   SwapTimings timings_;
   int swapped_ = 0;

@@ -264,7 +264,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   summary.timings.swap = stream.timings();
   summary.timings.swapped = stream.swapped();
   summary.timings.lighting_ms = stream.lighting_ms();
-  summary.timings.face_flow_ms = stream.face_flow_ms();
+  summary.timings.preparation_ms = stream.preparation_ms();
   if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
@@ -347,7 +347,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     sum.ratio_ms += t.ratio_ms;
     sum.occlusion_ms += t.occlusion_ms;
     summary.timings.lighting_ms += stream.lighting_ms();
-    summary.timings.face_flow_ms += stream.face_flow_ms();
+    summary.timings.preparation_ms += stream.preparation_ms();
     summary.timings.swapped += stream.swapped();
     summary.swapped.push_back(stream.swapped());
   }

@@ -67,10 +67,10 @@ struct SwapJobOptions {
 
 struct SwapJobTimings {
   SwapTimings swap;
-  double lighting_ms = 0;   // the target's SH lighting per frame (and its displacements with wrinkles)
-  double face_flow_ms = 0;  // the moving covers' face flow, on the lighting stage's second thread beside the swap
-  double source_ms = 0;     // reconstructing the portrait
-  int swapped = 0;          // frames with a face
+  double lighting_ms = 0;     // the target's SH lighting per frame (and its displacements with wrinkles)
+  double preparation_ms = 0;  // unshading and moving covers (frame_preparation.hpp), beside the swap
+  double source_ms = 0;       // reconstructing the portrait
+  int swapped = 0;            // frames with a face
 };
 
 struct SwapSummary {

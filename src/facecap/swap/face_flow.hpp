@@ -4,9 +4,9 @@
 // al., ECCV 2016; OpenCV's medium preset): what MovingCover reads to tell a
 // hand moving over the face from the face itself.
 //
-// It needs only the two frames and where the face is, so a swap computes it
-// on a thread of its own, beside the last frame's swap (FaceSwapStream);
-// the two flows run on two cores where both are free.
+// It needs only the two frames and where the face is (a swap computes it
+// on another thread, beside the last frame's swap: FramePreparation); the
+// two flows run on two cores where both are free.
 #include <memory>
 #include <opencv2/core.hpp>
 

@@ -23,9 +23,9 @@
 #include "facecap/swap/chroma_spread.hpp"
 #include "facecap/swap/expression_ratio.hpp"
 #include "facecap/swap/face_texture.hpp"
+#include "facecap/swap/frame_preparation.hpp"
 #include "facecap/swap/light_colour.hpp"
 #include "facecap/swap/lit_vertices.hpp"
-#include "facecap/swap/moving_cover.hpp"
 #include "facecap/swap/noise_matching.hpp"
 #include "facecap/swap/occlusion_mask.hpp"
 #include "facecap/swap/residual_shading.hpp"
@@ -132,10 +132,10 @@ struct FaceSwapper::Impl {
   // how much of each was seen: the reference for light_colour().
   Positions target_vertex_albedo;
   std::vector<float> target_vertex_seen;
-  std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
-  std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
-  std::optional<OcclusionMask> occlusion;   // SwapOptions::keep_occluders
-  std::optional<MovingCover> moving;        // SwapOptions::moving_covers
+  std::optional<ResidualShading> residual;      // SwapOptions::residual_shading_mm
+  std::optional<ExpressionRatio> ratio;         // SwapOptions::expression_ratio
+  std::optional<OcclusionMask> occlusion;       // SwapOptions::keep_occluders
+  std::optional<FramePreparation> preparation;  // with `occlusion`: where no TargetFrame::prepared
 
   // Follows the target's identity (fixed once its tracker has solved it).
   void update_target_identity(const Eigen::VectorXf& identity) {
@@ -188,7 +188,7 @@ struct FaceSwapper::Impl {
     if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
     if (options.keep_occluders) {
       occlusion.emplace(skin, mm_per_uv);
-      if (options.moving_covers) moving.emplace(skin, occlusion->grid());
+      preparation.emplace(model, skin, occlusion->grid(), options.moving_covers);
     }
     // The warp's anchors: the landmarks and every second boundary vertex
     // (every third raised the seam ratio of Obama into address_720p_b,
@@ -342,6 +342,12 @@ std::optional<SizeMatch> FaceSwapper::size_match() const {
   return impl_->size;
 }
 
+std::unique_ptr<FramePreparation> FaceSwapper::make_preparation() const {
+  const Impl& m = *impl_;
+  if (!m.occlusion) return nullptr;
+  return std::make_unique<FramePreparation>(m.model, m.skin, m.occlusion->grid(), m.options.moving_covers);
+}
+
 SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, SwapTimings* timings) {
   Impl& m = *impl_;
   SwapTimings local;
@@ -372,14 +378,17 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   double occlusion_ms = 0;
   if (m.occlusion) {
     t0 = std::chrono::steady_clock::now();
-    const FaceTexture seen = m.occlusion->unshade(frame, target_points, target.camera, target.lighting, holes);
+    PreparedFrame own;
+    const PreparedFrame* prepared = target.prepared;
+    if (!prepared) {
+      own = m.preparation->prepare(frame, target_points, target.camera, target.lighting, target.index);
+      prepared = &own;
+    }
+    const FaceTexture& seen = prepared->seen;
     skin_now = FaceTexture{seen.albedo, seen.weight.clone()};
     drop_non_skin(*skin_now);
     if (appearance_frame) m.occlusion->add_reference(seen);
-    const cv::Mat moving =
-        m.moving ? m.moving->update(frame, target_points, target.camera, seen.weight, target.index, target.flow)
-                 : cv::Mat();
-    cover = m.occlusion->covered(seen, moving);
+    cover = m.occlusion->covered(seen, prepared->moving);
     skin_now->weight.setTo(0, cover > 0);  // the expression ratio's change is the face's, not a cover's
     occlusion_ms = ms_since(t0);
     t.occlusion_ms += occlusion_ms;

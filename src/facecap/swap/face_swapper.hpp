@@ -22,7 +22,8 @@
 
 namespace facecap {
 
-struct FlowPair;  // face_flow.hpp
+struct PreparedFrame;    // frame_preparation.hpp
+class FramePreparation;  // frame_preparation.hpp
 
 struct SwapOptions {
   int texture_size = 1024;  // UV texture of the face
@@ -131,9 +132,9 @@ struct TargetFrame {
   // the face is looked for afresh (moving_cover.hpp). -1: unknown, taken
   // to follow.
   int index = -1;
-  // This frame's face flow (moving_cover.hpp's `flow`), computed beforehand
-  // on another thread; null: the swap computes it.
-  const FlowPair* flow = nullptr;
+  // This frame's preparation (frame_preparation.hpp), made beforehand on
+  // another thread by make_preparation()'s; null: the swap makes it.
+  const PreparedFrame* prepared = nullptr;
   // With SwapOptions::wrinkles: the refined face at the hierarchy's finest
   // level (camera space) and the hierarchy it lives on.
   Positions fine;
@@ -177,6 +178,11 @@ class FaceSwapper {
   // (SwapOptions::match_target_size), once a target frame has been seen;
   // none with the option off.
   std::optional<SizeMatch> size_match() const;
+
+  // A preparation of target frames like the one the swapper makes for
+  // itself (TargetFrame::prepared), for another thread; null where the
+  // swapper needs none (SwapOptions::keep_occluders off).
+  std::unique_ptr<FramePreparation> make_preparation() const;
 
  private:
   struct Impl;

@@ -130,7 +130,7 @@ struct MovingCover::State {
   double texels_per_mm = 0;
   std::vector<int> sampled;       // the vertices that sample the shared disagreement
   std::vector<int> vertex_texel;  // per vertex, a texel at its UV (-1: none)
-  FaceFlow flow;                  // where update() is given none
+  FaceFlow flow;
   // The last frame: its texels' and sampled vertices' image positions, and
   // its evidence drawn into the image over its face box.
   cv::Mat image_xy;
@@ -179,7 +179,7 @@ void MovingCover::reset() {
 }
 
 cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera,
-                            const cv::Mat& seen, int frame_index, const FlowPair* flow) {
+                            const cv::Mat& seen, int frame_index) {
   State& s = *state_;
   // Motion is measured between consecutive frames only.
   if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
@@ -193,15 +193,10 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
   const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
   const cv::Rect face_box = seen_bounds(image_xy, seen, 8) & frame_rect;
 
-  FlowPair own;
-  if (!flow) {
-    own = s.flow.next(frame, facing_box(s.skin, points, camera, frame.size(), 8), frame_index);
-    flow = &own;
-  }
-
-  if (!flow->empty() && !s.image_xy.empty() && face_box.area() > 0) {
-    const ScaledWindow& window = flow->window;
-    const cv::Mat &back = flow->back, &ahead = flow->ahead;
+  const FlowPair flow = s.flow.next(frame, facing_box(s.skin, points, camera, frame.size(), 8), frame_index);
+  if (!flow.empty() && !s.image_xy.empty() && face_box.area() > 0) {
+    const ScaledWindow& window = flow.window;
+    const cv::Mat &back = flow.back, &ahead = flow.ahead;
     // The flow at an image point, in the flow's pixels.
     auto flow_at = [&](const cv::Mat& field, const Vec2f& p) {
       const Vec2f q = window(p);

@@ -24,11 +24,10 @@
 // late, is no cover on the talking heads of ../shared/data.
 //
 // Its cost at 720p alone (swap_bench BM_MovingCover720p): 7 ms a frame, of
-// which the two flows take 3 on two cores (5 on one); a swap computes the
-// flows beside the last frame's swap, on another thread
-// (FaceSwapStream), and the rest, 3 ms alone, two to three times that
-// beside the rest of a swap on 2 cores (SwapOptions::moving_covers turns
-// it off).
+// which the two flows take 3 on two cores (5 on one). A swap runs it on
+// another thread, beside the last frame's swap (FramePreparation), where
+// on 2 cores it takes 3 to 5 times as long, sharing them
+// (SwapOptions::moving_covers turns it off).
 #include <memory>
 #include <opencv2/core.hpp>
 
@@ -63,10 +62,8 @@ class MovingCover {
   // video; one that does not follow the last frame's (a frame without a
   // face between) starts afresh, as reset() does; -1: unknown, taken to
   // follow. None on the first frame after construction or reset().
-  // `flow`: this frame's FaceFlow::next() of the skin's facing_box() (8 px
-  // margin), computed beforehand (on another thread); null: computed here.
   cv::Mat update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera, const cv::Mat& seen,
-                 int frame_index = -1, const FlowPair* flow = nullptr);
+                 int frame_index = -1);
 
   // Forget the last frame.
   void reset();

@@ -73,12 +73,6 @@ OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, Occlusi
   grid_ = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
 }
 
-FaceTexture OcclusionMask::unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
-                                   const ShCoeffs& lighting,
-                                   const std::vector<std::vector<cv::Point>>& excluded) const {
-  return unshade_face(frame, target_points, skin_.triangles, camera, lighting, grid_.map, excluded);
-}
-
 void OcclusionMask::clear_reference() { low_ = high_ = log_sum_ = weight_sum_ = cv::Mat(); }
 
 void OcclusionMask::add_reference(const FaceTexture& seen) {

@@ -58,17 +58,14 @@ class OcclusionMask {
   // face per unit of UV (millimetres_per_uv()).
   OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options = {});
 
-  // One frame unshaded into the grid (unshade_face's arguments), as the
-  // camera saw it: nothing dropped as non-skin.
-  FaceTexture unshade(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& camera,
-                      const ShCoeffs& lighting, const std::vector<std::vector<cv::Point>>& excluded) const;
-
-  // The appearance frames (unshade()'s): what the face looks like uncovered.
+  // The appearance frames, each unshaded onto grid() as the camera saw it,
+  // nothing dropped as non-skin (FramePreparation's): what the face looks
+  // like uncovered.
   void clear_reference();
   void add_reference(const FaceTexture& seen);
 
   // How covered each texel is (CV_32F, 0..1, grid_size() square over UV
-  // [0, 1]^2, row 0 at v = 1) in a frame unshaded by unshade(); all zero
+  // [0, 1]^2, row 0 at v = 1) in a frame unshaded so; all zero
   // before any reference. `moving`: MovingCover's evidence on the grid,
   // covered where above one half whatever its colour (empty: none).
   cv::Mat covered(const FaceTexture& seen, const cv::Mat& moving = {}) const;
