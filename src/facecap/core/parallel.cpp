@@ -1,5 +1,7 @@
 #include "facecap/core/parallel.hpp"
 
+#include "facecap/core/thread_name.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -49,7 +51,11 @@ constexpr int kSpinsPerClockRead = 64;
 class ThreadPool {
  public:
   explicit ThreadPool(int workers) {
-    for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { worker_loop(); });
+    for (int i = 0; i < workers; ++i)
+      threads_.emplace_back([this] {
+        name_this_thread("facecap-pool");
+        worker_loop();
+      });
   }
   ~ThreadPool() {
     {

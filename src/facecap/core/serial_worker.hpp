@@ -15,11 +15,18 @@
 #include <type_traits>
 #include <utility>
 
+#include "facecap/core/thread_name.hpp"
+
 namespace facecap {
 
 class SerialWorker {
  public:
-  SerialWorker() : thread_([this](std::stop_token stop) { run(stop); }) {}
+  // `name`: the thread's (thread_name.hpp).
+  explicit SerialWorker(const char* name = "facecap-worker")
+      : thread_([this, name](std::stop_token stop) {
+          name_this_thread(name);
+          run(stop);
+        }) {}
   // Runs what was given before it ends.
   ~SerialWorker() {
     {

@@ -77,7 +77,7 @@ class FaceCapture {
   int shot_start_ = 0;
   TrackedFace last_;
   std::future<FitResult> pending_;
-  SerialWorker fitter_;  // last: destroyed first, so a fit in flight ends before what it uses
+  SerialWorker fitter_{"facecap-fit"};  // last: destroyed first, so a fit in flight ends before what it uses
 };
 
 }  // namespace facecap

@@ -11,6 +11,7 @@
 #include "facecap/core/interrupt.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/core/thread_name.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 
 namespace facecap {
@@ -29,6 +30,7 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
   BoundedQueue<DecodedFrame> decoded(4);
   std::exception_ptr decode_error;
   std::jthread decoder([&] {
+    name_this_thread("facecap-decode");
     try {
       for (int n = 0; options.max_frames <= 0 || n < options.max_frames; ++n) {
         DecodedFrame d;

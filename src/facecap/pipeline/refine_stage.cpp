@@ -1,6 +1,7 @@
 #include "facecap/pipeline/refine_stage.hpp"
 
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/core/thread_name.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 
 namespace facecap {
@@ -77,6 +78,7 @@ void RefineStage::wait_until_drained() {
 // lets the second thread hand on the last shot's frames.
 void RefineStage::run_first_half() {
   using Clock = std::chrono::steady_clock;
+  name_this_thread("facecap-refine1");
   try {
     refiner_.prepare_devices();  // while capture starts up
     Clock::time_point waiting = Clock::now();
@@ -128,6 +130,7 @@ void RefineStage::run_first_half() {
 
 // The refinement's second half of each frame, in frame order.
 void RefineStage::run_second_half() {
+  name_this_thread("facecap-refine2");
   try {
     while (std::optional<Handoff> h = handoff_.pop()) {
       RefinedFrame& out = h->frame;
@@ -152,6 +155,7 @@ void RefineStage::run_second_half() {
 // The consumer, on each refined frame in frame order.
 void RefineStage::run_consumer() {
   using Clock = std::chrono::steady_clock;
+  name_this_thread("facecap-output");
   try {
     while (std::optional<RefinedFrame> out = refined_frames_.pop()) {
       const Clock::time_point t0 = Clock::now();
