@@ -16,6 +16,7 @@
 #include "facecap/render/outline_distance.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
+#include "facecap/render/texture_levels.hpp"
 #include "facecap/render/uv_raster.hpp"
 #include "facecap/swap/albedo_adaptation.hpp"
 #include "facecap/swap/background_warp.hpp"
@@ -106,11 +107,12 @@ struct FaceSwapper::Impl {
   // albedo per skin vertex, its texture above the noise scale (mid-scale
   // detail scaled by photo_detail_gain) and the rest, and where it was seen.
   Positions source_vertex_albedo;
-  cv::Mat source_smooth;    // CV_32FC3
-  cv::Mat source_residual;  // CV_32FC3: the filled albedo less source_smooth
-  cv::Mat source_seen;      // CV_8U
-  cv::Mat alpha;            // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
-  cv::Mat texture;          // CV_32FC4: harmonised albedo (BGR) and alpha
+  cv::Mat source_smooth;         // CV_32FC3
+  cv::Mat source_residual;       // CV_32FC3: the filled albedo less source_smooth
+  cv::Mat source_seen;           // CV_8U
+  cv::Mat alpha;                 // CV_32F texture: 1 inside, fading to 0 at the skin's boundary
+  cv::Mat texture;               // CV_32FC4: harmonised albedo (BGR) and alpha
+  TextureLevels texture_levels;  // `texture` and its halvings, for the render
   FaceTexture target_sum;
   FaceTexture target_first;
   int appearance_seen = 0;
@@ -318,6 +320,7 @@ struct FaceSwapper::Impl {
     cv::split(fill_unseen(colour, inside), filled);
     filled.push_back(channels[3]);
     cv::merge(filled, texture);
+    texture_levels = TextureLevels(texture);
   }
 };
 
@@ -453,6 +456,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   cv::Mat render(out.window.size(), CV_32FC3, cv::Scalar::all(0));
   out.alpha = cv::Mat(out.window.size(), CV_32F, cv::Scalar(0));
   const float texels = float(m.map.size - 1);
+  // The texture at the density the face is seen at (texture_levels.hpp).
+  const float lod = m.texture_levels.lod_for(texels_per_pixel(m.skin, swapped_points, target.camera, m.map.size));
   // The silhouette fade's band: a tenth of the face's width (a cylinder's
   // surface turns 53 degrees from the view ray, where the fade ends, a
   // tenth of its width inside its outline).
@@ -476,7 +481,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
             const Triangle& uv = m.skin.triangle_uvs[tri];
             const Vec2f coord =
                 (1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]];
-            const cv::Vec4f s = sample_bilinear_channels<4>(m.texture, coord.x() * texels, (1.0f - coord.y()) * texels);
+            const cv::Vec4f s = m.texture_levels.sample<4>(lod, coord.x() * texels, (1.0f - coord.y()) * texels);
             const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
             const float shade = 255.0f * std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
