@@ -66,7 +66,8 @@ class RefineStage {
   // Runs on the stage's second thread on each frame, in frame order, after
   // its refinement and before the consumer takes it, beside the consumer's
   // work on the frame before: what a consumer can compute ahead (the swap's
-  // face flow) goes into RefinedFrame::prepared. Set it before the first push().
+  // unshading and moving covers) goes into RefinedFrame::prepared. Set it
+  // before the first push().
   void on_prepare(std::function<void(RefinedFrame&)> hook) { prepare_ = std::move(hook); }
 
   // Queues a frame (blocks while the queue is full). Rethrows a failure of any of its threads.
