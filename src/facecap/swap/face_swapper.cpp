@@ -134,10 +134,12 @@ struct FaceSwapper::Impl {
   // how much of each was seen: the reference for light_colour().
   Positions target_vertex_albedo;
   std::vector<float> target_vertex_seen;
-  std::optional<ResidualShading> residual;      // SwapOptions::residual_shading_mm
-  std::optional<ExpressionRatio> ratio;         // SwapOptions::expression_ratio
-  std::optional<OcclusionMask> occlusion;       // SwapOptions::keep_occluders
-  std::optional<FramePreparation> preparation;  // with `occlusion`: where no TargetFrame::prepared
+  std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
+  std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
+  std::optional<OcclusionMask> occlusion;   // SwapOptions::keep_occluders
+  // With `occlusion`, where a frame comes without TargetFrame::prepared
+  // (made on the first such frame: a swap's stream prepares its frames itself).
+  std::unique_ptr<FramePreparation> preparation;
 
   // Follows the target's identity (fixed once its tracker has solved it).
   void update_target_identity(const Eigen::VectorXf& identity) {
@@ -188,10 +190,7 @@ struct FaceSwapper::Impl {
     const double mm_per_uv =
         millimetres_per_uv(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace));
     if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
-    if (options.keep_occluders) {
-      occlusion.emplace(skin, mm_per_uv);
-      preparation.emplace(model, skin, occlusion->grid(), options.moving_covers);
-    }
+    if (options.keep_occluders) occlusion.emplace(skin, mm_per_uv);
     // The warp's anchors: the landmarks and every second boundary vertex
     // (every third raised the seam ratio of Obama into address_720p_b,
     // 30 frames, 1.38 -> 1.43; every one lowered it to 1.36 for 0.7 ms more).
@@ -384,6 +383,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     PreparedFrame own;
     const PreparedFrame* prepared = target.prepared;
     if (!prepared) {
+      if (!m.preparation) m.preparation = make_preparation();
       own = m.preparation->prepare(frame, target_points, target.camera, target.lighting, target.index);
       prepared = &own;
     }

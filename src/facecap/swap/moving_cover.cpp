@@ -125,6 +125,7 @@ AffineField shared_disagreement(const std::vector<VertexSample>& samples) {
 }  // namespace
 
 struct MovingCover::State {
+  explicit State(int flow_width) : flow(flow_width) {}
   TriangleMesh skin;
   UvTexelMap map;
   double texels_per_mm = 0;
@@ -140,16 +141,22 @@ struct MovingCover::State {
   int last_index = -1;  // the last frame's number (-1: unknown)
 };
 
-MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, MovingCoverOptions options)
-    : options_(options), state_(std::make_unique<State>()) {
-  if (!(options_.min_motion_mm > 0 && options_.half_life_frames > 0 && options_.flow_width >= 16 &&
-        options_.min_extent_mm >= 0))
+namespace {
+
+const MovingCoverOptions& checked(const MovingCoverOptions& o) {
+  if (!(o.min_motion_mm > 0 && o.half_life_frames > 0 && o.flow_width >= 16 && o.min_extent_mm >= 0))
     throw Error("moving cover: needs a positive motion and half-life, and a flow window of 16 px or more");
+  return o;
+}
+
+}  // namespace
+
+MovingCover::MovingCover(const TriangleMesh& skin, const MillimetreGrid& grid, MovingCoverOptions options)
+    : options_(checked(options)), state_(std::make_unique<State>(options_.flow_width)) {
   State& s = *state_;
   s.skin = skin;
   s.map = grid.map;
   s.texels_per_mm = grid.texels_per_mm;
-  s.flow = FaceFlow(options_.flow_width);
   s.vertex_texel.assign(skin.num_vertices, -1);
   for (size_t t = 0; t < skin.triangles.size(); ++t) {
     for (int c = 0; c < 3; ++c) {
