@@ -39,6 +39,19 @@ cv::Mat largest_channel_difference(const cv::Mat& a, const cv::Mat& b) {
   return cv::max(cv::max(channels[0], channels[1]), channels[2]);
 }
 
+// A cover test's swap of the frames in `folder` (into its parent folder),
+// with the occlusion mask on or off as `o` says: every frame swapped, and
+// the covers looked for beside the swap (FramePreparation) only with the
+// mask on.
+void run_cover_swap(const FaceModel& model, const fs::path& photo, const fs::path& folder, const SwapJobOptions& o,
+                    int frames) {
+  const bool kept = o.swap.keep_occluders;
+  const SwapSummary s =
+      run_swap(model, photo.string(), folder.string(), folder.parent_path() / (kept ? "kept.mp4" : "painted.mp4"), o);
+  EXPECT_EQ(s.timings.swapped, frames);
+  EXPECT_EQ(s.timings.preparation_ms > 0, kept);
+}
+
 }  // namespace
 
 TEST(SeamRatio, AHardEdgeOnTheOutlineStandsOutAndHolesDoNotCount) {
@@ -277,11 +290,7 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
       const cv::Mat near = largest_channel_difference(r.image, input[target.index]) <= 12;
       m.kept = double(cv::countNonZero(near & disc)) / cv::countNonZero(disc);
     };
-    const SwapSummary s = run_swap(*model, photo.string(), (dir.path() / "covered").string(),
-                                   dir.path() / (keep_occluders ? "kept.mp4" : "painted.mp4"), o);
-    EXPECT_EQ(s.timings.swapped, kFrames);
-    // The covers were looked for beside the swap (FramePreparation), and only with the occlusion mask on.
-    EXPECT_EQ(s.timings.preparation_ms > 0, keep_occluders);
+    run_cover_swap(*model, photo, dir.path() / "covered", o, kFrames);
     return frames;
   };
   const std::map<int, Measured> kept = swap(true), painted = swap(false);
@@ -411,11 +420,7 @@ TEST(SwapJob, AHandOfTheSkinsOwnColourStaysInFront) {
     o.on_frame = [&](const CapturedFrame& target, const SwappedFrame& r) {
       frames[target.index] = {r.image.clone(), r.covered};
     };
-    const SwapSummary s = run_swap(*model, photo.string(), (dir.path() / "hand").string(),
-                                   dir.path() / (keep_occluders ? "kept.mp4" : "painted.mp4"), o);
-    EXPECT_EQ(s.timings.swapped, kFrames);
-    // The covers were looked for beside the swap (FramePreparation), and only with the occlusion mask on.
-    EXPECT_EQ(s.timings.preparation_ms > 0, keep_occluders);
+    run_cover_swap(*model, photo, dir.path() / "hand", o, kFrames);
     return frames;
   };
   const std::map<int, Out> kept = swap(true), painted = swap(false);
