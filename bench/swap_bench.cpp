@@ -1,19 +1,26 @@
 // The wrinkle prediction's coating transfer (§6.1.2) on a mesh the size of
 // a 720p face's finest 4-8 level (about 33k vertices), the render's
 // silhouette fade and the background warp on a window the size of a 720p
-// swap's, and the moving cover's flow on a face as wide as a 720p one.
+// swap's, the moving cover's flow on a face as wide as a 720p one, and a
+// whole swap of a synthetic 720p frame and its preparation.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <random>
 
 #include <opencv2/imgproc.hpp>
 #include "facecap/render/outline_distance.hpp"
 
+#include "facecap/core/paths.hpp"
+#include "facecap/model/model_cache.hpp"
 #include "facecap/swap/background_warp.hpp"
+#include "facecap/swap/frame_preparation.hpp"
 #include "facecap/swap/moving_cover.hpp"
 #include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
+#include "facecap/synth/synth_renderer.hpp"
 #include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
+#include "swap/two_faces.hpp"    // tests/: FaceSwapper's synthetic source and target
 
 namespace facecap {
 namespace {
@@ -153,6 +160,84 @@ void BM_MovingCover720p(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MovingCover720p)->Unit(benchmark::kMillisecond);
+
+// One face swapped into renders of another at 1280x720, with the true
+// parameters, after the appearance frames: the swap's thread's work for one
+// frame (`bench swap`'s swap_ms_per_frame), and the preparation a stream
+// makes of each frame beside it (preparation_ms_per_frame). The face is 216
+// px from chin to brow, about as many pixels as `address_720p_a`'s (50-55k
+// drawn), so that the texture is read at about the same level of detail.
+struct SwapScene {
+  static constexpr int kFrames = 8;
+  FaceModel model = load_face_model(default_model_dir());
+  test::TwoFaces faces;
+  cv::Mat photo;
+  std::vector<cv::Mat> frames;
+
+  SwapScene() {
+    SynthOptions o;
+    o.frames = kFrames;
+    o.width = 1280;
+    o.height = 720;
+    o.face_height = 0.3;
+    faces = test::two_faces(model, o, 9);
+    const SynthRenderer target(model, faces.target), source(model, faces.source);
+    std::mt19937_64 rng(1);
+    photo = source.render(faces.source.frames[0], rng);
+    for (const SynthFrame& f : faces.target.frames) frames.push_back(target.render(f, rng));
+  }
+
+  // The frame number of step `k` of an endless loop over the frames, there
+  // and back (so that consecutive steps show neighbouring frames).
+  static int frame_of(int k) {
+    const int period = 2 * (kFrames - 1), i = k % period;
+    return i < kFrames ? i : period - i;
+  }
+  TargetFrame target(int k) const {
+    TargetFrame t = test::target_frame(faces.target, frame_of(k));
+    t.index = k;
+    return t;
+  }
+  const cv::Mat& frame(int k) const { return frames[size_t(frame_of(k))]; }
+  PreparedFrame prepare(FramePreparation& preparation, int k) const {
+    const TargetFrame t = target(k);
+    return preparation.prepare(frame(k),
+                               test::face_points(model, faces.target, faces.target.frames[size_t(frame_of(k))]),
+                               t.camera, t.lighting, k);
+  }
+};
+
+const SwapScene& swap_scene() {
+  static const SwapScene s;
+  return s;
+}
+
+void BM_FaceSwap720p(benchmark::State& state) {
+  const SwapScene& s = swap_scene();
+  FaceSwapper swapper(s.model, s.photo, test::source_face(s.model, s.faces.source, 0));
+  const std::unique_ptr<FramePreparation> preparation = swapper.make_preparation();
+  int k = 0;
+  for (; k < SwapOptions{}.appearance_frames; ++k) swapper.swap(s.frame(k), s.target(k));
+  for (auto _ : state) {
+    state.PauseTiming();  // the preparation runs beside the swap (BM_FramePreparation720p)
+    const PreparedFrame prepared = s.prepare(*preparation, k);
+    TargetFrame t = s.target(k);
+    t.prepared = &prepared;
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(swapper.swap(s.frame(k), t));
+    ++k;
+  }
+}
+BENCHMARK(BM_FaceSwap720p)->Unit(benchmark::kMillisecond);
+
+void BM_FramePreparation720p(benchmark::State& state) {
+  const SwapScene& s = swap_scene();
+  const FaceSwapper swapper(s.model, s.photo, test::source_face(s.model, s.faces.source, 0));
+  const std::unique_ptr<FramePreparation> preparation = swapper.make_preparation();
+  int k = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(s.prepare(*preparation, k++));
+}
+BENCHMARK(BM_FramePreparation720p)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace facecap

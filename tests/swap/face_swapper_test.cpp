@@ -11,47 +11,17 @@
 
 #include "facecap/swap/frame_preparation.hpp"
 #include "facecap/synth/synth_renderer.hpp"
+#include "swap/two_faces.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
 
 namespace {
 
+using test::face_points;
+using test::TwoFaces;
+
 constexpr int kFrames = 8;
-
-// Two performances alike in everything (expression, pose, lighting, skin)
-// but the identity: the target's, and the source's, whose frames are what
-// a perfect swap of the source's frame 0 into the target's frames gives.
-struct TwoFaces {
-  SynthPerformance target, source;
-};
-
-TwoFaces two_faces(const FaceModel& model) {
-  SynthOptions o;
-  o.frames = kFrames;
-  o.seed = 4;
-  TwoFaces f{make_performance(model, o), {}};
-  f.source = f.target;
-  o.seed = 9;
-  f.source.identity = make_performance(model, o).identity;
-  return f;
-}
-
-Positions face_points(const FaceModel& model, const SynthPerformance& p, const SynthFrame& frame) {
-  return to_camera(model.evaluate(p.identity, frame.expression, regions::kFace), frame.pose);
-}
-
-TargetFrame target_frame(const SynthPerformance& p, int i) {
-  const SynthFrame& f = p.frames[size_t(i)];
-  TargetFrame t;
-  t.identity = p.identity;
-  t.expression = f.expression;
-  t.pose = f.pose;
-  t.camera = p.camera;
-  t.lighting = f.lighting;
-  t.index = i;
-  return t;
-}
 
 // Mean absolute difference (0-255, over the channels) where the new face
 // is whole (alpha over 0.9).
@@ -67,7 +37,10 @@ double error_where_swapped(const SwappedFrame& s, const cv::Mat& expected, const
 
 TEST(FaceSwapper, ASwapWithTheTrueParametersIsTheSourceFacePerformingTheTargetsFrames) {
   FACECAP_REQUIRE_MODEL(model);
-  const TwoFaces faces = two_faces(*model);
+  SynthOptions o;
+  o.frames = kFrames;
+  o.seed = 4;
+  const TwoFaces faces = test::two_faces(*model, o, 9);
   // The truth without the sensor noise the frames have (the swap's noise
   // is matched to the target's, not the same).
   SynthPerformance noiseless = faces.source;
@@ -76,19 +49,13 @@ TEST(FaceSwapper, ASwapWithTheTrueParametersIsTheSourceFacePerformingTheTargetsF
       truth_render(*model, noiseless);
   std::mt19937_64 rng(1);
 
-  const SynthFrame& first = faces.source.frames[0];
-  SourceFace source;
-  source.identity = faces.source.identity;
-  source.expression = first.expression;
-  source.camera_points = face_points(*model, faces.source, first);
-  source.camera = faces.source.camera;
-  source.lighting = first.lighting;
+  const SourceFace source = test::source_face(*model, faces.source, 0);
   SwapOptions options;
   options.match_target_size = false;  // the truth has the source's own size
   // Each frame swapped twice: prepared by the swapper itself (as a
   // FaceSwapper driven without a stream does) and beforehand, by the
   // preparation a stream makes on its second thread.
-  const cv::Mat photo = source_render.render(first, rng);
+  const cv::Mat photo = source_render.render(faces.source.frames[0], rng);
   FaceSwapper own(*model, photo, source, options);
   FaceSwapper given(*model, photo, source, options);
   const std::unique_ptr<FramePreparation> preparation = given.make_preparation();
@@ -98,7 +65,7 @@ TEST(FaceSwapper, ASwapWithTheTrueParametersIsTheSourceFacePerformingTheTargetsF
     const SynthFrame& f = faces.target.frames[size_t(i)];
     const cv::Mat frame = target_render.render(f, rng);
     const cv::Mat truth = truth_render.render(noiseless.frames[size_t(i)], rng);
-    TargetFrame t = target_frame(faces.target, i);
+    TargetFrame t = test::target_frame(faces.target, i);
     const SwappedFrame swapped = own.swap(frame, t);
 
     const PreparedFrame prepared =
