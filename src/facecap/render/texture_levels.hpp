@@ -47,7 +47,28 @@ class TextureLevels {
     return fine * (1.0f - t) + coarse * t;
   }
 
+  // Asks the CPU to fetch what sample() at that point will read, some reads
+  // ahead of it. A render reads the texture a pixel at a time; once the
+  // frame's other work has evicted the texture from the caches, each read
+  // waits for memory unless it was asked for ahead (a replay of a 720p
+  // face's reads: 33 ns each in cache, 90-160 after 8-256 MB of other work,
+  // 33-35 asked for 8 reads ahead).
+  void prefetch(float lod, float x0, float y0) const {
+    const int k = std::clamp(int(lod), 0, count() - 1);
+    prefetch_level(k, x0, y0);
+    if (lod > float(k) && k + 1 < count()) prefetch_level(k + 1, x0, y0);
+  }
+
  private:
+  // The two rows sample_bilinear_channels reads at level k's point.
+  void prefetch_level(int k, float x0, float y0) const {
+    const cv::Mat& l = levels_[k];
+    const int x = std::clamp(int(to_level(k, x0, false)), 0, l.cols - 1);
+    const int y = std::clamp(int(to_level(k, y0, true)), 0, std::max(0, l.rows - 2));
+    __builtin_prefetch(l.ptr(y) + size_t(x) * l.elemSize());
+    __builtin_prefetch(l.ptr(std::min(y + 1, l.rows - 1)) + size_t(x) * l.elemSize());
+  }
+
   std::vector<cv::Mat> levels_;
 };
 

@@ -465,6 +465,13 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   cv::Mat turned(out.window.size(), CV_32F, cv::Scalar(1));  // undrawn: no surface facing the camera
   const SilhouetteFade fade{m.options.silhouette_fade_start,
                             std::max(2.0f, 0.1f * float(projected_bounds(swapped_points, target.camera).width))};
+  // The UV of the pixel at buffer index i (drawn).
+  const auto uv_at = [&](size_t i) {
+    const Vec2f b = buffers.bary[i];
+    const Triangle& uv = m.skin.triangle_uvs[buffers.triangle[i]];
+    return Vec2f((1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]]);
+  };
+  constexpr int kPixelsAhead = 8;
   parallel_for(
       out.window.height,
       [&](int y0, int y1) {
@@ -473,14 +480,17 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
           float* a = out.alpha.ptr<float>(y);
           const float* outline = outline_px.ptr<float>(y);
           float* turn = turned.ptr<float>(y);
+          const size_t row = size_t(y) * out.window.width;
           for (int x = 0; x < out.window.width; ++x) {
-            const size_t i = size_t(y) * out.window.width + x;
+            const size_t i = row + x;
+            // The texture a few pixels on, asked for now (TextureLevels::prefetch).
+            if (x + kPixelsAhead < out.window.width && buffers.triangle[i + kPixelsAhead] >= 0) {
+              const Vec2f ahead = uv_at(i + kPixelsAhead);
+              m.texture_levels.prefetch(lod, ahead.x() * texels, (1.0f - ahead.y()) * texels);
+            }
             const int tri = buffers.triangle[i];
             if (tri < 0) continue;
-            const Vec2f b = buffers.bary[i];
-            const Triangle& uv = m.skin.triangle_uvs[tri];
-            const Vec2f coord =
-                (1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]];
+            const Vec2f coord = uv_at(i);
             const cv::Vec4f s = m.texture_levels.sample<4>(lod, coord.x() * texels, (1.0f - coord.y()) * texels);
             const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
