@@ -14,13 +14,15 @@
 #include "facecap/core/paths.hpp"
 #include "facecap/model/model_cache.hpp"
 #include "facecap/swap/background_warp.hpp"
+#include "facecap/swap/expression_ratio.hpp"
 #include "facecap/swap/frame_preparation.hpp"
 #include "facecap/swap/moving_cover.hpp"
 #include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 #include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
-#include "swap/two_faces.hpp"    // tests/: FaceSwapper's synthetic source and target
+#include "swap/two_faces.hpp"
+#include "swap/unit_square.hpp"  // tests/: FaceSwapper's synthetic source and target
 
 namespace facecap {
 namespace {
@@ -160,6 +162,24 @@ void BM_MovingCover720p(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MovingCover720p)->Unit(benchmark::kMillisecond);
+
+// The expression ratio's gains on a grid the size of a face's (250 mm
+// square at 1 mm a texel), every texel seen: a grainy reference, and a
+// frame with the grain changed.
+void BM_ExpressionRatioGains(benchmark::State& state) {
+  ExpressionRatio ratio(test::unit_square(), 250.0);
+  const auto grainy = [&](int seed) {
+    FaceTexture t;
+    t.albedo = cv::Mat(ratio.grid_size(), ratio.grid_size(), CV_32FC3);
+    cv::RNG(seed).fill(t.albedo, cv::RNG::UNIFORM, 0.3, 0.7);
+    t.weight = cv::Mat(t.albedo.size(), CV_32F, cv::Scalar(1));
+    return t;
+  };
+  ratio.add_reference(grainy(1));
+  const FaceTexture frame = grainy(2);
+  for (auto _ : state) benchmark::DoNotOptimize(ratio.gains(frame));
+}
+BENCHMARK(BM_ExpressionRatioGains)->Unit(benchmark::kMillisecond);
 
 // One face swapped into renders of another at 1280x720, with the true
 // parameters, after the appearance frames: the swap's thread's work for one

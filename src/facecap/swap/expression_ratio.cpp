@@ -24,20 +24,35 @@ cv::Mat log_colour(const cv::Mat& bgr, int channels) {
 // A Gaussian blur with zeros outside the texture.
 cv::Mat blur(const cv::Mat& image, double sigma) { return wide_blur(image, sigma, cv::BORDER_CONSTANT); }
 
-// `weight` (one channel) repeated over `channels` channels.
-cv::Mat repeat_channels(const cv::Mat& weight, int channels) {
-  if (channels == 1) return weight;
-  cv::Mat out;
-  cv::merge(std::vector<cv::Mat>(channels, weight), out);
+// `value` (any number of channels) times `weight` (one), texel by texel:
+// no copy of the weight per channel.
+cv::Mat times_weight(const cv::Mat& value, const cv::Mat& weight) {
+  const int channels = value.channels();
+  cv::Mat out(value.size(), value.type());
+  for (int y = 0; y < value.rows; ++y) {
+    const float* v = value.ptr<float>(y);
+    const float* w = weight.ptr<float>(y);
+    float* o = out.ptr<float>(y);
+    for (int x = 0; x < value.cols; ++x)
+      for (int c = 0; c < channels; ++c) o[x * channels + c] = v[x * channels + c] * w[x];
+  }
   return out;
 }
 
-// Normalised convolution, the weighted Gaussian mean of `value` (any number
-// of channels), given the weight blurred alike (`blurred_weight`).
-cv::Mat weighted_blur(const cv::Mat& value, const cv::Mat& weight, const cv::Mat& blurred_weight, double sigma) {
-  const int channels = value.channels();
-  return blur(value.mul(repeat_channels(weight, channels)), sigma) /
-         repeat_channels(cv::max(blurred_weight, 1e-6f), channels);
+// Normalised convolution, the weighted Gaussian mean of a value, from the
+// value times its weight (times_weight) and the weight, blurred alike.
+cv::Mat normalised_blur(const cv::Mat& weighted_value, const cv::Mat& blurred_weight, double sigma) {
+  cv::Mat out = blur(weighted_value, sigma);
+  const int channels = out.channels();
+  for (int y = 0; y < out.rows; ++y) {
+    float* o = out.ptr<float>(y);
+    const float* w = blurred_weight.ptr<float>(y);
+    for (int x = 0; x < out.cols; ++x) {
+      const float divisor = std::max(w[x], 1e-6f);
+      for (int c = 0; c < channels; ++c) o[x * channels + c] /= divisor;
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -74,7 +89,8 @@ void ExpressionRatio::add_reference(const FaceTexture& texture) {
   // The edge gate, from the reference's log gradient per millimetre: of
   // its luminance, or with `colour` the largest of its channels' (the lips'
   // edge is more one of colour than of brightness).
-  const cv::Mat smooth = weighted_blur(log_reference_, seen_reference_, blur(seen_reference_, fine), fine);
+  const cv::Mat smooth =
+      normalised_blur(times_weight(log_reference_, seen_reference_), blur(seen_reference_, fine), fine);
   cv::Mat gx, gy;
   cv::Sobel(smooth, gx, CV_32F, 1, 0, 3, grid_.texels_per_mm / 8.0);
   cv::Sobel(smooth, gy, CV_32F, 0, 1, 3, grid_.texels_per_mm / 8.0);
@@ -105,14 +121,14 @@ cv::Mat ExpressionRatio::gains(const FaceTexture& frame) const {
   // The change, band-passed (at the fine scale less at the coarse scale),
   // faded where the fine window saw little (the edge of what this frame
   // shows), gated and clamped.
-  const cv::Mat change = log_colour(frame.albedo, channels) - log_reference_;
+  const cv::Mat weighted_change = times_weight(log_colour(frame.albedo, channels) - log_reference_, weight);
   const cv::Mat fine_weight = blur(weight, fine);
-  const cv::Mat band =
-      weighted_blur(change, weight, fine_weight, fine) - weighted_blur(change, weight, blur(weight, coarse), coarse);
+  const cv::Mat band = normalised_blur(weighted_change, fine_weight, fine) -
+                       normalised_blur(weighted_change, blur(weight, coarse), coarse);
   double max_weight = 0;
   cv::minMaxLoc(fine_weight, nullptr, &max_weight);
   const cv::Mat confidence = fine_weight / (fine_weight + 0.25 * max_weight);
-  cv::Mat log_gain = band.mul(repeat_channels(confidence.mul(gate_), channels));
+  cv::Mat log_gain = times_weight(band, confidence.mul(gate_));
   const float limit = std::log(options_.max_gain);
   cv::min(cv::max(log_gain, -limit), limit, log_gain);
   cv::Mat out;
