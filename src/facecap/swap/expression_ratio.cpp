@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/error.hpp"
+#include "facecap/swap/weighted_channels.hpp"
 #include "facecap/swap/wide_blur.hpp"
 
 namespace facecap {
@@ -24,34 +25,11 @@ cv::Mat log_colour(const cv::Mat& bgr, int channels) {
 // A Gaussian blur with zeros outside the texture.
 cv::Mat blur(const cv::Mat& image, double sigma) { return wide_blur(image, sigma, cv::BORDER_CONSTANT); }
 
-// `value` (any number of channels) times `weight` (one), texel by texel:
-// no copy of the weight per channel.
-cv::Mat times_weight(const cv::Mat& value, const cv::Mat& weight) {
-  const int channels = value.channels();
-  cv::Mat out(value.size(), value.type());
-  for (int y = 0; y < value.rows; ++y) {
-    const float* v = value.ptr<float>(y);
-    const float* w = weight.ptr<float>(y);
-    float* o = out.ptr<float>(y);
-    for (int x = 0; x < value.cols; ++x)
-      for (int c = 0; c < channels; ++c) o[x * channels + c] = v[x * channels + c] * w[x];
-  }
-  return out;
-}
-
 // Normalised convolution, the weighted Gaussian mean of a value, from the
 // value times its weight (times_weight) and the weight, blurred alike.
 cv::Mat normalised_blur(const cv::Mat& weighted_value, const cv::Mat& blurred_weight, double sigma) {
   cv::Mat out = blur(weighted_value, sigma);
-  const int channels = out.channels();
-  for (int y = 0; y < out.rows; ++y) {
-    float* o = out.ptr<float>(y);
-    const float* w = blurred_weight.ptr<float>(y);
-    for (int x = 0; x < out.cols; ++x) {
-      const float divisor = std::max(w[x], 1e-6f);
-      for (int c = 0; c < channels; ++c) o[x * channels + c] /= divisor;
-    }
-  }
+  divide_by_weight(out, blurred_weight, 1e-6f);
   return out;
 }
 

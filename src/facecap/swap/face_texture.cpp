@@ -11,6 +11,7 @@
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/swap/noise_matching.hpp"
+#include "facecap/swap/weighted_channels.hpp"
 #include "facecap/swap/wide_blur.hpp"
 
 namespace facecap {
@@ -103,13 +104,9 @@ int drop_non_skin(FaceTexture& texture, float max_chroma, float max_log_brightne
 void complete_from_mirror(FaceTexture& texture, double low_pass_texels) {
   const cv::Mat albedo = texture.albedo.clone(), weight = texture.weight.clone();
   // Low-pass colour of what was seen: blur(albedo * weight) / blur(weight).
-  cv::Mat w3, weighted, low_weight3;
-  cv::merge(std::vector<cv::Mat>{weight, weight, weight}, w3);
-  cv::multiply(albedo, w3, weighted);
-  cv::Mat low = wide_blur(weighted, low_pass_texels);
+  cv::Mat low = wide_blur(times_weight(albedo, weight), low_pass_texels);
   const cv::Mat low_weight = wide_blur(weight, low_pass_texels);
-  cv::merge(std::vector<cv::Mat>{low_weight, low_weight, low_weight}, low_weight3);
-  low /= cv::max(low_weight3, 1e-4f);
+  divide_by_weight(low, low_weight, 1e-4f);
   // Where this side saw too little around a texel (its low-pass weight, the
   // seen share of the neighbourhood), the mirror's colour is kept as it is:
   // this side's low-pass colour says too little there. A texel unseen itself
@@ -144,10 +141,7 @@ cv::Mat scale_detail(const cv::Mat& albedo, double sigma, float gain) {
 }
 
 void accumulate(FaceTexture& sum, const FaceTexture& one) {
-  cv::Mat weighted;
-  cv::Mat w3;
-  cv::merge(std::vector<cv::Mat>{one.weight, one.weight, one.weight}, w3);
-  cv::multiply(one.albedo, w3, weighted);
+  const cv::Mat weighted = times_weight(one.albedo, one.weight);
   if (sum.empty()) {
     sum.albedo = weighted;
     sum.weight = one.weight.clone();
@@ -159,10 +153,8 @@ void accumulate(FaceTexture& sum, const FaceTexture& one) {
 
 FaceTexture weighted_mean(const FaceTexture& sum) {
   FaceTexture out;
-  cv::Mat w = cv::max(sum.weight, 1e-6f);
-  cv::Mat w3;
-  cv::merge(std::vector<cv::Mat>{w, w, w}, w3);
-  cv::divide(sum.albedo, w3, out.albedo);
+  out.albedo = sum.albedo.clone();
+  divide_by_weight(out.albedo, sum.weight, 1e-6f);
   out.weight = sum.weight.clone();
   return out;
 }
@@ -172,14 +164,10 @@ cv::Mat fill_unseen(const cv::Mat& albedo, const cv::Mat& weight) {
   std::vector<cv::Mat> colour{albedo.clone()}, known{cv::Mat(weight > 0) / 255};
   known[0].convertTo(known[0], CV_32F);
   while (colour.back().cols > 2 && cv::countNonZero(known.back()) < static_cast<int>(known.back().total())) {
-    cv::Mat w3, cw, c, k;
-    cv::merge(std::vector<cv::Mat>{known.back(), known.back(), known.back()}, w3);
-    cv::multiply(colour.back(), w3, cw);
-    cv::resize(cw, c, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    cv::Mat c, k;
+    cv::resize(times_weight(colour.back(), known.back()), c, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
     cv::resize(known.back(), k, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
-    cv::Mat kk = cv::max(k, 1e-6f), k3;
-    cv::merge(std::vector<cv::Mat>{kk, kk, kk}, k3);
-    cv::divide(c, k3, c);
+    divide_by_weight(c, k, 1e-6f);
     cv::threshold(k, k, 1e-6, 1.0, cv::THRESH_BINARY);
     colour.push_back(c);
     known.push_back(k);

@@ -10,6 +10,7 @@
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/render/rasterizer.hpp"
+#include "facecap/swap/weighted_channels.hpp"
 
 namespace facecap {
 
@@ -97,9 +98,7 @@ void OcclusionMask::add_reference(const FaceTexture& seen) {
   }
   low_ = cv::min(low_, low);
   high_ = cv::max(high_, high);
-  cv::Mat weighted;
-  cv::merge(std::vector<cv::Mat>(3, seen.weight), weighted);
-  log_sum_ += log.mul(weighted);
+  log_sum_ += times_weight(log, seen.weight);
   weight_sum_ += seen.weight;
 }
 
