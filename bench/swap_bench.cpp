@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include "facecap/render/outline_distance.hpp"
 
+#include "facecap/compose/laplacian_blend.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/model/model_cache.hpp"
 #include "facecap/swap/background_warp.hpp"
@@ -180,6 +181,19 @@ void BM_ExpressionRatioGains(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(ratio.gains(frame));
 }
 BENCHMARK(BM_ExpressionRatioGains)->Unit(benchmark::kMillisecond);
+
+// The swap's multi-band blend on a window the size of a 720p face's (410 x
+// 570 px), the new face an ellipse in it.
+void BM_LaplacianBlend720p(benchmark::State& state) {
+  const cv::Size size(410, 570);
+  cv::Mat base(size, CV_8UC3), layer(size, CV_8UC3), mask(size, CV_8U, cv::Scalar(0));
+  cv::RNG(3).fill(base, cv::RNG::UNIFORM, 0, 255);
+  cv::RNG(4).fill(layer, cv::RNG::UNIFORM, 0, 255);
+  cv::ellipse(mask, cv::Point(205, 285), cv::Size(150, 210), 0, 0, 360, cv::Scalar(255), cv::FILLED);
+  const cv::Mat soft = feather_mask(mask, 0, 8.0);
+  for (auto _ : state) benchmark::DoNotOptimize(laplacian_blend(base, layer, soft));
+}
+BENCHMARK(BM_LaplacianBlend720p)->Unit(benchmark::kMillisecond);
 
 // One face swapped into renders of another at 1280x720, with the true
 // parameters, after the appearance frames: the swap's thread's work for one

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_layer.hpp"
+#include "facecap/core/error.hpp"
 
 namespace facecap {
 
@@ -81,6 +82,13 @@ TEST(FaceLayer, CompositingPutsTheLayerInItsWindowOnly) {
   EXPECT_GE(frame.at<cv::Vec3b>(150, 200)[1], 249);
   EXPECT_EQ(frame.at<cv::Vec3b>(5, 5)[1], 50);
   EXPECT_EQ(frame.at<cv::Vec3b>(295, 395)[1], 50);
+}
+
+TEST(LaplacianBlend, ImagesOfAnotherTypeOrSizeAreAnError) {
+  const cv::Mat base(32, 32, CV_8UC3, cv::Scalar::all(9)), mask(32, 32, CV_8U, cv::Scalar(255));
+  EXPECT_THROW(laplacian_blend(base, cv::Mat(32, 32, CV_32FC3, cv::Scalar::all(9)), mask), Error);
+  EXPECT_THROW(laplacian_blend(base, cv::Mat(32, 31, CV_8UC3, cv::Scalar::all(9)), mask), Error);
+  EXPECT_THROW(laplacian_blend(base, base, cv::Mat(32, 32, CV_32F, cv::Scalar(1))), Error);
 }
 
 }  // namespace facecap

@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "facecap/core/error.hpp"
 #include "facecap/core/parallel.hpp"
 
 namespace facecap {
@@ -29,10 +30,16 @@ cv::Mat laplacian_blend(const cv::Mat& base, const cv::Mat& layer, const cv::Mat
   // Laplacian pyramids are linear, so blending the layer's and the base's
   // bands with the mask's Gaussian pyramid equals adding to the base the
   // blended bands of their difference: one pyramid instead of two.
-  cv::Mat a, d, m;
-  base.convertTo(a, CV_32FC3);
-  layer.convertTo(d, CV_32FC3);
-  d -= a;
+  if (base.type() != CV_8UC3 || layer.type() != CV_8UC3 || mask.type() != CV_8U || base.size() != layer.size() ||
+      base.size() != mask.size())
+    throw Error("laplacian blend: needs a BGR 8-bit base and layer and an 8-bit mask, all of one size");
+  cv::Mat d(base.size(), CV_32FC3), m;
+  for (int y = 0; y < base.rows; ++y) {
+    const uchar* b = base.ptr<uchar>(y);
+    const uchar* l = layer.ptr<uchar>(y);
+    float* dp = d.ptr<float>(y);
+    for (int x = 0; x < 3 * base.cols; ++x) dp[x] = float(l[x]) - float(b[x]);
+  }
   mask.convertTo(m, CV_32F, 1.0 / 255.0);
   std::vector<cv::Mat> gd{d}, gm{m};
   for (int l = 1; l < levels; ++l) {
@@ -54,9 +61,14 @@ cv::Mat laplacian_blend(const cv::Mat& base, const cv::Mat& layer, const cv::Mat
     cv::pyrUp(result, up, gd[l].size());
     result = up + band;
   }
-  result += a;
-  cv::Mat out;
-  result.convertTo(out, CV_8UC3);
+  // The base added back, rounded and saturated as convertTo would.
+  cv::Mat out(base.size(), CV_8UC3);
+  for (int y = 0; y < base.rows; ++y) {
+    const uchar* b = base.ptr<uchar>(y);
+    const float* r = result.ptr<float>(y);
+    uchar* o = out.ptr<uchar>(y);
+    for (int x = 0; x < 3 * base.cols; ++x) o[x] = cv::saturate_cast<uchar>(r[x] + float(b[x]));
+  }
   return out;
 }
 
