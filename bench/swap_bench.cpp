@@ -207,6 +207,7 @@ struct SwapScene {
   test::TwoFaces faces;
   cv::Mat photo;
   std::vector<cv::Mat> frames;
+  std::vector<Positions> points;  // each frame's face in camera space (a stream's tracked face)
 
   SwapScene() {
     SynthOptions o;
@@ -218,7 +219,10 @@ struct SwapScene {
     const SynthRenderer target(model, faces.target), source(model, faces.source);
     std::mt19937_64 rng(1);
     photo = source.render(faces.source.frames[0], rng);
-    for (const SynthFrame& f : faces.target.frames) frames.push_back(target.render(f, rng));
+    for (const SynthFrame& f : faces.target.frames) {
+      frames.push_back(target.render(f, rng));
+      points.push_back(test::face_points(model, faces.target, f));
+    }
   }
 
   // The frame number of step `k` of an endless loop over the frames, there
@@ -235,9 +239,7 @@ struct SwapScene {
   const cv::Mat& frame(int k) const { return frames[size_t(frame_of(k))]; }
   PreparedFrame prepare(FramePreparation& preparation, int k) const {
     const TargetFrame t = target(k);
-    return preparation.prepare(frame(k),
-                               test::face_points(model, faces.target, faces.target.frames[size_t(frame_of(k))]),
-                               t.camera, t.lighting, k);
+    return preparation.prepare(frame(k), points[size_t(frame_of(k))], t.camera, t.lighting, k);
   }
 };
 
