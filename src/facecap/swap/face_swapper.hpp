@@ -94,9 +94,9 @@ struct SwapOptions {
   // over it, as in the paper (`swap --no-occlusion`).
   bool keep_occluders = true;
   // With it, also what moves across the target's face other than the face
-  // (a hand of the skin's own colour: moving_cover.hpp), at 8.5 ms a frame
-  // at 720p, twice that beside the rest of the swap on 2 cores (`swap
-  // --no-moving-covers`: off).
+  // (a hand of the skin's own colour: moving_cover.hpp), at 7 ms a frame at
+  // 720p, made beside the swap of the frame before by a stream
+  // (frame_preparation.hpp) (`swap --no-moving-covers`: off).
   bool moving_covers = true;
   // Narrow the photo's range of skin hues to the target's (chroma_spread.hpp)
   // before the albedo adaptation: a graded, desaturated video shows less
