@@ -65,6 +65,17 @@ TEST(TextureLevels, BetweenTwoLevelsTheirReadsAreBlended) {
   EXPECT_FLOAT_EQ(levels.sample<1>(0.5f, 10, 10)[0], 0.25f);
 }
 
+// Asking for a read ahead changes nothing, anywhere: inside, at the
+// borders, beyond them (clamped as the reads are) and past the last level.
+TEST(TextureLevels, AskingForAReadAheadChangesNothingAnywhere) {
+  const TextureLevels levels(ramp(256), 16);
+  const cv::Vec2f before = levels.sample<2>(1.5f, 100.25f, 30.5f);
+  for (const float lod : {0.0f, 0.5f, 1.5f, 4.0f, 9.0f})
+    for (const float c : {-1e6f, -3.0f, 0.0f, 100.25f, 255.0f, 255.9f, 1e6f}) levels.prefetch(lod, c, 255.0f - c);
+  EXPECT_EQ(levels.sample<2>(1.5f, 100.25f, 30.5f), before);
+  EXPECT_NEAR(before[0], 100.25f, 1e-3f);
+}
+
 // A square 12.8 cm across, 60 cm from a camera of focal 800 px, spans
 // 170.7 px; its UVs the whole of a 1024-texel texture: 6 texels a pixel.
 TEST(TextureLevels, TexelsPerPixelOfASquareFacingTheCamera) {
