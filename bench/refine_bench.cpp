@@ -69,6 +69,22 @@ void BM_RefineFrame720p(benchmark::State& state) {
 }
 BENCHMARK(BM_RefineFrame720p)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
+// One frame's lighting alone, as the edits refine their target (transform,
+// swap: lighting_only_refinement), once the albedo is fixed.
+void BM_LightingOnlyFrame720p(benchmark::State& state) {
+  const Scene& s = scene();
+  RefineOptions options = lighting_only_refinement();
+  options.albedo.frames = 1;
+  Refiner refiner = make_face_refiner(s.model, options);
+  refiner.refine(s.images[0], s.coarse[0], s.performance.camera);
+  size_t frame = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(refiner.refine(s.images[frame], s.coarse[frame], s.performance.camera));
+    frame = frame + 1 < s.images.size() ? frame + 1 : 1;
+  }
+}
+BENCHMARK(BM_LightingOnlyFrame720p)->Unit(benchmark::kMillisecond);
+
 // Rasterising the finest level at 1280x720 (depth, triangle and barycentric
 // buffers reused across frames). The displacement solve's depth test at the
 // finest level rasterises the coarse mesh instead (the same surface):
