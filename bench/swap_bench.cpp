@@ -22,8 +22,8 @@
 #include "facecap/swap/wrinkle_transfer.hpp"
 #include "facecap/synth/synth_renderer.hpp"
 #include "swap/square_grid.hpp"  // tests/: the grid the coating transfer's tests use
-#include "swap/two_faces.hpp"
-#include "swap/unit_square.hpp"  // tests/: FaceSwapper's synthetic source and target
+#include "swap/two_faces.hpp"    // tests/: FaceSwapper's synthetic source and target
+#include "swap/unit_square.hpp"  // tests/: a unit square with UVs, the ratio's grid
 
 namespace facecap {
 namespace {
