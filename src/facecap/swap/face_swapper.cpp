@@ -33,6 +33,7 @@
 #include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/size_match.hpp"
 #include "facecap/swap/skin_texture.hpp"
+#include "facecap/swap/weighted_channels.hpp"
 #include "facecap/swap/wrinkle_transfer.hpp"
 
 namespace facecap {
@@ -582,12 +583,10 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     out.alpha = out.alpha.mul(1.0f - in_front);
     out.covered = full > 0 ? 1.0 - cv::sum(out.alpha)[0] / full : 0.0;
     if (out.covered > 0) {
-      cv::Mat mixed, weight;
-      cv::merge(std::vector<cv::Mat>(3, in_front), weight);
       cv::Mat swapped_f, frame_f;
       out.image(out.window).convertTo(swapped_f, CV_32FC3);
       frame(out.window).convertTo(frame_f, CV_32FC3);
-      mixed = swapped_f + weight.mul(frame_f - swapped_f);
+      const cv::Mat mixed = swapped_f + times_weight(frame_f - swapped_f, in_front);
       mixed.convertTo(out.image(out.window), CV_8UC3);
     }
     t.occlusion_ms += ms_since(t0);

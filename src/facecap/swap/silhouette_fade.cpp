@@ -5,6 +5,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "facecap/swap/weighted_channels.hpp"
+
 namespace facecap {
 
 namespace {
@@ -42,9 +44,8 @@ void soften_turned_away(cv::Mat& render, const cv::Mat& turned, const cv::Mat& o
   const cv::Rect roi = cv::Rect(box.x - reach, box.y - reach, box.width + 2 * reach, box.height + 2 * reach) &
                        cv::Rect(0, 0, render.cols, render.rows);
   const cv::Mat facing = 1.0f - turned(roi);
-  cv::Mat facing3, weighted, weight;
-  cv::merge(std::vector<cv::Mat>(3, facing), facing3);
-  two_box_blur(render(roi).mul(facing3), weighted, sigma);
+  cv::Mat weighted, weight;
+  two_box_blur(times_weight(render(roi), facing), weighted, sigma);
   two_box_blur(facing, weight, sigma);
   for (int y = box.y; y < box.y + box.height; ++y) {
     auto* colour = render.ptr<cv::Vec3f>(y);
