@@ -1,7 +1,8 @@
 // FaceSwapper driven on its own, without a swap stream: a synthetic face
 // swapped into a render of another with the true parameters gives back the
 // render of the first face performing the second's frames, and a frame given
-// no preparation is prepared by the swapper as a stream would prepare it.
+// no preparation (nor the target's face) is prepared by the swapper as a
+// stream would prepare it.
 #include "facecap/swap/face_swapper.hpp"
 
 #include <gtest/gtest.h>
@@ -54,7 +55,8 @@ TEST(FaceSwapper, ASwapWithTheTrueParametersIsTheSourceFacePerformingTheTargetsF
   options.match_target_size = false;  // the truth has the source's own size
   // Each frame swapped twice: prepared by the swapper itself (as a
   // FaceSwapper driven without a stream does) and beforehand, by the
-  // preparation a stream makes on its second thread.
+  // preparation a stream makes on its second thread, with the target's
+  // face given as the stream's refinement stage evaluates it.
   const cv::Mat photo = source_render.render(faces.source.frames[0], rng);
   FaceSwapper own(*model, photo, source, options);
   FaceSwapper given(*model, photo, source, options);
@@ -68,9 +70,10 @@ TEST(FaceSwapper, ASwapWithTheTrueParametersIsTheSourceFacePerformingTheTargetsF
     TargetFrame t = test::target_frame(faces.target, i);
     const SwappedFrame swapped = own.swap(frame, t);
 
-    const PreparedFrame prepared =
-        preparation->prepare(frame, face_points(*model, faces.target, f), t.camera, t.lighting, i);
+    const Positions target_points = face_points(*model, faces.target, f);
+    const PreparedFrame prepared = preparation->prepare(frame, target_points, t.camera, t.lighting, i);
     t.prepared = &prepared;
+    t.points = &target_points;
     const SwappedFrame swapped_given = given.swap(frame, t);
     ASSERT_EQ(swapped.window, swapped_given.window) << "frame " << i;
     EXPECT_EQ(cv::norm(swapped.image, swapped_given.image, cv::NORM_INF), 0.0) << "frame " << i;

@@ -86,6 +86,7 @@ void FaceSwapStream::take(const RefinedFrame& r) {
   t.lighting_final = r.refinement->albedo_final;
   t.index = f.index;
   t.prepared = std::any_cast<PreparedFrame>(&r.prepared);
+  t.points = &r.coarse;
   if (options_.wrinkles) {
     t.fine = r.refinement->positions;
     t.hierarchy = &stage_->refiner().hierarchy();

@@ -357,8 +357,11 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   SwapTimings& t = timings ? *timings : local;
   const auto start = std::chrono::steady_clock::now();
   m.update_target_identity(target.identity);
+  const bool given_points = target.points && target.points->cols() == m.target_identity_shape.size() / 3;
   const Positions target_points =
-      to_camera(m.model.with_expression(m.target_identity_shape, target.expression, regions::kFace), target.pose);
+      given_points
+          ? *target.points
+          : to_camera(m.model.with_expression(m.target_identity_shape, target.expression, regions::kFace), target.pose);
   // §6.1.1: the source identity performing the target expression, under the target pose (eq. 6.6).
   Positions source_shape = m.model.with_expression(m.source_identity_shape, target.expression, regions::kFace);
   if (m.options.match_target_size) source_shape = m.size.apply(source_shape);

@@ -135,6 +135,11 @@ struct TargetFrame {
   // This frame's preparation (frame_preparation.hpp), made beforehand on
   // another thread by make_preparation()'s; null: the swap makes it.
   const PreparedFrame* prepared = nullptr;
+  // The target's face region in camera space (FaceModel::evaluate of
+  // `identity` and `expression` over regions::kFace, under `pose`), where
+  // the caller has it already (a stream's refinement stage evaluates it
+  // for the frame); null: the swap evaluates it.
+  const Positions* points = nullptr;
   // With SwapOptions::wrinkles: the refined face at the hierarchy's finest
   // level (camera space) and the hierarchy it lives on.
   Positions fine;
