@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <mutex>
 #include <numeric>
 #include <thread>
 #include <vector>
@@ -42,6 +43,41 @@ TEST(ParallelFor, EmptyRangeCallsNothing) {
   bool called = false;
   parallel_for(0, [&](int, int) { called = true; });
   EXPECT_FALSE(called);
+}
+
+// A stage beside a busier one keeps its loops to its own thread.
+TEST(ParallelFor, ASerialScopeRunsTheLoopWholeOnItsOwnThread) {
+  const auto calls_of = [](int n) {
+    std::vector<std::pair<int, int>> ranges;
+    std::vector<std::thread::id> threads;
+    std::mutex m;
+    parallel_for(
+        n,
+        [&](int b, int e) {
+          const std::lock_guard lock(m);
+          ranges.emplace_back(b, e);
+          threads.push_back(std::this_thread::get_id());
+        },
+        1);
+    return std::make_pair(ranges, threads);
+  };
+  {
+    const SerialScope serial;
+    { const SerialScope nested; }
+    // Still serial after the nested scope ends.
+    const auto [ranges, threads] = calls_of(1000);
+    ASSERT_EQ(ranges.size(), 1u);
+    EXPECT_EQ(ranges[0], std::make_pair(0, 1000));
+    EXPECT_EQ(threads[0], std::this_thread::get_id());
+  }
+  // And shared again once the scope ends, where there are workers.
+  const auto [ranges, threads] = calls_of(1000);
+  if (worker_count() > 1) {
+    EXPECT_GT(ranges.size(), 1u);
+  }
+  int covered = 0;
+  for (const auto& [b, e] : ranges) covered += e - b;
+  EXPECT_EQ(covered, 1000);
 }
 
 TEST(ParallelSum, CoversEveryIndexOnceAndAddsTheBlocks) {

@@ -21,6 +21,7 @@ namespace facecap {
 namespace {
 
 thread_local bool t_inside_pool_job = false;
+thread_local bool t_serial = false;  // SerialScope
 
 inline void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -165,11 +166,14 @@ int worker_count() {
   return count;
 }
 
+SerialScope::SerialScope() : was_serial_(t_serial) { t_serial = true; }
+SerialScope::~SerialScope() { t_serial = was_serial_; }
+
 void parallel_for(int n, const std::function<void(int, int)>& body, int min_chunk) {
   if (n <= 0) return;
   const int workers = worker_count();
   const int chunks = std::min({workers * 4, std::max(1, n / std::max(1, min_chunk)), 0xffff});
-  if (workers <= 1 || chunks <= 1 || t_inside_pool_job || !pool().try_run(n, chunks, body)) {
+  if (workers <= 1 || chunks <= 1 || t_inside_pool_job || t_serial || !pool().try_run(n, chunks, body)) {
     body(0, n);
   }
 }

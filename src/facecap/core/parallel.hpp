@@ -13,6 +13,21 @@ int worker_count();
 // Small ranges (n < min_chunk) run on the calling thread.
 void parallel_for(int n, const std::function<void(int, int)>& body, int min_chunk = 256);
 
+// While one lives, parallel_for on its thread runs every loop on that
+// thread alone. For a pipeline stage that runs beside a busier one on few
+// cores: the pool's workers are then the busier stage's, and no core waits
+// on a loop's last chunk.
+class SerialScope {
+ public:
+  SerialScope();
+  ~SerialScope();
+  SerialScope(const SerialScope&) = delete;
+  SerialScope& operator=(const SerialScope&) = delete;
+
+ private:
+  bool was_serial_;
+};
+
 // Sum over [0, n) of block(begin, end), which returns its range's partial sum
 // (a double, an Eigen array: anything with += and a zero): the range is cut
 // into fixed blocks of `block_size` that run in parallel, and their sums are
