@@ -95,7 +95,7 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
   pid_ = pid;
   pipe_fd_ = fds[1];
   // A frame in a few writes rather than some 40 of the default 64 KB, each
-  // a wake-up of both processes: `bench swap` at 720p, 14.0-14.2 -> 14.5-15.1
+  // a wake-up of both processes: `bench swap` at 720p, 13.6-14.2 -> 14.5-15.1
   // fps end to end. Where the system allows less, the default stays.
   ::fcntl(pipe_fd_, F_SETPIPE_SZ, 1 << 20);
   // A dead encoder must surface as an error from write(), not kill us with SIGPIPE.
