@@ -261,6 +261,18 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
                  {"preparation_note",
                   "the target unshaded for the occlusion mask and its moving covers (optical flow), on the "
                   "lighting stage's second thread beside the swap of the frame before (not in swap_ms_per_frame)"},
+                 {"cpu_ms_per_frame",
+                  {{"swap_thread", timings.swap_thread_cpu_ms / n},
+                   {"preparation", timings.preparation_cpu_ms / n},
+                   {"lighting", timings.lighting_cpu_ms / n},
+                   {"encoder", timings.encoder_cpu_ms / n},
+                   {"pool", timings.pool_cpu_ms / n},
+                   {"note",
+                    "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
+                    "core: the swap's own thread (the swap and its frame's writing, appearance frames included), "
+                    "the preparation's and the lighting's, the encoder process (audio included) and the pool's "
+                    "workers (on every stage's loops, capture's too). Their sum against the cores times "
+                    "swap_ms_per_frame says whether the cores were full"}}},
                  {"tracked_first", a->tracked_first},
                  {"timing_note",
                   a->tracked_first ? "the target was captured first: the swap's stages ran without capture beside them"

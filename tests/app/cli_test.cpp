@@ -923,7 +923,8 @@ TEST(Cli, TrackingAndRefinementDoNotDependOnTheThreadCount) {
 }
 
 // bench swap --tracked-first times the swap on a target captured first, and
-// says so; it is one face's, so --all-faces with it is a usage error.
+// says so, with the CPU time of each of its threads; it is one face's, so
+// --all-faces with it is a usage error.
 TEST(Cli, BenchSwapTrackedFirstTimesTheSwapAloneAndSaysSo) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(target, "talking_webcam_400x300.mp4");
@@ -935,6 +936,10 @@ TEST(Cli, BenchSwapTrackedFirstTimesTheSwapAloneAndSaysSo) {
   EXPECT_TRUE(j["swap"]["tracked_first"].get<bool>());
   EXPECT_EQ(j["swap"]["frames"].get<int>(), 12);
   EXPECT_GT(j["swap"]["swap_fps"].get<double>(), 0.0);
+  // The CPU budget: each of the swap's threads and the encoder did some work.
+  for (const char* part : {"swap_thread", "preparation", "lighting", "encoder"})
+    EXPECT_GT(j["swap"]["cpu_ms_per_frame"][part].get<double>(), 0.0) << part;
+  EXPECT_GE(j["swap"]["cpu_ms_per_frame"]["pool"].get<double>(), 0.0);
   const RunResult both = run(args + " --tracked-first --all-faces");
   EXPECT_EQ(both.code, 2) << both.out;
 }

@@ -54,6 +54,21 @@ TEST(VideoWriter, WritesH264WithTheInputsAudioAndMetadata) {
   EXPECT_NE(bytes.find("facecap_edit"), std::string::npos);
 }
 
+// A benchmark's budget counts the encoder's CPU time: known once the
+// writer has waited for its process.
+TEST(VideoWriter, TheEncodersCpuTimeIsKnownOnceItHasFinished) {
+  TempDir dir;
+  VideoWriterOptions o;
+  o.width = 320;
+  o.height = 240;
+  VideoWriter w(dir.path() / "out.mp4", o);
+  for (int i = 0; i < 30; ++i) w.write(gradient_frame(i, 320, 240));
+  EXPECT_EQ(w.encoder_cpu_ms(), 0.0);
+  w.finish();
+  EXPECT_GT(w.encoder_cpu_ms(), 0.0);
+  EXPECT_LT(w.encoder_cpu_ms(), 60000.0);
+}
+
 // The extension picks the container; each carries the marks. Other names
 // are refused before anything is written, naming the choices.
 TEST(VideoWriter, WritesTheContainerItsNameAsksForWithTheMarks) {

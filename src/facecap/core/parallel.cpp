@@ -2,6 +2,8 @@
 
 #include "facecap/core/thread_name.hpp"
 
+#include <pthread.h>
+#include <time.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -64,6 +66,17 @@ class ThreadPool {
       stop_.store(true);
     }
     wake_.notify_all();
+  }
+
+  double cpu_ms() {
+    double sum = 0;
+    for (std::jthread& t : threads_) {
+      clockid_t clock;
+      timespec time{};
+      if (pthread_getcpuclockid(t.native_handle(), &clock) == 0 && clock_gettime(clock, &time) == 0)
+        sum += 1e3 * double(time.tv_sec) + 1e-6 * double(time.tv_nsec);
+    }
+    return sum;
   }
 
   bool try_run(int n, int chunks, const std::function<void(int, int)>& body) {
@@ -151,8 +164,11 @@ class ThreadPool {
   std::vector<std::jthread> threads_;
 };
 
+std::atomic<bool> g_pool_made{false};
+
 ThreadPool& pool() {
   static ThreadPool instance(worker_count() - 1);
+  g_pool_made.store(true, std::memory_order_release);
   return instance;
 }
 
@@ -165,6 +181,8 @@ int worker_count() {
   }();
   return count;
 }
+
+double pool_cpu_ms() { return g_pool_made.load(std::memory_order_acquire) ? pool().cpu_ms() : 0.0; }
 
 SerialScope::SerialScope() : was_serial_(t_serial) { t_serial = true; }
 SerialScope::~SerialScope() { t_serial = was_serial_; }

@@ -9,6 +9,10 @@ namespace facecap {
 // number, else the hardware concurrency (at least 1).
 int worker_count();
 
+// The CPU time (ms) the pool's worker threads have spent so far, on every
+// caller's loops together; 0 before the first loop that used them.
+double pool_cpu_ms();
+
 // Calls body(begin, end) on disjoint chunks that cover [0, n), in parallel.
 // Small ranges (n < min_chunk) run on the calling thread.
 void parallel_for(int n, const std::function<void(int, int)>& body, int min_chunk = 256);

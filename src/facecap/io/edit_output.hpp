@@ -34,6 +34,8 @@ class EditOutput {
   // Completes the file (an unfinished output leaves nothing at the path).
   void finish();
   bool is_still() const { return video_ == nullptr; }
+  // A video's encoder CPU time after finish() (VideoWriter::encoder_cpu_ms); 0 for a still.
+  double encoder_cpu_ms() const { return video_ ? video_->encoder_cpu_ms() : 0.0; }
 
  private:
   std::filesystem::path path_;

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -194,9 +195,12 @@ void VideoWriter::finish() {
   ::close(pipe_fd_);
   pipe_fd_ = -1;
   int status = 0;
-  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  rusage usage{};
+  while (::wait4(pid_, &status, 0, &usage) < 0 && errno == EINTR) {
   }
   pid_ = -1;
+  encoder_cpu_ms_ = 1e3 * double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                    1e-3 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw Error("ffmpeg failed to write " + path_.string() + ": " + encoder_log());
   }

@@ -62,6 +62,9 @@ class VideoWriter {
   // Closes the stream, waits for ffmpeg and renames the file into place.
   void finish();
   int frames_written() const { return frames_; }
+  // The encoder process's CPU time (user and system, ms), once finish() has
+  // waited for it: a benchmark's share of the cores that went to encoding.
+  double encoder_cpu_ms() const { return encoder_cpu_ms_; }
 
  private:
   void stop_encoder(bool kill);
@@ -76,6 +79,7 @@ class VideoWriter {
   int pipe_fd_ = -1;
   int pid_ = -1;
   int frames_ = 0;
+  double encoder_cpu_ms_ = 0;
   bool finished_ = false;
   double first_time_ = 0;  // the first timed frame's time
   cv::Mat last_;           // the last timed frame sent, for the slots after it (a copy)

@@ -71,9 +71,7 @@ void FaceSwapStream::push(const CapturedFrame& frame) { stage_->push(frame); }
 
 void FaceSwapStream::finish() { stage_->finish(); }
 
-double FaceSwapStream::lighting_ms() const { return stage_->refine_ms(); }
-
-double FaceSwapStream::preparation_ms() const { return stage_->timings().prepare_ms; }
+const RefineStageTimings& FaceSwapStream::stage_timings() const { return stage_->timings(); }
 
 void FaceSwapStream::take(const RefinedFrame& r) {
   const CapturedFrame& f = r.frame;

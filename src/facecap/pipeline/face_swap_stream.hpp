@@ -39,10 +39,11 @@ class FaceSwapStream {
   void finish();
 
   const FaceSwapper& swapper() const { return swapper_; }
-  // After finish(): the swap's stages summed, the lighting's, and the frames swapped.
+  // After finish(): the swap's stages summed, its stage's, and the frames swapped.
   const SwapTimings& timings() const { return timings_; }
-  double lighting_ms() const;
-  double preparation_ms() const;  // the frames' preparation (frame_preparation.hpp), beside the swap
+  // Its stage's threads' wall and CPU times: the lighting (refine_*), the
+  // frames' preparation (prepare_*, frame_preparation.hpp) and the swap (consumer_*).
+  const RefineStageTimings& stage_timings() const;
   int swapped() const { return swapped_; }
 
  private:

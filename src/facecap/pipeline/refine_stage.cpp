@@ -1,5 +1,6 @@
 #include "facecap/pipeline/refine_stage.hpp"
 
+#include "facecap/core/cpu_time.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/core/thread_name.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
@@ -66,6 +67,9 @@ void RefineStage::finish() {
   timings_.idle_ms = first_.idle_ms;
   timings_.push_wait_ms = push_wait_ms_;
   timings_.first_to_last_ms = third_.first_to_last_ms;
+  timings_.refine_cpu_ms = first_.refine_cpu_ms + second_.refine_cpu_ms;
+  timings_.prepare_cpu_ms = second_.prepare_cpu_ms;
+  timings_.consumer_cpu_ms = first_.consumer_cpu_ms + third_.consumer_cpu_ms;
   if (const auto e = error()) std::rethrow_exception(e);
 }
 
@@ -96,8 +100,10 @@ void RefineStage::run_first_half() {
       if (out.starts_shot) {
         wait_until_drained();
         const auto t0 = Clock::now();
+        const double cpu0 = thread_cpu_ms();
         if (shot_end_) shot_end_();
         first_.consumer_ms += ms_since(t0);
+        first_.consumer_cpu_ms += thread_cpu_ms() - cpu0;
         refiner_.start_shot();
         shot_ = out.frame.shot;
       }
@@ -109,7 +115,9 @@ void RefineStage::run_first_half() {
                       out.frame.fit.pose);
         first_.coarse_ms += ms_since(t0);
         t0 = Clock::now();
+        const double cpu0 = thread_cpu_ms();
         h.pending = refiner_.begin_frame(out.frame.image, out.coarse, out.camera);
+        first_.refine_cpu_ms += thread_cpu_ms() - cpu0;
         const double ms = ms_since(t0);
         first_.refine_ms += ms;
         if (refined_ == 0) first_.first_refine_ms = ms;
@@ -136,13 +144,17 @@ void RefineStage::run_second_half() {
       RefinedFrame& out = h->frame;
       if (h->pending) {
         const auto t0 = std::chrono::steady_clock::now();
+        const double cpu0 = thread_cpu_ms();
         out.refinement = refiner_.finish_frame(std::move(*h->pending));
         second_.refine_ms += ms_since(t0);
+        second_.refine_cpu_ms += thread_cpu_ms() - cpu0;
       }
       if (prepare_) {
         const auto t0 = std::chrono::steady_clock::now();
+        const double cpu0 = thread_cpu_ms();
         prepare_(out);
         second_.prepare_ms += ms_since(t0);
+        second_.prepare_cpu_ms += thread_cpu_ms() - cpu0;
       }
       if (!refined_frames_.push(std::move(out))) break;  // the third thread failed
     }
@@ -159,8 +171,10 @@ void RefineStage::run_consumer() {
   try {
     while (std::optional<RefinedFrame> out = refined_frames_.pop()) {
       const Clock::time_point t0 = Clock::now();
+      const double cpu0 = thread_cpu_ms();
       consumer_(*out);
       const Clock::time_point end = Clock::now();
+      third_.consumer_cpu_ms += thread_cpu_ms() - cpu0;
       third_.consumer_ms += std::chrono::duration<double, std::milli>(end - t0).count();
       // first_frame_ was set before the first hand-off, which the queues' locks order before this.
       third_.first_to_last_ms = std::chrono::duration<double, std::milli>(end - first_frame_).count();

@@ -47,6 +47,12 @@ struct RefineStageTimings {
   double idle_ms = 0;           // the first thread waiting for frames after the first one
   double push_wait_ms = 0;      // capture's thread blocked in push() on a full queue
   double first_to_last_ms = 0;  // from the first frame's arrival to the last frame's end
+  // The CPU time (core/cpu_time.hpp) of refine_ms, prepare_ms and
+  // consumer_ms, on the stage's own threads (what they hand the pool, the
+  // pool's: pool_cpu_ms()).
+  double refine_cpu_ms = 0;
+  double prepare_cpu_ms = 0;
+  double consumer_cpu_ms = 0;
 };
 
 class RefineStage {

@@ -7,6 +7,7 @@
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
@@ -201,6 +202,26 @@ FaceLayer changed_pixels(const cv::Mat& frame, const SwappedFrame& swapped, bool
   return layer;
 }
 
+// A finished stream's timings added to `sum` (--all-faces sums its faces').
+void add_stream_timings(SwapJobTimings& sum, const FaceSwapStream& stream) {
+  const SwapTimings& t = stream.timings();
+  sum.swap.appearance_ms += t.appearance_ms;
+  sum.swap.render_ms += t.render_ms;
+  sum.swap.warp_ms += t.warp_ms;
+  sum.swap.blend_ms += t.blend_ms;
+  sum.swap.wrinkle_ms += t.wrinkle_ms;
+  sum.swap.wrinkle_setup_ms += t.wrinkle_setup_ms;
+  sum.swap.ratio_ms += t.ratio_ms;
+  sum.swap.occlusion_ms += t.occlusion_ms;
+  sum.swapped += stream.swapped();
+  const RefineStageTimings& stage = stream.stage_timings();
+  sum.lighting_ms += stage.refine_ms;
+  sum.preparation_ms += stage.prepare_ms;
+  sum.swap_thread_cpu_ms += stage.consumer_cpu_ms;
+  sum.preparation_cpu_ms += stage.prepare_cpu_ms;
+  sum.lighting_cpu_ms += stage.refine_cpu_ms;
+}
+
 }  // namespace
 
 SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, const std::string& target,
@@ -212,6 +233,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   summary.timings.source_ms = setup.source_ms;
   const InputInfo& info = setup.info;
   const SyntheticMark& mark = setup.mark;
+  const double pool_cpu_start = pool_cpu_ms();
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -261,14 +283,13 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   });
   for (const CapturedFrame& f : tracked) stream.push(f);
   stream.finish();
-  summary.timings.swap = stream.timings();
-  summary.timings.swapped = stream.swapped();
-  summary.timings.lighting_ms = stream.lighting_ms();
-  summary.timings.preparation_ms = stream.preparation_ms();
+  add_stream_timings(summary.timings, stream);
   if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
+  summary.timings.encoder_cpu_ms = writer.encoder_cpu_ms();
+  summary.timings.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
@@ -292,6 +313,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   const InputInfo& info = setup.info;
   SyntheticMark& mark = setup.mark;
   mark.parameters["faces"] = "all";
+  const double pool_cpu_start = pool_cpu_ms();
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -336,19 +358,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     }
     FaceSwapStream& stream = *it->second;
     stream.finish();
-    const SwapTimings& t = stream.timings();
-    SwapTimings& sum = summary.timings.swap;
-    sum.appearance_ms += t.appearance_ms;
-    sum.render_ms += t.render_ms;
-    sum.warp_ms += t.warp_ms;
-    sum.blend_ms += t.blend_ms;
-    sum.wrinkle_ms += t.wrinkle_ms;
-    sum.wrinkle_setup_ms += t.wrinkle_setup_ms;
-    sum.ratio_ms += t.ratio_ms;
-    sum.occlusion_ms += t.occlusion_ms;
-    summary.timings.lighting_ms += stream.lighting_ms();
-    summary.timings.preparation_ms += stream.preparation_ms();
-    summary.timings.swapped += stream.swapped();
+    add_stream_timings(summary.timings, stream);
     summary.swapped.push_back(stream.swapped());
   }
   frames.finish();
@@ -358,6 +368,8 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     throw Error("every face of " + target + " is left as it is (--leave-faces): nothing to swap");
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
+  summary.timings.encoder_cpu_ms = writer.encoder_cpu_ms();
+  summary.timings.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
   mark.parameters["faces"] = std::to_string(streams.size());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();

@@ -71,6 +71,16 @@ struct SwapJobTimings {
   double preparation_ms = 0;  // unshading and moving covers (frame_preparation.hpp), beside the swap
   double source_ms = 0;       // reconstructing the portrait
   int swapped = 0;            // frames with a face
+  // CPU time (core/cpu_time.hpp; ms over the run), where the wall times
+  // above include waits for a core: the swap's own thread (the swap and
+  // its frame's writing), the preparation's and the lighting's threads, the
+  // encoder process, and the pool's workers (on every stage's loops, the
+  // capture's and the source's too).
+  double swap_thread_cpu_ms = 0;
+  double preparation_cpu_ms = 0;
+  double lighting_cpu_ms = 0;
+  double encoder_cpu_ms = 0;
+  double pool_cpu_ms = 0;
 };
 
 struct SwapSummary {
