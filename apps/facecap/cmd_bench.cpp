@@ -238,46 +238,47 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
     const SwapTimings& t = timings.swap;
     const double steady_ms = (t.render_ms + t.wrinkle_ms + t.ratio_ms + t.occlusion_ms + t.warp_ms + t.blend_ms) / n;
     const double with_appearance_ms = steady_ms + t.appearance_ms / n;
-    j["swap"] = {{"frames", timings.swapped},
-                 {"frames_note", "frames swapped; with --all-faces, summed over the faces, as are the timings"},
-                 {"source_reconstruction_ms", timings.source_ms},
-                 {"appearance_ms_per_frame", t.appearance_ms / n},
-                 {"appearance_note", "texture of the target face and harmonisation, first frames only"},
-                 {"render_ms_per_frame", t.render_ms / n},
-                 {"warp_ms_per_frame", t.warp_ms / n},
-                 {"blend_ms_per_frame", t.blend_ms / n},
-                 {"wrinkle_ms_per_frame", t.wrinkle_ms / n},
-                 {"wrinkle_setup_ms", t.wrinkle_setup_ms},
-                 {"wrinkle_setup_note",
-                  "the coating transfer's factorisation on the first frame (of each shot), not in the fps"},
-                 {"expression_ratio_ms_per_frame", t.ratio_ms / n},
-                 {"occlusion_ms_per_frame", t.occlusion_ms / n},
-                 {"swap_ms_per_frame", steady_ms},
-                 {"swap_fps", steady_ms > 0 ? 1000.0 / steady_ms : 0.0},
-                 {"swap_fps_with_appearance", with_appearance_ms > 0 ? 1000.0 / with_appearance_ms : 0.0},
-                 {"lighting_ms_per_frame", timings.lighting_ms / n},
-                 {"lighting_note", "the target's SH lighting, and with --wrinkles its displacement solve"},
-                 {"preparation_ms_per_frame", timings.preparation_ms / n},
-                 {"preparation_note",
-                  "the target unshaded for the occlusion mask and its moving covers (optical flow), on the "
-                  "lighting stage's second thread beside the swap of the frame before (not in swap_ms_per_frame)"},
-                 {"cpu_ms_per_frame",
-                  {{"swap_thread", timings.swap_thread_cpu_ms / n},
-                   {"preparation", timings.preparation_cpu_ms / n},
-                   {"lighting", timings.lighting_cpu_ms / n},
-                   {"encoder", timings.encoder_cpu_ms / n},
-                   {"pool", timings.pool_cpu_ms / n},
-                   {"note",
-                    "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
-                    "core: the swap's own thread (the swap and its frame's writing, appearance frames included), "
-                    "the preparation's and the lighting's, the encoder process (audio included) and the pool's "
-                    "workers (on every stage's loops, capture's too). Their sum against the cores times "
-                    "swap_ms_per_frame says whether the cores were full"}}},
-                 {"tracked_first", a->tracked_first},
-                 {"timing_note",
-                  a->tracked_first ? "the target was captured first: the swap's stages ran without capture beside them"
-                                   : "the swap's stages are wall times on its thread, capture running beside them "
-                                     "(--tracked-first times them alone)"}};
+    j["swap"] = {
+        {"frames", timings.swapped},
+        {"frames_note", "frames swapped; with --all-faces, summed over the faces, as are the timings"},
+        {"source_reconstruction_ms", timings.source_ms},
+        {"appearance_ms_per_frame", t.appearance_ms / n},
+        {"appearance_note", "texture of the target face and harmonisation, first frames only"},
+        {"render_ms_per_frame", t.render_ms / n},
+        {"warp_ms_per_frame", t.warp_ms / n},
+        {"blend_ms_per_frame", t.blend_ms / n},
+        {"wrinkle_ms_per_frame", t.wrinkle_ms / n},
+        {"wrinkle_setup_ms", t.wrinkle_setup_ms},
+        {"wrinkle_setup_note",
+         "the coating transfer's factorisation on the first frame (of each shot), not in the fps"},
+        {"expression_ratio_ms_per_frame", t.ratio_ms / n},
+        {"occlusion_ms_per_frame", t.occlusion_ms / n},
+        {"swap_ms_per_frame", steady_ms},
+        {"swap_fps", steady_ms > 0 ? 1000.0 / steady_ms : 0.0},
+        {"swap_fps_with_appearance", with_appearance_ms > 0 ? 1000.0 / with_appearance_ms : 0.0},
+        {"lighting_ms_per_frame", timings.lighting_ms / n},
+        {"lighting_note", "the target's SH lighting, and with --wrinkles its displacement solve"},
+        {"preparation_ms_per_frame", timings.preparation_ms / n},
+        {"preparation_note",
+         "the target unshaded for the occlusion mask and its moving covers (optical flow), on the "
+         "lighting stage's second thread beside the swap of the frame before (not in swap_ms_per_frame)"},
+        {"cpu_ms_per_frame",
+         {{"swap_thread", timings.swap_thread_cpu_ms / n},
+          {"preparation", timings.preparation_cpu_ms / n},
+          {"lighting", timings.lighting_cpu_ms / n},
+          {"encoder", timings.encoder_cpu_ms / n},
+          {"pool", timings.pool_cpu_ms / n},
+          {"note",
+           "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
+           "core: the swap's own thread (the swap and its frame's writing, appearance frames included), "
+           "the preparation's and the lighting's, the encoder process (audio included) and the pool's "
+           "workers (on every stage's loops, capture's too unless --tracked-first). Their sum against the cores times "
+           "swap_ms_per_frame says whether the cores were full"}}},
+        {"tracked_first", a->tracked_first},
+        {"timing_note", a->tracked_first
+                            ? "the target was captured first: the swap's stages ran without capture beside them"
+                            : "the swap's stages are wall times on its thread, capture running beside them "
+                              "(--tracked-first times them alone)"}};
     j["fps_end_to_end"] = wall > 0 ? frames / wall : 0.0;
     j["width"] = input.width;
     j["height"] = input.height;

@@ -233,7 +233,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   summary.timings.source_ms = setup.source_ms;
   const InputInfo& info = setup.info;
   const SyntheticMark& mark = setup.mark;
-  const double pool_cpu_start = pool_cpu_ms();
+  double pool_cpu_start = pool_cpu_ms();
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -281,6 +281,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     else
       stream.push(f);
   });
+  if (options.track_first) pool_cpu_start = pool_cpu_ms();  // the swap's share alone
   for (const CapturedFrame& f : tracked) stream.push(f);
   stream.finish();
   add_stream_timings(summary.timings, stream);

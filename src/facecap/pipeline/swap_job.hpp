@@ -75,7 +75,7 @@ struct SwapJobTimings {
   // above include waits for a core: the swap's own thread (the swap and
   // its frame's writing), the preparation's and the lighting's threads, the
   // encoder process, and the pool's workers (on every stage's loops, the
-  // capture's and the source's too).
+  // capture's too, but with track_first, where capture runs first).
   double swap_thread_cpu_ms = 0;
   double preparation_cpu_ms = 0;
   double lighting_cpu_ms = 0;
