@@ -165,6 +165,33 @@ TEST(Rasterizer, ReusedBuffersHoldOnlyTheLatestCall) {
   EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 100 * 100);
 }
 
+// A buffer reused for a face that moves (rasterize() clears only the box
+// the last call drew in) holds what fresh buffers would, pixel for pixel:
+// triangles moving across the image, partly off it, then none.
+TEST(Rasterizer, ReusedBuffersMatchFreshOnesAsTheDrawingMoves) {
+  RasterBuffers reused;
+  reused.resize(120, 90);
+  for (int step = 0; step < 12; ++step) {
+    Positions p(3, 6);
+    const float dx = -1.6f + 0.35f * float(step), dy = 0.9f - 0.2f * float(step);
+    p << dx - 1, dx + 1, dx, dx + 0.5f, dx + 2.5f, dx + 1.5f,     //
+        dy - 1, dy - 1, dy + 1, dy - 0.2f, dy - 0.2f, dy + 1.8f,  //
+        8, 8, 8, 7, 9, 8;
+    const std::vector<Triangle> t = step == 11 ? std::vector<Triangle>{} : std::vector<Triangle>{{0, 2, 1}, {3, 5, 4}};
+    RasterBuffers fresh;
+    fresh.resize(120, 90);
+    rasterize(p, t, kCamera, fresh, {.cull_back_faces = false});
+    rasterize(p, t, kCamera, reused, {.cull_back_faces = false});
+    ASSERT_EQ(reused.triangle, fresh.triangle) << "step " << step;
+    for (size_t i = 0; i < fresh.depth.size(); ++i) {
+      ASSERT_EQ(reused.depth[i], fresh.depth[i]) << "step " << step << ", pixel " << i;
+      if (fresh.triangle[i] >= 0) {
+        ASSERT_EQ(reused.bary[i], fresh.bary[i]) << "step " << step << ", pixel " << i;
+      }
+    }
+  }
+}
+
 // Two triangles sharing an edge cover every pixel on it: a square that fills
 // the image leaves no pixel of its diagonal uncovered (7 of them were, before
 // the edge functions were evaluated in a canonical order).

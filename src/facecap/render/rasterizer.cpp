@@ -15,6 +15,7 @@ void RasterBuffers::resize(int w, int h) {
   depth.assign(n, std::numeric_limits<float>::infinity());
   triangle.assign(n, -1);
   bary.assign(n, Vec2f::Zero());
+  drawn_x0 = drawn_x1 = drawn_y0 = drawn_y1 = 0;
 }
 
 namespace {
@@ -120,14 +121,28 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
   }
   for (int band = 0; band < bands; ++band) bin_offsets[band + 1] += bin_offsets[band];
   std::vector<int> bins(bin_offsets[bands]);
+  // The box this call can draw in: the kept triangles' pixel bounds.
+  int new_x0 = width, new_x1 = 0, new_y0 = height, new_y1 = 0;
   {
     std::vector<int> next(bin_offsets.begin(), bin_offsets.end() - 1);
     for (int t = 0; t < num_triangles; ++t) {
       if (!kept[t]) continue;
-      const auto [b0, b1] = band_span(setup[t]);
+      const ProjectedTriangle& pt = setup[t];
+      const auto [b0, b1] = band_span(pt);
       for (int band = b0; band <= b1; ++band) bins[next[band]++] = t;
+      const float min_x = std::min({pt.p[0].x(), pt.p[1].x(), pt.p[2].x()});
+      const float max_x = std::max({pt.p[0].x(), pt.p[1].x(), pt.p[2].x()});
+      if (!(max_x >= 0 && min_x <= float(width - 1) && pt.max_y >= 0 && pt.min_y <= float(height - 1)))
+        continue;  // draws nothing (NaN too)
+      new_x0 = std::min(new_x0, std::max(0, int(std::ceil(min_x))));
+      new_x1 = std::max(new_x1, std::min(width - 1, int(std::floor(max_x))) + 1);
+      new_y0 = std::min(new_y0, std::max(0, int(std::ceil(pt.min_y))));
+      new_y1 = std::max(new_y1, std::min(height - 1, int(std::floor(pt.max_y))) + 1);
     }
   }
+  // What the last call drew goes back to the background; the rest is already.
+  const int old_x0 = std::clamp(out.drawn_x0, 0, width), old_x1 = std::clamp(out.drawn_x1, 0, width);
+  const int old_y0 = std::clamp(out.drawn_y0, 0, height), old_y1 = std::clamp(out.drawn_y1, 0, height);
 
   parallel_for(
       bands,
@@ -135,9 +150,12 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
         for (int band = band_begin; band < band_end; ++band) {
           const int y_lo = height * band / bands;
           const int y_hi = height * (band + 1) / bands - 1;
-          const size_t first = size_t(y_lo) * width, last = size_t(y_hi + 1) * width;
-          std::fill(out.depth.begin() + first, out.depth.begin() + last, std::numeric_limits<float>::infinity());
-          std::fill(out.triangle.begin() + first, out.triangle.begin() + last, -1);
+          for (int y = std::max(y_lo, old_y0); y < std::min(y_hi + 1, old_y1) && old_x0 < old_x1; ++y) {
+            const size_t row = size_t(y) * width;
+            std::fill(out.depth.begin() + row + old_x0, out.depth.begin() + row + old_x1,
+                      std::numeric_limits<float>::infinity());
+            std::fill(out.triangle.begin() + row + old_x0, out.triangle.begin() + row + old_x1, -1);
+          }
           for (int k = bin_offsets[band]; k < bin_offsets[band + 1]; ++k) {
             const ProjectedTriangle& pt = setup[bins[k]];
             const Vec2f& p0 = pt.p[0];
@@ -174,6 +192,10 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
         }
       },
       1);
+  out.drawn_x0 = new_x0;
+  out.drawn_x1 = std::max(new_x0, new_x1);
+  out.drawn_y0 = new_y0;
+  out.drawn_y1 = std::max(new_y0, new_y1);
 }
 
 std::vector<bool> vertex_visibility(const Positions& camera_points, const Positions& camera_normals,

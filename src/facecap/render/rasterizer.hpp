@@ -15,7 +15,12 @@ struct RasterBuffers {
   std::vector<float> depth;   // camera-space z; +inf where nothing was drawn
   std::vector<int> triangle;  // index into the triangle list; -1 for background
   std::vector<Vec2f> bary;    // perspective-correct weights of corners 1 and 2 (corner 0 = 1 - sum)
+  // The box [x0, x1) x [y0, y1) holding every pixel the last rasterize()
+  // drew; outside it depth and triangle hold the background, so the next
+  // call clears only this box (a face covers a fraction of a 720p frame).
+  int drawn_x0 = 0, drawn_x1 = 0, drawn_y0 = 0, drawn_y1 = 0;
 
+  // Every pixel the background (and nothing drawn).
   void resize(int w, int h);
   bool covered(int x, int y) const { return triangle[size_t(y) * width + x] >= 0; }
 };
