@@ -1,9 +1,9 @@
 #include "facecap/core/parallel.hpp"
 
+#include "facecap/core/cpu_time.hpp"
 #include "facecap/core/thread_name.hpp"
 
 #include <pthread.h>
-#include <time.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -72,9 +72,7 @@ class ThreadPool {
     double sum = 0;
     for (std::jthread& t : threads_) {
       clockid_t clock;
-      timespec time{};
-      if (pthread_getcpuclockid(t.native_handle(), &clock) == 0 && clock_gettime(clock, &time) == 0)
-        sum += 1e3 * double(time.tv_sec) + 1e-6 * double(time.tv_nsec);
+      if (pthread_getcpuclockid(t.native_handle(), &clock) == 0) sum += clock_ms(clock);
     }
     return sum;
   }

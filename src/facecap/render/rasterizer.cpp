@@ -47,7 +47,7 @@ struct ProjectedTriangle {
   Vec2f p[3];
   float inv_z[3];
   int index;
-  float min_y, max_y;
+  float min_x, max_x, min_y, max_y;  // the screen-space bounds
 };
 
 }  // namespace
@@ -93,6 +93,8 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
             pt.inv_z[k] = inv_z[tri[k]];
           }
           pt.index = t;
+          pt.min_x = std::min({pt.p[0].x(), pt.p[1].x(), pt.p[2].x()});
+          pt.max_x = std::max({pt.p[0].x(), pt.p[1].x(), pt.p[2].x()});
           pt.min_y = std::min({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
           pt.max_y = std::max({pt.p[0].y(), pt.p[1].y(), pt.p[2].y()});
           kept[t] = !(pt.max_y < 0 || pt.min_y > height - 1);
@@ -130,12 +132,10 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
       const ProjectedTriangle& pt = setup[t];
       const auto [b0, b1] = band_span(pt);
       for (int band = b0; band <= b1; ++band) bins[next[band]++] = t;
-      const float min_x = std::min({pt.p[0].x(), pt.p[1].x(), pt.p[2].x()});
-      const float max_x = std::max({pt.p[0].x(), pt.p[1].x(), pt.p[2].x()});
-      if (!(max_x >= 0 && min_x <= float(width - 1) && pt.max_y >= 0 && pt.min_y <= float(height - 1)))
+      if (!(pt.max_x >= 0 && pt.min_x <= float(width - 1) && pt.max_y >= 0 && pt.min_y <= float(height - 1)))
         continue;  // draws nothing (NaN too)
-      new_x0 = std::min(new_x0, std::max(0, int(std::ceil(min_x))));
-      new_x1 = std::max(new_x1, std::min(width - 1, int(std::floor(max_x))) + 1);
+      new_x0 = std::min(new_x0, std::max(0, int(std::ceil(pt.min_x))));
+      new_x1 = std::max(new_x1, std::min(width - 1, int(std::floor(pt.max_x))) + 1);
       new_y0 = std::min(new_y0, std::max(0, int(std::ceil(pt.min_y))));
       new_y1 = std::max(new_y1, std::min(height - 1, int(std::floor(pt.max_y))) + 1);
     }
@@ -164,8 +164,8 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
             const float area = (p1.x() - p0.x()) * (p2.y() - p0.y()) - (p1.y() - p0.y()) * (p2.x() - p0.x());
             if (std::abs(area) < 1e-8f) continue;
             const float inv_area = 1.0f / area;
-            const int x0 = std::max(0, int(std::ceil(std::min({p0.x(), p1.x(), p2.x()}))));
-            const int x1 = std::min(width - 1, int(std::floor(std::max({p0.x(), p1.x(), p2.x()}))));
+            const int x0 = std::max(0, int(std::ceil(pt.min_x)));
+            const int x1 = std::min(width - 1, int(std::floor(pt.max_x)));
             const int y0 = std::max(y_lo, int(std::ceil(pt.min_y)));
             const int y1 = std::min(y_hi, int(std::floor(pt.max_y)));
             const CanonicalEdge e0(p1, p2), e1(p2, p0), e2(p0, p1);
