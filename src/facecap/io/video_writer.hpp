@@ -1,5 +1,5 @@
 #pragma once
-// H.264 output (mp4, mov or mkv, by the path's extension) through the ffmpeg program: raw BGR frames go down a pipe,
+// H.264 output (mp4, mov or mkv, by the path's extension) through the ffmpeg program: frames go down a pipe (raw YUV 4:2:0),
 // the input's audio track (when it has one) is muxed in, and the file is
 // written under a temporary name that finish() renames to the final one. A
 // writer destroyed without finish() (an error, an interruption) removes its
@@ -68,7 +68,7 @@ class VideoWriter {
 
  private:
   void stop_encoder(bool kill);
-  void send(const cv::Mat& fitted);  // one frame of the output's size down the pipe
+  void send(const cv::Mat& yuv);  // one frame (encoder_frame()) down the pipe
   std::string encoder_log() const;
 
   std::filesystem::path path_;
@@ -82,7 +82,7 @@ class VideoWriter {
   double encoder_cpu_ms_ = 0;
   bool finished_ = false;
   double first_time_ = 0;  // the first timed frame's time
-  cv::Mat last_;           // the last timed frame sent, for the slots after it (a copy)
+  cv::Mat last_;           // the last timed frame sent (as sent), for the slots after it
 };
 
 // An output of the input's size and rate carrying its audio (if any) from
