@@ -152,6 +152,35 @@ TEST(VideoWriter, ARunStoppedEarlyEndsItsAudioWithItsLastFrame) {
   EXPECT_TRUE(output_like(input, input.frames - 1).audio_ends_with_video);
 }
 
+// The frames reach the encoder as YUV 4:2:0 the writer converted: each
+// colour comes back as it went in (a swap of the chroma planes turns red
+// blue, a wrong range greys every colour), within the 4:2:0 round trip's
+// rounding. Patches 16 px square, so the chroma's 2x2 cells lie inside them.
+TEST(VideoWriter, ColoursComeBackAsTheyWentIn) {
+  TempDir dir;
+  VideoWriterOptions o;
+  o.width = 96;
+  o.height = 32;
+  o.crf = 0;
+  const std::vector<cv::Vec3b> colours{{0, 0, 255},    {0, 255, 0},  {255, 0, 0},
+                                       {90, 130, 200}, {16, 16, 16}, {235, 235, 235}};
+  cv::Mat frame(32, 96, CV_8UC3, cv::Scalar::all(128));
+  for (size_t k = 0; k < colours.size(); ++k) frame(cv::Rect(int(k) * 16, 0, 16, 16)).setTo(cv::Scalar(colours[k]));
+  const fs::path out = dir.path() / "colours.mp4";
+  {
+    VideoWriter w(out, o);
+    w.write(frame);
+    w.finish();
+  }
+  auto video = open_input(out.string());
+  Frame f;
+  ASSERT_TRUE(video->read(f));
+  for (size_t k = 0; k < colours.size(); ++k) {
+    const cv::Scalar back = cv::mean(f.image(cv::Rect(int(k) * 16 + 4, 4, 8, 8)));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(back[c], colours[k][c], 4.0) << "colour " << k << " channel " << c;
+  }
+}
+
 TEST(VideoWriter, OddSizesArePaddedForYuv420) {
   TempDir dir;
   VideoWriterOptions o;

@@ -1,8 +1,7 @@
 #pragma once
-// H.264 output (mp4, mov or mkv, by the path's extension) through the ffmpeg program: frames go down a pipe (raw YUV 4:2:0),
-// the input's audio track (when it has one) is muxed in, and the file is
-// written under a temporary name that finish() renames to the final one. A
-// writer destroyed without finish() (an error, an interruption) removes its
+// H.264 output (mp4, mov or mkv, by the path's extension) through the ffmpeg program: frames go down a pipe (raw YUV
+// 4:2:0), the input's audio track (when it has one) is muxed in, and the file is written under a temporary name that
+// finish() renames to the final one. A writer destroyed without finish() (an error, an interruption) removes its
 // temporary file and leaves whatever was at the final path untouched.
 #include <filesystem>
 #include <map>
