@@ -1,6 +1,7 @@
 #include "facecap/compose/laplacian_blend.hpp"
 
 #include <opencv2/imgproc.hpp>
+#include <utility>
 #include <vector>
 
 #include "facecap/core/error.hpp"
@@ -20,6 +21,20 @@ void masked_band(const cv::Mat& d, const cv::Mat& up, const cv::Mat& m, cv::Mat&
     float* bp = band.ptr<float>(y);
     for (int x = 0; x < d.cols; ++x) {
       for (int c = 0; c < 3; ++c) bp[3 * x + c] = (dp[3 * x + c] - upp[3 * x + c]) * mp[x];
+    }
+  }
+}
+
+// sum += (d - up) * m, per pixel: a level's band, masked, added to the sum
+// of the coarser levels' (pyrUp'd to this level's size).
+void add_masked_band(const cv::Mat& d, const cv::Mat& up, const cv::Mat& m, cv::Mat& sum) {
+  for (int y = 0; y < d.rows; ++y) {
+    const float* dp = d.ptr<float>(y);
+    const float* upp = up.ptr<float>(y);
+    const float* mp = m.ptr<float>(y);
+    float* sp = sum.ptr<float>(y);
+    for (int x = 0; x < d.cols; ++x) {
+      for (int c = 0; c < 3; ++c) sp[3 * x + c] += (dp[3 * x + c] - upp[3 * x + c]) * mp[x];
     }
   }
 }
@@ -51,23 +66,46 @@ cv::Mat laplacian_blend(const cv::Mat& base, const cv::Mat& layer, const cv::Mat
     gm.push_back(std::move(z));
   }
   const int n = static_cast<int>(gd.size());
-  // The coarsest Gaussian level, masked; then each finer band, masked, added on the way up.
+  // The coarsest Gaussian level, masked; then each finer band, masked, added
+  // on the way up, down to level 1. (This file is compiled without
+  // floating-point contraction: the fused passes below make the same sums
+  // in the same order as the pass each they replaced.)
   cv::Mat result;
   masked_band(gd[n - 1], cv::Mat::zeros(gd[n - 1].size(), CV_32FC3), gm[n - 1], result);
-  cv::Mat up, band;
-  for (int l = n - 2; l >= 0; --l) {
-    cv::pyrUp(gd[l + 1], up, gd[l].size());
-    masked_band(gd[l], up, gm[l], band);
-    cv::pyrUp(result, up, gd[l].size());
-    result = up + band;
+  cv::Mat detail_up, coarse_up;
+  for (int l = n - 2; l >= 1; --l) {
+    cv::pyrUp(gd[l + 1], detail_up, gd[l].size());
+    cv::pyrUp(result, coarse_up, gd[l].size());
+    add_masked_band(gd[l], detail_up, gm[l], coarse_up);
+    std::swap(result, coarse_up);
   }
-  // The base added back, rounded and saturated as convertTo would.
+  // Level 0 (the window's size, where the passes over memory cost most) in
+  // one pass: its band, the coarser levels' sum and the base, rounded and
+  // saturated as convertTo would.
+  if (n > 1) {
+    cv::pyrUp(gd[1], detail_up, gd[0].size());
+    cv::pyrUp(result, coarse_up, gd[0].size());
+  }
   cv::Mat out(base.size(), CV_8UC3);
   for (int y = 0; y < base.rows; ++y) {
     const uchar* b = base.ptr<uchar>(y);
-    const float* r = result.ptr<float>(y);
     uchar* o = out.ptr<uchar>(y);
-    for (int x = 0; x < 3 * base.cols; ++x) o[x] = cv::saturate_cast<uchar>(r[x] + float(b[x]));
+    if (n == 1) {
+      const float* r = result.ptr<float>(y);
+      for (int x = 0; x < 3 * base.cols; ++x) o[x] = cv::saturate_cast<uchar>(r[x] + float(b[x]));
+      continue;
+    }
+    const float* dp = gd[0].ptr<float>(y);
+    const float* du = detail_up.ptr<float>(y);
+    const float* cu = coarse_up.ptr<float>(y);
+    const float* mp = gm[0].ptr<float>(y);
+    for (int x = 0; x < base.cols; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const int i = 3 * x + c;
+        const float level0 = cu[i] + (dp[i] - du[i]) * mp[x];
+        o[i] = cv::saturate_cast<uchar>(level0 + float(b[i]));
+      }
+    }
   }
   return out;
 }
