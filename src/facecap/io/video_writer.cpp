@@ -157,12 +157,13 @@ void VideoWriter::write(const cv::Mat& bgr) {
 
 void VideoWriter::write(const cv::Mat& bgr, double time) {
   if (pipe_fd_ < 0) throw Error("video writer for " + path_.string() + " is closed");
+  const cv::Mat yuv = encoder_frame(bgr, options_.width, options_.height);
   if (last_.empty()) first_time_ = time;
   const long long slot = std::llround((time - first_time_) * options_.fps);
   if (!last_.empty() && slot < frames_) return;  // its slot is taken
   while (!last_.empty() && frames_ < slot) send(last_);
-  last_ = encoder_frame(bgr, options_.width, options_.height);
-  send(last_);
+  send(yuv);
+  last_ = yuv;
 }
 
 void VideoWriter::send(const cv::Mat& yuv) {
