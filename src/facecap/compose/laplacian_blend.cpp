@@ -11,22 +11,9 @@ namespace facecap {
 
 namespace {
 
-// band = (d - up) * m, per pixel; d, up: CV_32FC3, m: CV_32F.
-void masked_band(const cv::Mat& d, const cv::Mat& up, const cv::Mat& m, cv::Mat& band) {
-  band.create(d.size(), CV_32FC3);
-  for (int y = 0; y < d.rows; ++y) {
-    const float* dp = d.ptr<float>(y);
-    const float* upp = up.ptr<float>(y);
-    const float* mp = m.ptr<float>(y);
-    float* bp = band.ptr<float>(y);
-    for (int x = 0; x < d.cols; ++x) {
-      for (int c = 0; c < 3; ++c) bp[3 * x + c] = (dp[3 * x + c] - upp[3 * x + c]) * mp[x];
-    }
-  }
-}
-
-// sum += (d - up) * m, per pixel: a level's band, masked, added to the sum
-// of the coarser levels' (pyrUp'd to this level's size).
+// sum += (d - up) * m, per pixel (d, up, sum: CV_32FC3, m: CV_32F): a
+// level's band, masked, added to the sum of the coarser levels' (pyrUp'd to
+// this level's size).
 void add_masked_band(const cv::Mat& d, const cv::Mat& up, const cv::Mat& m, cv::Mat& sum) {
   for (int y = 0; y < d.rows; ++y) {
     const float* dp = d.ptr<float>(y);
@@ -70,8 +57,9 @@ cv::Mat laplacian_blend(const cv::Mat& base, const cv::Mat& layer, const cv::Mat
   // on the way up, down to level 1. (This file is compiled without
   // floating-point contraction: the fused passes below make the same sums
   // in the same order as the pass each they replaced.)
-  cv::Mat result;
-  masked_band(gd[n - 1], cv::Mat::zeros(gd[n - 1].size(), CV_32FC3), gm[n - 1], result);
+  const cv::Mat nothing_coarser = cv::Mat::zeros(gd[n - 1].size(), CV_32FC3);
+  cv::Mat result = nothing_coarser.clone();
+  add_masked_band(gd[n - 1], nothing_coarser, gm[n - 1], result);
   cv::Mat detail_up, coarse_up;
   for (int l = n - 2; l >= 1; --l) {
     cv::pyrUp(gd[l + 1], detail_up, gd[l].size());
