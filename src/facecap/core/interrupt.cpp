@@ -1,6 +1,7 @@
 #include "facecap/core/interrupt.hpp"
 
 #include <unistd.h>
+#include <atomic>
 #include <csignal>
 #include <cstdlib>
 
@@ -11,15 +12,18 @@ namespace facecap {
 
 namespace {
 
-volatile std::sig_atomic_t g_interrupted = 0;
-volatile std::sig_atomic_t g_ends_input = 0;
+// Atomics, not volatile sig_atomic_t: the handler runs on whichever thread
+// the signal reaches (a decoder's, a stage's), and the frame loops that poll
+// the flag run on others. Lock-free, so the handler may touch them.
+static_assert(std::atomic<int>::is_always_lock_free);
+std::atomic<int> g_interrupted{0};
+std::atomic<int> g_ends_input{0};
 
 extern "C" void on_signal(int) {
-  if (g_interrupted) {
+  if (g_interrupted.exchange(1) != 0) {
     remove_registered_temp_files();  // the destructors that would remove them do not run
     std::_Exit(130);
   }
-  g_interrupted = 1;
   static const char cleanup[] = "\nfacecap: interrupted, cleaning up (press Ctrl-C again to quit at once)\n";
   static const char stop[] =
       "\nfacecap: stopping the camera; writing what was captured (press Ctrl-C again to quit at once)\n";
