@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <random>
 
 namespace facecap {
 
@@ -204,6 +206,67 @@ TEST(Rasterizer, SharedEdgesLeaveNoCracks) {
   rasterize(p, t, kCamera, b);
   EXPECT_EQ(std::count(b.triangle.begin(), b.triangle.end(), -1), 0);
   for (float z : b.depth) ASSERT_NEAR(z, 1.5f, 1e-4f);
+}
+
+// A jittered grid of small triangles (shared edges at every angle, as a
+// face mesh's are) over the whole image, against each pixel's triangle
+// found in double precision: every pixel drawn, by the triangle that holds
+// it (where it is not within a hair of an edge), with its barycentrics.
+TEST(Rasterizer, AJitteredMeshIsDrawnAsExactGeometrySaysPixelByPixel) {
+  constexpr int kGrid = 41;  // vertices a side, some 3 px apart on a 100 px image
+  const float z = 2.0f;      // the image spans [-1, 1] cm at this depth
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> jitter(-0.3f, 0.3f);
+  Positions p(3, kGrid * kGrid);
+  const float step = 2.6f / float(kGrid - 1);  // [-1.3, 1.3] cm: past the image's edges
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const bool border = i == 0 || j == 0 || i == kGrid - 1 || j == kGrid - 1;
+      const float dx = border ? 0.0f : jitter(rng) * step, dy = border ? 0.0f : jitter(rng) * step;
+      p.col(j * kGrid + i) = Vec3f(-1.3f + i * step + dx, -1.3f + j * step + dy, z);
+    }
+  std::vector<Triangle> t;
+  for (int j = 0; j + 1 < kGrid; ++j)
+    for (int i = 0; i + 1 < kGrid; ++i) {
+      const int a = j * kGrid + i, b = a + 1, c = a + kGrid, d = c + 1;
+      // Facing the camera (as square() winds them), the diagonal alternating.
+      if ((i + j) % 2 == 0) {
+        t.push_back({a, d, b});
+        t.push_back({a, c, d});
+      } else {
+        t.push_back({a, c, b});
+        t.push_back({b, c, d});
+      }
+    }
+  RasterBuffers buffers;
+  buffers.resize(100, 100);
+  rasterize(p, t, kCamera, buffers);
+
+  std::vector<std::array<Vec2f, 3>> screen(t.size());
+  for (size_t k = 0; k < t.size(); ++k)
+    for (int c = 0; c < 3; ++c) screen[k][c] = kCamera.project(Vec3f(p.col(t[k][c])));
+  int checked = 0;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 100; ++x) {
+      const size_t i = size_t(y) * 100 + x;
+      ASSERT_GE(buffers.triangle[i], 0) << "a crack at " << x << ", " << y;
+      ASSERT_NEAR(buffers.depth[i], z, 1e-4f);
+      for (size_t k = 0; k < t.size(); ++k) {
+        const auto& q = screen[k];
+        const auto edge = [&](int u, int v) {
+          return (double(q[u].x()) - x) * (double(q[v].y()) - y) - (double(q[u].y()) - y) * (double(q[v].x()) - x);
+        };
+        const double area = edge(0, 1) + edge(1, 2) + edge(2, 0);
+        const double w0 = edge(1, 2) / area, w1 = edge(2, 0) / area, w2 = edge(0, 1) / area;
+        constexpr double kHair = 1e-4;
+        if (w0 < kHair || w1 < kHair || w2 < kHair) continue;  // outside, or too near an edge to call
+        EXPECT_EQ(buffers.triangle[i], int(k)) << "at " << x << ", " << y;
+        EXPECT_NEAR(buffers.bary[i].x(), w1, 1e-4);  // flat: perspective-correct is linear
+        EXPECT_NEAR(buffers.bary[i].y(), w2, 1e-4);
+        ++checked;
+      }
+    }
+  EXPECT_GT(checked, 9900);  // all but the pixels on an edge
 }
 
 }  // namespace facecap

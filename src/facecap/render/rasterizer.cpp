@@ -25,22 +25,32 @@ namespace {
 constexpr float kMaxVisibilitySlope = 4.0f;
 
 // The edge function (a - p) x (b - p) of the edge a -> b, evaluated with the
-// endpoints in a canonical order and the sign restored. Two triangles sharing
-// an edge then get exactly opposite values at every pixel (whatever the
-// compiler's rounding or FMA contraction), so a pixel on the edge is inside
-// at least one of them: no cracks.
+// endpoints in a canonical order u, v and the sign restored: with E = v - u,
+// it is E.x (p.y - u.y) - E.y (p.x - u.x), the sign folded into E (negation
+// is exact, and round-to-nearest rounds -x as it rounds x). Two triangles
+// sharing an edge then get exactly opposite values at every pixel (they run
+// the same instructions on the same u and E), so a pixel on the edge is
+// inside at least one of them: no cracks. The differences to u come first,
+// so the values keep the precision of a small triangle's own coordinates.
 class CanonicalEdge {
  public:
-  CanonicalEdge(const Vec2f& a, const Vec2f& b)
-      : flip_(b.x() < a.x() || (b.x() == a.x() && b.y() < a.y())), u_(flip_ ? b : a), v_(flip_ ? a : b) {}
-  float operator()(float px, float py) const {
-    const float e = (u_.x() - px) * (v_.y() - py) - (u_.y() - py) * (v_.x() - px);
-    return flip_ ? -e : e;
+  CanonicalEdge(const Vec2f& a, const Vec2f& b) {
+    const bool flip = b.x() < a.x() || (b.x() == a.x() && b.y() < a.y());
+    const Vec2f& u = flip ? b : a;
+    const Vec2f& v = flip ? a : b;
+    const float sign = flip ? -1.0f : 1.0f;
+    ux_ = u.x();
+    uy_ = u.y();
+    ex_ = sign * (v.x() - u.x());
+    ey_ = sign * (v.y() - u.y());
   }
+  // The part of the value that is constant along row py.
+  float row(float py) const { return ex_ * (py - uy_); }
+  // The value at (px, py), given row(py).
+  float at(float row_value, float px) const { return row_value - ey_ * (px - ux_); }
 
  private:
-  bool flip_;
-  Vec2f u_, v_;
+  float ux_, uy_, ex_, ey_;
 };
 
 struct ProjectedTriangle {
@@ -49,6 +59,22 @@ struct ProjectedTriangle {
   int index;
   float min_x, max_x, min_y, max_y;  // the screen-space bounds
 };
+
+// A call's working arrays, kept by each calling thread from call to call: a
+// finest level's setup alone is 4 MB, which a fresh vector zeroed (and the
+// allocator took from the kernel) every frame. The caller of parallel_for
+// runs only its own job's chunks, so no other call reaches them meanwhile.
+struct RasterScratch {
+  std::vector<Vec2f> screen;
+  std::vector<float> inv_z;
+  std::vector<ProjectedTriangle> setup;
+  std::vector<char> kept;
+};
+
+RasterScratch& scratch() {
+  thread_local RasterScratch s;
+  return s;
+}
 
 }  // namespace
 
@@ -60,8 +86,11 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
 
   // Project every vertex once (a vertex is a corner of about six triangles).
   const int num_points = static_cast<int>(camera_points.cols());
-  std::vector<Vec2f> screen(num_points);
-  std::vector<float> inv_z(num_points);
+  RasterScratch& work = scratch();
+  std::vector<Vec2f>& screen = work.screen;
+  std::vector<float>& inv_z = work.inv_z;
+  screen.resize(num_points);
+  inv_z.resize(num_points);
   parallel_for(
       num_points,
       [&](int b, int e) {
@@ -75,12 +104,15 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
 
   // Set up and cull each triangle.
   const int num_triangles = static_cast<int>(triangles.size());
-  std::vector<ProjectedTriangle> setup(num_triangles);
-  std::vector<char> kept(num_triangles, 0);
+  std::vector<ProjectedTriangle>& setup = work.setup;
+  std::vector<char>& kept = work.kept;
+  setup.resize(num_triangles);
+  kept.resize(num_triangles);
   parallel_for(
       num_triangles,
       [&](int b, int e) {
         for (int t = b; t < e; ++t) {
+          kept[t] = 0;
           const Triangle& tri = triangles[t];
           const Vec3f a = camera_points.col(tri[0]);
           const Vec3f bv = camera_points.col(tri[1]);
@@ -171,13 +203,21 @@ void rasterize(const Positions& camera_points, const std::vector<Triangle>& tria
             const CanonicalEdge e0(p1, p2), e1(p2, p0), e2(p0, p1);
             for (int y = y0; y <= y1; ++y) {
               const float py = float(y);
+              const float r0 = e0.row(py), r1 = e1.row(py), r2 = e2.row(py);
+              // Each edge's value, rounded, is monotone along the row, so the
+              // pixels inside are one run: the row ends where it leaves them.
+              bool entered = false;
               for (int x = x0; x <= x1; ++x) {
                 const float px = float(x);
                 // Screen-space barycentrics from edge functions.
-                const float w0 = e0(px, py) * inv_area;
-                const float w1 = e1(px, py) * inv_area;
-                const float w2 = e2(px, py) * inv_area;
-                if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+                const float w0 = e0.at(r0, px) * inv_area;
+                const float w1 = e1.at(r1, px) * inv_area;
+                const float w2 = e2.at(r2, px) * inv_area;
+                if (w0 < 0 || w1 < 0 || w2 < 0) {
+                  if (entered) break;
+                  continue;
+                }
+                entered = true;
                 // Perspective-correct: interpolate 1/z linearly in screen space.
                 const float iz = w0 * pt.inv_z[0] + w1 * pt.inv_z[1] + w2 * pt.inv_z[2];
                 const float z = 1.0f / iz;
