@@ -37,6 +37,18 @@ TEST(OutlineDistance, MeasuresFromTheOuterOutlineAndHolesCountAsInside) {
   // px from the hole: the eye and mouth openings are not the outline.
   EXPECT_NEAR(d.at<float>(20, 24), 15.0f, 0.8f);
   EXPECT_NEAR(d.at<float>(20, 29), 15.0f, 1.0f);  // in the hole: 15 px to the rectangle's bottom
+  // Its last column and row, and what lies beyond them.
+  EXPECT_NEAR(d.at<float>(20, 49), 1.0f, 0.05f);
+  EXPECT_EQ(d.at<float>(20, 50), 0.0f);
+  EXPECT_NEAR(d.at<float>(34, 40), 1.0f, 0.05f);
+  EXPECT_EQ(d.at<float>(35, 40), 0.0f);
+  EXPECT_NEAR(d.at<float>(33, 48), 2.0f, 0.1f);
+}
+
+TEST(OutlineDistance, NothingDrawnIsNothingInside) {
+  const cv::Mat d = outline_distance(buffers_with([](int, int) { return false; }));
+  ASSERT_EQ(d.size(), cv::Size(60, 40));
+  EXPECT_EQ(cv::countNonZero(d), 0);
 }
 
 TEST(OutlineDistance, ARenderAtTheBuffersEdgeEndsThere) {
