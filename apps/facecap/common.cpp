@@ -233,7 +233,7 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
   cmd.add_flag_callback(
       "--no-moving-covers", [&swap] { swap.moving_covers = false; },
       "Find covers by their colour alone: not a hand of the skin's own colour moving across the face, which the "
-      "optical flow finds (at 720p on 2 cores, 20 fps against 28); a hand that rests for seconds is lost either way");
+      "optical flow finds (at 720p on 2 cores, 30-34 fps against 35-37); a hand that rests for seconds is lost either way");
   cmd.add_flag_callback(
       "--no-grade-match", [&swap] { swap.match_grade = false; },
       "Keep the photo's range of skin hues where the target shows a narrower one (a desaturated or sepia grade); "
