@@ -116,6 +116,10 @@ struct FaceSwapper::Impl {
   TextureLevels texture_levels;  // `texture` and its halvings, for the render
   FaceTexture target_sum;
   FaceTexture target_first;
+  // The photo's fine residual histogram-matched to target_first's (eq. 6.5's
+  // noise): it depends on nothing else, so the appearance frames after the
+  // first reuse it. Empty until then.
+  cv::Mat matched_noise;
   int appearance_seen = 0;
   std::vector<int> anchors;                      // landmark and boundary vertices for the background warp
   std::vector<std::optional<Vec2f>> anchor_uvs;  // each anchor's UV on the skin (none off it)
@@ -284,10 +288,12 @@ struct FaceSwapper::Impl {
     } catch (const Error&) {
     }
     // Noise: the photo's fine residual, histogram-matched to the first target frame's.
-    const cv::Mat residual_t =
-        fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);
-    const cv::Mat matched =
-        match_histograms(source_residual, source_seen, residual_t, target_first.weight > 0, -0.3f, 0.3f);
+    if (matched_noise.empty()) {
+      const cv::Mat residual_t =
+          fine_residual(fill_unseen(target_first.albedo, target_first.weight), options.noise_sigma);
+      matched_noise = match_histograms(source_residual, source_seen, residual_t, target_first.weight > 0, -0.3f, 0.3f);
+    }
+    const cv::Mat& matched = matched_noise;
     texture.create(map.size, map.size, CV_32FC4);
     parallel_for(
         map.size,
@@ -418,7 +424,10 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     FaceTexture tex =
         unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map, holes);
     drop_non_skin(tex);
-    if (m.appearance_seen == 0) m.target_first = tex;
+    if (m.appearance_seen == 0) {
+      m.target_first = tex;
+      m.matched_noise = cv::Mat();
+    }
     accumulate(m.target_sum, tex);
     ++m.appearance_seen;
     m.harmonise();
