@@ -268,11 +268,13 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
           {"lighting", timings.lighting_cpu_ms / n},
           {"encoder", timings.encoder_cpu_ms / n},
           {"pool", timings.pool_cpu_ms / n},
+          {"facecap", timings.process_cpu_ms / n},
           {"note",
            "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
            "core: the swap's own thread (the swap and its frame's writing, appearance frames included), "
-           "the preparation's and the lighting's, the encoder process (audio included) and the pool's "
-           "workers (on every stage's loops, capture's too unless --tracked-first). Their sum against the cores times "
+           "the preparation's and the lighting's, the encoder process (audio included), the pool's "
+           "workers (on every stage's loops, capture's too unless --tracked-first), and facecap's threads all "
+           "together (the same share; the encoder is another process). The threads' sum against the cores times "
            "swap_ms_per_frame says whether the cores were full"}}},
         {"tracked_first", a->tracked_first},
         {"timing_note", a->tracked_first
@@ -335,6 +337,19 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
                       {"edit_ms_per_frame", edit_ms},
                       {"edit_fps", edit_ms > 0 ? 1000.0 / edit_ms : 0.0},
                       {"lighting_ms_per_frame", timings.lighting_ms / n},
+                      {"cpu_ms_per_frame",
+                       {{"edit_thread", timings.edit_thread_cpu_ms / n},
+                        {"lighting", timings.lighting_cpu_ms / n},
+                        {"encoder", timings.encoder_cpu_ms / n},
+                        {"pool", timings.pool_cpu_ms / n},
+                        {"facecap", timings.process_cpu_ms / n},
+                        {"note",
+                         "CPU time per frame, where the ms above are wall times that include waiting for a core: "
+                         "the edit's thread (mapping, re-render, composite and the frame's writing) and the "
+                         "lighting's, the encoder process (audio included), the pool's workers (capture's loops "
+                         "too), and facecap's threads all together (decoding and capture included; the encoder is "
+                         "another process). facecap plus encoder against the cores times the run's wall time says "
+                         "whether the cores were full"}}},
                       {"note",
                        "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
                        "refinement's SH estimate (albedo over the first 4 frames); with --all-faces, each "

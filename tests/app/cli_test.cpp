@@ -940,8 +940,34 @@ TEST(Cli, BenchSwapTrackedFirstTimesTheSwapAloneAndSaysSo) {
   for (const char* part : {"swap_thread", "preparation", "lighting", "encoder"})
     EXPECT_GT(j["swap"]["cpu_ms_per_frame"][part].get<double>(), 0.0) << part;
   EXPECT_GE(j["swap"]["cpu_ms_per_frame"]["pool"].get<double>(), 0.0);
+  // facecap's threads all together hold each of the swap's.
+  const nlohmann::json& cpu = j["swap"]["cpu_ms_per_frame"];
+  const double threads = cpu["swap_thread"].get<double>() + cpu["preparation"].get<double>() +
+                         cpu["lighting"].get<double>() + cpu["pool"].get<double>();
+  EXPECT_GE(cpu["facecap"].get<double>(), 0.95 * threads);
   const RunResult both = run(args + " --tracked-first --all-faces");
   EXPECT_EQ(both.code, 2) << both.out;
+}
+
+// bench transform times the edit and gives the CPU budget of its threads:
+// the edit's, the lighting's, the encoder's, and facecap's as a whole,
+// which holds the others (and capture's).
+TEST(Cli, BenchTransformGivesTheEditsSpeedAndItsCpuBudget) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const RunResult r = run("bench transform " + video.string() + " --max-frames 40");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json& t = j["transform"];
+  EXPECT_EQ(t["frames"].get<int>(), 40);
+  EXPECT_GT(t["edit_fps"].get<double>(), 0.0);
+  const nlohmann::json& cpu = t["cpu_ms_per_frame"];
+  for (const char* part : {"edit_thread", "lighting", "encoder", "facecap"})
+    EXPECT_GT(cpu[part].get<double>(), 0.0) << part;
+  const double threads = cpu["edit_thread"].get<double>() + cpu["lighting"].get<double>() + cpu["pool"].get<double>();
+  EXPECT_GE(cpu["facecap"].get<double>(), 0.95 * threads);
+  // Capture (decoding, detection, landmarks, fits) is facecap's too.
+  EXPECT_GT(cpu["facecap"].get<double>(), threads);
 }
 
 }  // namespace facecap

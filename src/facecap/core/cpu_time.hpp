@@ -12,4 +12,7 @@ double clock_ms(clockid_t clock);
 // The calling thread's CPU time since it started, in milliseconds.
 inline double thread_cpu_ms() { return clock_ms(CLOCK_THREAD_CPUTIME_ID); }
 
+// The whole process's CPU time, all its threads, in milliseconds.
+inline double process_cpu_ms() { return clock_ms(CLOCK_PROCESS_CPUTIME_ID); }
+
 }  // namespace facecap

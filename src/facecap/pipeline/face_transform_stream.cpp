@@ -39,6 +39,8 @@ void FaceTransformStream::finish() {
   stage_->finish();
   emit(transformer_.finish());
   timings_.lighting_ms = stage_->refine_ms();
+  timings_.lighting_cpu_ms = stage_->timings().refine_cpu_ms;
+  timings_.edit_thread_cpu_ms = stage_->timings().consumer_cpu_ms;
 }
 
 const Refiner& FaceTransformStream::refiner() const { return stage_->refiner(); }

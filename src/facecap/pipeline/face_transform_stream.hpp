@@ -31,6 +31,15 @@ struct TransformTimings {
   double lighting_ms = 0;
   double render_ms = 0;  // re-shading, mouth warp and blending
   int frames = 0;
+  // CPU time (core/cpu_time.hpp), for a benchmark's budget of the cores:
+  // the edit's thread (mapping, re-render, composite and the frame's
+  // writing) and the lighting's, the stage's own threads; the encoder
+  // process; the pool's workers; and all of facecap's threads together.
+  double edit_thread_cpu_ms = 0;
+  double lighting_cpu_ms = 0;
+  double encoder_cpu_ms = 0;
+  double pool_cpu_ms = 0;
+  double process_cpu_ms = 0;
 };
 
 class FaceTransformStream {

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/cpu_time.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
@@ -233,7 +234,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   summary.timings.source_ms = setup.source_ms;
   const InputInfo& info = setup.info;
   const SyntheticMark& mark = setup.mark;
-  double pool_cpu_start = pool_cpu_ms();
+  double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -281,7 +282,10 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     else
       stream.push(f);
   });
-  if (options.track_first) pool_cpu_start = pool_cpu_ms();  // the swap's share alone
+  if (options.track_first) {  // the swap's share alone
+    pool_cpu_start = pool_cpu_ms();
+    process_cpu_start = process_cpu_ms();
+  }
   for (const CapturedFrame& f : tracked) stream.push(f);
   stream.finish();
   add_stream_timings(summary.timings, stream);
@@ -291,6 +295,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   writer.finish();
   summary.timings.encoder_cpu_ms = writer.encoder_cpu_ms();
   summary.timings.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
+  summary.timings.process_cpu_ms = process_cpu_ms() - process_cpu_start;
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
@@ -314,7 +319,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   const InputInfo& info = setup.info;
   SyntheticMark& mark = setup.mark;
   mark.parameters["faces"] = "all";
-  const double pool_cpu_start = pool_cpu_ms();
+  const double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -371,6 +376,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   writer.finish();
   summary.timings.encoder_cpu_ms = writer.encoder_cpu_ms();
   summary.timings.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
+  summary.timings.process_cpu_ms = process_cpu_ms() - process_cpu_start;
   mark.parameters["faces"] = std::to_string(streams.size());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();

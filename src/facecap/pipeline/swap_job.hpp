@@ -75,12 +75,14 @@ struct SwapJobTimings {
   // above include waits for a core: the swap's own thread (the swap and
   // its frame's writing), the preparation's and the lighting's threads, the
   // encoder process, and the pool's workers (on every stage's loops, the
-  // capture's too, but with track_first, where capture runs first).
+  // capture's too, but with track_first, where capture runs first), and
+  // all of facecap's threads together (the same share).
   double swap_thread_cpu_ms = 0;
   double preparation_cpu_ms = 0;
   double lighting_cpu_ms = 0;
   double encoder_cpu_ms = 0;
   double pool_cpu_ms = 0;
+  double process_cpu_ms = 0;
 };
 
 struct SwapSummary {

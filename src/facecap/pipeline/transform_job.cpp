@@ -7,7 +7,9 @@
 
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/cpu_time.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
@@ -71,6 +73,14 @@ SyntheticMark transform_mark(const std::string& input, const InputInfo& info, co
   return mark;
 }
 
+// The job's CPU budget once its output is finished: the encoder's, and the
+// pool's and the whole process's since the readings taken at its start.
+void add_cpu_budget(TransformTimings& t, double encoder_cpu_ms, double pool_cpu_start, double process_cpu_start) {
+  t.encoder_cpu_ms = encoder_cpu_ms;
+  t.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
+  t.process_cpu_ms = process_cpu_ms() - process_cpu_start;
+}
+
 VideoWriterOptions marked_output(const InputInfo& info, const TransformJobOptions& options, const SyntheticMark& mark) {
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
@@ -93,6 +103,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
 
   TransformSummary summary;
+  const double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
   std::optional<ShotAnimations> animations;  // --gltf, one file per shot
   FaceTransformStream stream(
       model, mapper, options.transform, info.width, info.height, [&](const TransformedFaceFrame& t) {
@@ -141,12 +152,15 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   summary.timings.mapping_ms = t.mapping_ms;
   summary.timings.lighting_ms = t.lighting_ms;
   summary.timings.render_ms += t.render_ms;
+  summary.timings.edit_thread_cpu_ms = t.edit_thread_cpu_ms;
+  summary.timings.lighting_cpu_ms = t.lighting_cpu_ms;
   summary.timings.frames = static_cast<int>(summary.frames.size());
   if (summary.frames.empty()) throw Error("no frames could be read from " + input);
   // A copy of the input marked as transformed would be neither: nothing is written.
   if (std::none_of(summary.frames.begin(), summary.frames.end(), [](const TransformedFrame& f) { return f.valid; }))
     throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
+  add_cpu_budget(summary.timings, writer.encoder_cpu_ms(), pool_cpu_start, process_cpu_start);
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
@@ -172,6 +186,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
 
   AllFacesTransformSummary summary;
+  const double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
   LayeredFrames frames(
       [&](const cv::Mat& image, int index, double time) {
         writer.write(image, output_time(info, index, time));
@@ -219,6 +234,8 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
     summary.timings.mapping_ms += t.mapping_ms;
     summary.timings.lighting_ms += t.lighting_ms;
     summary.timings.render_ms += t.render_ms;
+    summary.timings.edit_thread_cpu_ms += t.edit_thread_cpu_ms;
+    summary.timings.lighting_cpu_ms += t.lighting_cpu_ms;
     summary.frames.push_back(std::move(face.frames));
   }
   frames.finish();
@@ -232,6 +249,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
     throw Error("every face of " + input + " is left as it is (--leave-faces): nothing to transform");
   if (!any) throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
+  add_cpu_budget(summary.timings, writer.encoder_cpu_ms(), pool_cpu_start, process_cpu_start);
   mark.parameters["faces"] = std::to_string(faces.size());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
