@@ -1,6 +1,9 @@
 #include <chrono>
 #include <memory>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
@@ -32,6 +35,20 @@ nlohmann::json timings_json(const StageTimings& t) {
           {"note",
            "decode runs on its own thread, concurrently with detection, landmarks and fit; the fit (and gaze) of a "
            "frame runs beside the next frame's detection and landmarks"}};
+}
+
+// An edit's CPU budget per frame (core/cpu_time.hpp): its own threads'
+// `parts`, then the encoder's, the pool's and facecap's as a whole, each
+// over `frames`, with `note` saying what the parts hold.
+nlohmann::json cpu_budget_json(const std::vector<std::pair<std::string, double>>& parts, double encoder_ms,
+                               double pool_ms, double process_ms, double frames, const std::string& note) {
+  nlohmann::json j;
+  for (const auto& [name, ms] : parts) j[name] = ms / frames;
+  j["encoder"] = encoder_ms / frames;
+  j["pool"] = pool_ms / frames;
+  j["facecap"] = process_ms / frames;
+  j["note"] = note;
+  return j;
 }
 
 }  // namespace
@@ -263,19 +280,17 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
          "the target unshaded for the occlusion mask and its moving covers (optical flow), on the "
          "lighting stage's second thread beside the swap of the frame before (not in swap_ms_per_frame)"},
         {"cpu_ms_per_frame",
-         {{"swap_thread", timings.swap_thread_cpu_ms / n},
-          {"preparation", timings.preparation_cpu_ms / n},
-          {"lighting", timings.lighting_cpu_ms / n},
-          {"encoder", timings.encoder_cpu_ms / n},
-          {"pool", timings.pool_cpu_ms / n},
-          {"facecap", timings.process_cpu_ms / n},
-          {"note",
-           "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
-           "core: the swap's own thread (the swap and its frame's writing, appearance frames included), "
-           "the preparation's and the lighting's, the encoder process (audio included), the pool's "
-           "workers (on every stage's loops, capture's too unless --tracked-first), and facecap's threads all "
-           "together (the same share; the encoder is another process). The threads' sum against the cores times "
-           "swap_ms_per_frame says whether the cores were full"}}},
+         cpu_budget_json({{"swap_thread", timings.swap_thread_cpu_ms},
+                          {"preparation", timings.preparation_cpu_ms},
+                          {"lighting", timings.lighting_cpu_ms}},
+                         timings.encoder_cpu_ms, timings.pool_cpu_ms, timings.process_cpu_ms, n,
+                         "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
+                         "core: the swap's own thread (the swap and its frame's writing, appearance frames "
+                         "included), the preparation's and the lighting's, the encoder process (audio included), "
+                         "the pool's workers (on every stage's loops, capture's too unless --tracked-first), and "
+                         "facecap's threads all together (the same share; the encoder is another process). The "
+                         "threads' sum against the cores times swap_ms_per_frame says whether the cores were "
+                         "full")},
         {"tracked_first", a->tracked_first},
         {"timing_note", a->tracked_first
                             ? "the target was captured first: the swap's stages ran without capture beside them"
@@ -331,29 +346,27 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double n = std::max(1, timings.frames);
     const double edit_ms = (timings.mapping_ms + timings.render_ms) / n;
-    j["transform"] = {{"frames", timings.frames},
-                      {"mapping_smoothing_qp_ms_per_frame", timings.mapping_ms / n},
-                      {"rerender_composite_ms_per_frame", timings.render_ms / n},
-                      {"edit_ms_per_frame", edit_ms},
-                      {"edit_fps", edit_ms > 0 ? 1000.0 / edit_ms : 0.0},
-                      {"lighting_ms_per_frame", timings.lighting_ms / n},
-                      {"cpu_ms_per_frame",
-                       {{"edit_thread", timings.edit_thread_cpu_ms / n},
-                        {"lighting", timings.lighting_cpu_ms / n},
-                        {"encoder", timings.encoder_cpu_ms / n},
-                        {"pool", timings.pool_cpu_ms / n},
-                        {"facecap", timings.process_cpu_ms / n},
-                        {"note",
-                         "CPU time per frame, where the ms above are wall times that include waiting for a core: "
-                         "the edit's thread (mapping, re-render, composite and the frame's writing) and the "
-                         "lighting's, the encoder process (audio included), the pool's workers (capture's loops "
-                         "too), and facecap's threads all together (decoding and capture included; the encoder is "
-                         "another process). facecap plus encoder against the cores times the run's wall time says "
-                         "whether the cores were full"}}},
-                      {"note",
-                       "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
-                       "refinement's SH estimate (albedo over the first 4 frames); with --all-faces, each "
-                       "summed over the faces (their streams run on threads of their own)"}};
+    j["transform"] = {
+        {"frames", timings.frames},
+        {"mapping_smoothing_qp_ms_per_frame", timings.mapping_ms / n},
+        {"rerender_composite_ms_per_frame", timings.render_ms / n},
+        {"edit_ms_per_frame", edit_ms},
+        {"edit_fps", edit_ms > 0 ? 1000.0 / edit_ms : 0.0},
+        {"lighting_ms_per_frame", timings.lighting_ms / n},
+        {"cpu_ms_per_frame",
+         cpu_budget_json({{"edit_thread", timings.edit_thread_cpu_ms}, {"lighting", timings.lighting_cpu_ms}},
+                         timings.encoder_cpu_ms, timings.pool_cpu_ms, timings.process_cpu_ms, n,
+                         "CPU time per frame, where the ms above are wall times that include waiting "
+                         "for a core: the edit's thread (mapping, re-render, composite and the "
+                         "frame's writing) and the lighting's, the encoder process (audio included), "
+                         "the pool's workers (capture's loops too), and facecap's threads all "
+                         "together (decoding and capture included; the encoder is another process). "
+                         "facecap plus encoder against the cores times the run's wall time says "
+                         "whether the cores were full")},
+        {"note",
+         "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
+         "refinement's SH estimate (albedo over the first 4 frames); with --all-faces, each "
+         "summed over the faces (their streams run on threads of their own)"}};
     j["fps_end_to_end"] = wall > 0 ? timings.frames / wall : 0.0;
     j["input"] = a->input;
     j["width"] = input.width;
