@@ -294,7 +294,10 @@ struct FaceSwapper::Impl {
       matched_noise = match_histograms(source_residual, source_seen, residual_t, target_first.weight > 0, -0.3f, 0.3f);
     }
     const cv::Mat& matched = matched_noise;
-    texture.create(map.size, map.size, CV_32FC4);
+    // The harmonised colour on the skin's texels; the rest take their
+    // neighbours' colour (fill_unseen), so that bilinear lookups at the
+    // skin's edge stay clean, whatever is written there first.
+    cv::Mat colour(map.size, map.size, CV_32FC3);
     parallel_for(
         map.size,
         [&](int y0, int y1) {
@@ -302,30 +305,27 @@ struct FaceSwapper::Impl {
             const auto* sm = source_smooth.ptr<cv::Vec3f>(y);
             const auto* nm = matched.ptr<cv::Vec3f>(y);
             const float* al = alpha.ptr<float>(y);
-            auto* out = texture.ptr<cv::Vec4f>(y);
+            auto* out = colour.ptr<cv::Vec3f>(y);
             for (int x = 0; x < map.size; ++x) {
+              if (!(al[x] > 0)) {
+                out[x] = cv::Vec3f(0, 0, 0);
+                continue;
+              }
               const int i = map.index(x, y);
               Vec3f yc = grade.narrow(to_brightness_hue(Vec3f(sm[x][0], sm[x][1], sm[x][2])));
               if (map.triangle[i] >= 0) yc += map.interpolate(skin.triangles, offset, i);
               const Vec3f adapted = from_brightness_hue(yc);
-              cv::Vec4f v;
-              for (int c = 0; c < 3; ++c) v[c] = std::max(0.0f, adapted[c] + nm[x][c]);
-              v[3] = al[x];
-              out[x] = v;
+              for (int c = 0; c < 3; ++c) out[x][c] = std::max(0.0f, adapted[c] + nm[x][c]);
             }
           }
         },
         32);
-    // Texels outside the skin take their neighbours' colour, so bilinear lookups at the edge stay clean.
-    std::vector<cv::Mat> channels;
-    cv::split(texture, channels);
-    cv::Mat colour, inside;
-    cv::merge(std::vector<cv::Mat>{channels[0], channels[1], channels[2]}, colour);
+    cv::Mat inside;
     cv::Mat(alpha > 0).convertTo(inside, CV_32F, 1.0 / 255);
-    std::vector<cv::Mat> filled;
-    cv::split(fill_unseen(colour, inside), filled);
-    filled.push_back(channels[3]);
-    cv::merge(filled, texture);
+    std::vector<cv::Mat> channels;
+    cv::split(fill_unseen(colour, inside), channels);
+    channels.push_back(alpha);
+    cv::merge(channels, texture);
     texture_levels = TextureLevels(texture);
   }
 };
