@@ -54,6 +54,30 @@ TEST(AlbedoAdaptation, OutliersOnTheOutlineTakeTheMedian) {
   EXPECT_LT((h - Positions::Constant(3, count, -0.1f)).cwiseAbs().maxCoeff(), 1e-4f);
 }
 
+// A swap keeps an adaptation while the target's known outline stays the
+// same: what is known inside the outline does not change it.
+TEST(AlbedoAdaptation, TheSameOutlineKnownIsTheSameAdaptation) {
+  const int n = 6, count = (n + 1) * (n + 1);
+  const auto tris = test::square_grid(n);
+  std::vector<bool> known(count, true);
+  known[0] = false;  // a corner of the outline unseen
+  const AlbedoAdaptation adapt(tris, count, known);
+  EXPECT_TRUE(adapt.fixes_the_same(known));
+  std::vector<bool> inside_unseen = known;
+  inside_unseen[(n + 1) * 3 + 3] = false;  // the middle vertex: not on the outline
+  EXPECT_TRUE(adapt.fixes_the_same(inside_unseen));
+  std::vector<bool> corner_seen = known;
+  corner_seen[0] = true;
+  EXPECT_FALSE(adapt.fixes_the_same(corner_seen));
+  std::vector<bool> edge_unseen = known;
+  edge_unseen[2] = false;  // on the bottom edge
+  EXPECT_FALSE(adapt.fixes_the_same(edge_unseen));
+  EXPECT_FALSE(adapt.fixes_the_same(std::vector<bool>(count - 1, true)));
+  // And it gives what a fresh one from the other known set gives.
+  const Positions source = Positions::Random(3, count), target = Positions::Random(3, count);
+  EXPECT_EQ(adapt.offset(source, target), AlbedoAdaptation(tris, count, inside_unseen).offset(source, target));
+}
+
 TEST(AlbedoAdaptation, NothingSeenOnTheOutlineIsAnError) {
   const auto tris = test::square_grid(4);
   EXPECT_THROW(AlbedoAdaptation(tris, 25, std::vector<bool>(25, false)), Error);

@@ -50,6 +50,7 @@ std::vector<bool> outer_boundary(const std::vector<Triangle>& triangles, int num
 struct AlbedoAdaptation::Impl {
   std::vector<int> interior;             // vertex -> row of the interior system, -1 on the boundary or unused
   std::vector<int> boundary;             // fixed vertices
+  std::vector<bool> outline;             // used vertices on the outer boundary: fixed where known
   Eigen::SparseMatrix<double> coupling;  // interior x all: -adjacency to the fixed vertices
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   int used = 0;
@@ -62,10 +63,12 @@ AlbedoAdaptation::AlbedoAdaptation(const std::vector<Triangle>& triangles, int n
   const std::vector<bool> on_boundary = outer_boundary(triangles, num_vertices);
   Impl& m = *impl_;
   m.interior.assign(num_vertices, -1);
+  m.outline.assign(num_vertices, false);
   std::vector<bool> fixed(num_vertices, false);
   int rows = 0;
   for (int v = 0; v < num_vertices; ++v) {
     if (adj.degree(v) == 0) continue;
+    m.outline[v] = on_boundary[v];
     if (on_boundary[v] && target_known[v]) {
       fixed[v] = true;
       m.boundary.push_back(v);
@@ -104,6 +107,19 @@ AlbedoAdaptation::AlbedoAdaptation(AlbedoAdaptation&&) noexcept = default;
 AlbedoAdaptation& AlbedoAdaptation::operator=(AlbedoAdaptation&&) noexcept = default;
 
 int AlbedoAdaptation::boundary_count() const { return static_cast<int>(impl_->boundary.size()); }
+
+bool AlbedoAdaptation::fixes_the_same(const std::vector<bool>& target_known) const {
+  const Impl& m = *impl_;
+  if (target_known.size() != m.outline.size()) return false;
+  // m.boundary lists the fixed vertices in order: the same list, or not.
+  size_t k = 0;
+  for (size_t v = 0; v < m.outline.size(); ++v) {
+    if (!(m.outline[v] && target_known[v])) continue;
+    if (k == m.boundary.size() || m.boundary[k] != int(v)) return false;
+    ++k;
+  }
+  return k == m.boundary.size();
+}
 
 Positions AlbedoAdaptation::offset(const Positions& source, const Positions& target) const {
   const Impl& m = *impl_;

@@ -31,6 +31,12 @@ class AlbedoAdaptation {
 
   // The offset h (3 x N) that turns the source albedo into the adapted one.
   Positions offset(const Positions& source, const Positions& target) const;
+
+  // Whether `target_known` fixes the same boundary vertices as the one this
+  // was built with, so that this adaptation (its factorisation) serves it
+  // as one built from it would: the known vertices off the outline do not
+  // count.
+  bool fixes_the_same(const std::vector<bool>& target_known) const;
   int boundary_count() const;
 
  private:

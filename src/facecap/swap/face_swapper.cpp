@@ -120,6 +120,7 @@ struct FaceSwapper::Impl {
   // noise): it depends on nothing else, so the appearance frames after the
   // first reuse it. Empty until then.
   cv::Mat matched_noise;
+  std::optional<AlbedoAdaptation> adaptation;  // the last appearance frame's (harmonise())
   int appearance_seen = 0;
   std::vector<int> anchors;                      // landmark and boundary vertices for the background warp
   std::vector<std::optional<Vec2f>> anchor_uvs;  // each anchor's UV on the skin (none off it)
@@ -284,7 +285,10 @@ struct FaceSwapper::Impl {
     const ChromaSpread grade = options.match_grade ? ChromaSpread(source_yc, target_yc, known) : ChromaSpread();
     Positions offset = Positions::Zero(3, skin.num_vertices);
     try {
-      offset = AlbedoAdaptation(skin.triangles, skin.num_vertices, known).offset(grade.narrow(source_yc), target_yc);
+      // Its factorisation serves again while the known outline is the same.
+      if (!adaptation || !adaptation->fixes_the_same(known))
+        adaptation.emplace(skin.triangles, skin.num_vertices, known);
+      offset = adaptation->offset(grade.narrow(source_yc), target_yc);
     } catch (const Error&) {
     }
     // Noise: the photo's fine residual, histogram-matched to the first target frame's.
