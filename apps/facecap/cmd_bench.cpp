@@ -40,13 +40,13 @@ nlohmann::json timings_json(const StageTimings& t) {
 // An edit's CPU budget per frame (core/cpu_time.hpp): its own threads'
 // `parts`, then the encoder's, the pool's and facecap's as a whole, each
 // over `frames`, with `note` saying what the parts hold.
-nlohmann::json cpu_budget_json(const std::vector<std::pair<std::string, double>>& parts, double encoder_ms,
-                               double pool_ms, double process_ms, double frames, const std::string& note) {
+nlohmann::json cpu_budget_json(const std::vector<std::pair<std::string, double>>& parts, const JobCpu& job,
+                               double frames, const std::string& note) {
   nlohmann::json j;
   for (const auto& [name, ms] : parts) j[name] = ms / frames;
-  j["encoder"] = encoder_ms / frames;
-  j["pool"] = pool_ms / frames;
-  j["facecap"] = process_ms / frames;
+  j["encoder"] = job.encoder_ms / frames;
+  j["pool"] = job.pool_ms / frames;
+  j["facecap"] = job.process_ms / frames;
   j["note"] = note;
   return j;
 }
@@ -283,7 +283,7 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
          cpu_budget_json({{"swap_thread", timings.swap_thread_cpu_ms},
                           {"preparation", timings.preparation_cpu_ms},
                           {"lighting", timings.lighting_cpu_ms}},
-                         timings.encoder_cpu_ms, timings.pool_cpu_ms, timings.process_cpu_ms, n,
+                         timings.job_cpu, n,
                          "CPU time per frame swapped, where the ms above are wall times that include waiting for a "
                          "core: the swap's own thread (the swap and its frame's writing, appearance frames "
                          "included), the preparation's and the lighting's, the encoder process (audio included), "
@@ -355,7 +355,7 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
         {"lighting_ms_per_frame", timings.lighting_ms / n},
         {"cpu_ms_per_frame",
          cpu_budget_json({{"edit_thread", timings.edit_thread_cpu_ms}, {"lighting", timings.lighting_cpu_ms}},
-                         timings.encoder_cpu_ms, timings.pool_cpu_ms, timings.process_cpu_ms, n,
+                         timings.job_cpu, n,
                          "CPU time per frame, where the ms above are wall times that include waiting "
                          "for a core: the edit's thread (mapping, re-render, composite and the "
                          "frame's writing) and the lighting's, the encoder process (audio included), "

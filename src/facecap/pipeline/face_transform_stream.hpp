@@ -16,6 +16,7 @@
 #include "facecap/expr/expression_transform.hpp"
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/job_cpu.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 
 namespace facecap {
@@ -33,13 +34,11 @@ struct TransformTimings {
   int frames = 0;
   // CPU time (core/cpu_time.hpp), for a benchmark's budget of the cores:
   // the edit's thread (mapping, re-render, composite and the frame's
-  // writing) and the lighting's, the stage's own threads; the encoder
-  // process; the pool's workers; and all of facecap's threads together.
+  // writing) and the lighting's, the stage's own threads; and the job's
+  // (the encoder's, the pool's, facecap's whole).
   double edit_thread_cpu_ms = 0;
   double lighting_cpu_ms = 0;
-  double encoder_cpu_ms = 0;
-  double pool_cpu_ms = 0;
-  double process_cpu_ms = 0;
+  JobCpu job_cpu;
 };
 
 class FaceTransformStream {

@@ -6,7 +6,6 @@
 #include <map>
 
 #include "facecap/core/atomic_file.hpp"
-#include "facecap/core/cpu_time.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
@@ -234,7 +233,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   summary.timings.source_ms = setup.source_ms;
   const InputInfo& info = setup.info;
   const SyntheticMark& mark = setup.mark;
-  double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
+  JobCpuClock cpu;
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -282,10 +281,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
     else
       stream.push(f);
   });
-  if (options.track_first) {  // the swap's share alone
-    pool_cpu_start = pool_cpu_ms();
-    process_cpu_start = process_cpu_ms();
-  }
+  if (options.track_first) cpu.restart();  // the swap's share alone
   for (const CapturedFrame& f : tracked) stream.push(f);
   stream.finish();
   add_stream_timings(summary.timings, stream);
@@ -293,9 +289,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   // A copy of the input marked as a swap would be neither: nothing is written.
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
-  summary.timings.encoder_cpu_ms = writer.encoder_cpu_ms();
-  summary.timings.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
-  summary.timings.process_cpu_ms = process_cpu_ms() - process_cpu_start;
+  summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
@@ -319,7 +313,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   const InputInfo& info = setup.info;
   SyntheticMark& mark = setup.mark;
   mark.parameters["faces"] = "all";
-  const double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
+  const JobCpuClock cpu;
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
   std::optional<MatteOutput> matte;
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
@@ -374,9 +368,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
     throw Error("every face of " + target + " is left as it is (--leave-faces): nothing to swap");
   if (summary.timings.swapped == 0) throw Error("no face found in any frame of " + target + ": nothing to swap");
   writer.finish();
-  summary.timings.encoder_cpu_ms = writer.encoder_cpu_ms();
-  summary.timings.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
-  summary.timings.process_cpu_ms = process_cpu_ms() - process_cpu_start;
+  summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   mark.parameters["faces"] = std::to_string(streams.size());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();

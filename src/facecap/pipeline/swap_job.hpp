@@ -13,6 +13,7 @@
 
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/face_roster.hpp"
+#include "facecap/pipeline/job_cpu.hpp"
 #include "facecap/swap/face_swapper.hpp"
 
 namespace facecap {
@@ -80,9 +81,7 @@ struct SwapJobTimings {
   double swap_thread_cpu_ms = 0;
   double preparation_cpu_ms = 0;
   double lighting_cpu_ms = 0;
-  double encoder_cpu_ms = 0;
-  double pool_cpu_ms = 0;
-  double process_cpu_ms = 0;
+  JobCpu job_cpu;  // the encoder's, the pool's and facecap's whole
 };
 
 struct SwapSummary {

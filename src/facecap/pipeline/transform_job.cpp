@@ -7,9 +7,7 @@
 
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/core/atomic_file.hpp"
-#include "facecap/core/cpu_time.hpp"
 #include "facecap/core/error.hpp"
-#include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
 #include "facecap/io/gltf_writer.hpp"
@@ -73,14 +71,6 @@ SyntheticMark transform_mark(const std::string& input, const InputInfo& info, co
   return mark;
 }
 
-// The job's CPU budget once its output is finished: the encoder's, and the
-// pool's and the whole process's since the readings taken at its start.
-void add_cpu_budget(TransformTimings& t, double encoder_cpu_ms, double pool_cpu_start, double process_cpu_start) {
-  t.encoder_cpu_ms = encoder_cpu_ms;
-  t.pool_cpu_ms = pool_cpu_ms() - pool_cpu_start;
-  t.process_cpu_ms = process_cpu_ms() - process_cpu_start;
-}
-
 VideoWriterOptions marked_output(const InputInfo& info, const TransformJobOptions& options, const SyntheticMark& mark) {
   VideoWriterOptions vo = output_like(info, options.capture.max_frames);
   vo.metadata = synthetic_metadata(mark);
@@ -103,7 +93,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (!options.matte.empty()) matte.emplace(options.matte, output, info.kind, marked_output(info, options, mark), mark);
 
   TransformSummary summary;
-  const double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
+  const JobCpuClock cpu;
   std::optional<ShotAnimations> animations;  // --gltf, one file per shot
   FaceTransformStream stream(
       model, mapper, options.transform, info.width, info.height, [&](const TransformedFaceFrame& t) {
@@ -160,7 +150,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (std::none_of(summary.frames.begin(), summary.frames.end(), [](const TransformedFrame& f) { return f.valid; }))
     throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
-  add_cpu_budget(summary.timings, writer.encoder_cpu_ms(), pool_cpu_start, process_cpu_start);
+  summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
   if (animations) summary.animation_files = animations->finish();
@@ -186,7 +176,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   EditOutput writer(output, info.kind, marked_output(info, options, mark));
 
   AllFacesTransformSummary summary;
-  const double pool_cpu_start = pool_cpu_ms(), process_cpu_start = process_cpu_ms();
+  const JobCpuClock cpu;
   LayeredFrames frames(
       [&](const cv::Mat& image, int index, double time) {
         writer.write(image, output_time(info, index, time));
@@ -249,7 +239,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
     throw Error("every face of " + input + " is left as it is (--leave-faces): nothing to transform");
   if (!any) throw Error("no face found in any frame of " + input + ": nothing to transform");
   writer.finish();
-  add_cpu_budget(summary.timings, writer.encoder_cpu_ms(), pool_cpu_start, process_cpu_start);
+  summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   mark.parameters["faces"] = std::to_string(faces.size());
   write_synthetic_sidecar(output, mark);
   if (matte) matte->finish();
