@@ -208,6 +208,7 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
     bool all_faces = false;
     bool tracked_first = false;
     SwapOptions swap;
+    VideoEncoding encoding;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--source", a->source, "Source portrait photo")->required();
@@ -224,10 +225,12 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
   cmd->add_flag("--wrinkles", a->swap.wrinkles, "With the wrinkle prediction of §6.1.2 (the target is refined)");
   add_swap_texture_flags(*cmd, a->swap);
+  add_encoding_options(*cmd, a->encoding, "the scratch output, as swap's");
   cmd->callback([a, &global] {
     const FaceModel model = load_model(global);
     SwapJobOptions o;
     o.swap = a->swap;
+    o.encoding = a->encoding;
     o.capture.max_frames = a->max_frames;
     o.capture.quiet = true;
     o.track_first = a->tracked_first;
@@ -311,6 +314,7 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
     std::string input, to = "happiness";
     int max_frames = 150;
     bool all_faces = false;
+    VideoEncoding encoding;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file or image folder")->required();
@@ -319,10 +323,12 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
                 "Every face, on one decoding pass (as transform --all-faces): the shared capture stages, each "
                 "face's, and the edit's summed over the faces");
   cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
+  add_encoding_options(*cmd, a->encoding, "the scratch output, as transform's");
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to);
     const FaceModel model = load_model(global);
     TransformJobOptions o;
+    o.encoding = a->encoding;
     o.capture.max_frames = a->max_frames;
     o.capture.quiet = true;
     o.transform.schedule = ExpressionSchedule::constant(to, 1.0);

@@ -110,9 +110,11 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--mesh-space", a->mesh_space, "Coordinates of the meshes: model (y up) or camera (OpenCV)")
       ->check(CLI::IsMember({"model", "camera"}))
       ->capture_default_str();
-  cmd->add_flag("--overlay", a->options.overlay,
-                "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio (with --refine also "
-                "DIR/shaded.mp4 and DIR/heatmap.mp4)");
+  CLI::Option* overlay =
+      cmd->add_flag("--overlay", a->options.overlay,
+                    "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio (with --refine also "
+                    "DIR/shaded.mp4 and DIR/heatmap.mp4)");
+  add_encoding_options(*cmd, a->options.encoding, "the overlay videos", overlay);
   cmd->add_flag("--gltf", a->options.gltf,
                 "Write DIR/animation.glb: the face with its 53 blend shapes as morph targets, head pose and weights "
                 "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "

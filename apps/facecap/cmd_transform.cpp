@@ -57,6 +57,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                       "synthetic, with a sidecar .json). An input that cuts gets one per shot: OUT_shot<N>.glb after "
                       "the first");
   add_matte_option(*cmd, a->options.matte, "re-rendered face");
+  add_encoding_options(*cmd, a->options.encoding, "the output video (a --matte is lossless)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "facecap/expr/emotions.hpp"
+#include "facecap/io/video_encoding.hpp"
 #include "facecap/model/face_model.hpp"
 #include "facecap/refine/compute_device.hpp"
 #include "facecap/swap/face_swapper.hpp"
@@ -40,6 +41,10 @@ void parse_size(const std::string& s, int& width, int& height);
 // An expression named on the command line (parse_emotion's names); throws
 // facecap::Error naming `option` and the choices otherwise.
 Emotion emotion_argument(const std::string& option, const std::string& value);
+// --crf and --x264-preset: x264's settings (VideoEncoding) for `what`, the
+// videos a command writes; with `needs`, only beside that option.
+void add_encoding_options(CLI::App& cmd, VideoEncoding& encoding, const std::string& what,
+                          CLI::Option* needs = nullptr);
 // --init-frames: the frames the identity and focal length are solved from
 // (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
 void add_init_frames_option(CLI::App& cmd, int& init_frames);

@@ -162,6 +162,29 @@ void add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::st
           "largest of the faces' shares); marked as synthetic, with a sidecar MATTE.json, and without sound");
 }
 
+void add_encoding_options(CLI::App& cmd, VideoEncoding& encoding, const std::string& what, CLI::Option* needs) {
+  CLI::Option* crf =
+      cmd.add_option("--crf", encoding.crf,
+                     "x264's quality for " + what +
+                         ": 0 (lossless) to 51, lower is better and larger; 18 is visually lossless, 12 near-lossless "
+                         "for compositing")
+          ->check(CLI::Range(0, 51))
+          ->capture_default_str();
+  std::vector<std::string> presets(std::begin(kX264Presets), std::end(kX264Presets));
+  CLI::Option* preset =
+      cmd.add_option("--x264-preset", encoding.preset,
+                     "x264's speed against file size for " + what +
+                         ": a slower preset makes a smaller file at the same --crf. At 1280x720 and crf 18 x264 "
+                         "takes about 5 / 9 / 12 / 32 ms of CPU a frame at ultrafast / superfast / veryfast / medium, "
+                         "for files 4.8 / 2.4 / 1 / 1.1 times veryfast's")
+          ->check(CLI::IsMember(presets))
+          ->capture_default_str();
+  if (needs) {
+    crf->needs(needs);
+    preset->needs(needs);
+  }
+}
+
 CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& identity) {
   return cmd.add_option_function<std::string>(
       "--identity", [&identity](const std::string& path) { identity = read_identity_weights(path); },
@@ -233,7 +256,8 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
   cmd.add_flag_callback(
       "--no-moving-covers", [&swap] { swap.moving_covers = false; },
       "Find covers by their colour alone: not a hand of the skin's own colour moving across the face, which the "
-      "optical flow finds (at 720p on 2 cores, 30-34 fps against 35-37); a hand that rests for seconds is lost either way");
+      "optical flow finds (at 720p on 2 cores, 30-34 fps against 35-37); a hand that rests for seconds is lost either "
+      "way");
   cmd.add_flag_callback(
       "--no-grade-match", [&swap] { swap.match_grade = false; },
       "Keep the photo's range of skin hues where the target shows a narrower one (a desaturated or sepia grade); "

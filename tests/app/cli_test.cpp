@@ -970,4 +970,54 @@ TEST(Cli, BenchTransformGivesTheEditsSpeedAndItsCpuBudget) {
   EXPECT_GT(cpu["facecap"].get<double>(), threads);
 }
 
+// --crf and --x264-preset reach x264, which writes its settings into the
+// stream; values x264 lacks are refused before any work, naming the option.
+TEST(Cli, EncodingOptionsReachTheEncoderAndBadOnesAreRefused) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  auto x264_settings = [](const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = bytes.find("options: ");
+    return at == std::string::npos ? std::string() : bytes.substr(at, 600);
+  };
+  const fs::path chosen = dir.path() / "chosen", plain = dir.path() / "plain";
+  const std::string track = "track " + video.string() + " --overlay --max-frames 4 -o ";
+  ASSERT_EQ(run(track + chosen.string() + " --crf 30 --x264-preset ultrafast").code, 0);
+  ASSERT_EQ(run(track + plain.string()).code, 0);
+  const std::string settings = x264_settings(chosen / "overlay.mp4"), defaults = x264_settings(plain / "overlay.mp4");
+  EXPECT_NE(settings.find("crf=30.0"), std::string::npos) << settings;
+  EXPECT_NE(settings.find("cabac=0"), std::string::npos) << settings;  // ultrafast's CAVLC
+  EXPECT_NE(defaults.find("crf=18.0"), std::string::npos) << defaults;
+  EXPECT_NE(defaults.find("cabac=1"), std::string::npos) << defaults;  // veryfast's CABAC
+
+  const fs::path out = dir.path() / "out.mp4";
+  FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
+  const std::string swap = "swap --source " + portrait.string() + " --target " + video.string() + " -o " + out.string();
+  const std::string transform = "transform " + video.string() + " -o " + out.string();
+  // The edits' outputs take them too.
+  ASSERT_EQ(run(swap + " --max-frames 3 --crf 31 --x264-preset superfast").code, 0);
+  const std::string swapped = x264_settings(out);
+  EXPECT_NE(swapped.find("crf=31.0"), std::string::npos) << swapped;
+  EXPECT_NE(swapped.find("subme=1"), std::string::npos) << swapped;  // superfast's (veryfast: 2)
+  ASSERT_EQ(run(transform + " --max-frames 3 --crf 33").code, 0);
+  const std::string transformed = x264_settings(out);
+  EXPECT_NE(transformed.find("crf=33.0"), std::string::npos) << transformed;
+  fs::remove(out);
+  for (const auto& [args, option] :
+       std::vector<std::pair<std::string, std::string>>{{swap + " --crf 52", "--crf"},
+                                                        {swap + " --x264-preset quick", "--x264-preset"},
+                                                        {transform + " --crf -1", "--crf"}}) {
+    const RunResult r = run(args);
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_EQ(r.out.rfind(option, 0), 0u) << args << ": " << r.out;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  // Without --overlay, track has no video for them.
+  EXPECT_NE(run(track.substr(0, track.find(" --overlay")) + " -o " + (dir.path() / "t").string() + " --crf 20").code,
+            0);
+  EXPECT_FALSE(fs::exists(dir.path() / "t"));
+}
+
 }  // namespace facecap

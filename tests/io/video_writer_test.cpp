@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
 #include <vector>
 
 #include "facecap/core/error.hpp"
@@ -23,6 +24,33 @@ cv::Mat gradient_frame(int i, int w, int h) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) m.at<cv::Vec3b>(y, x) = cv::Vec3b(uchar(x + i), uchar(y), uchar(128));
   return m;
+}
+
+// Options for 64 x 64 frames, the rest as they come.
+VideoWriterOptions small_frames() {
+  VideoWriterOptions o;
+  o.width = 64;
+  o.height = 64;
+  return o;
+}
+
+constexpr const char* kPreviousOutput = "previous good output";
+
+// A good file where the output goes, which a write that fails must leave.
+fs::path previous_output(const TempDir& dir) {
+  const fs::path out = dir.path() / "keep.mp4";
+  std::ofstream(out) << kPreviousOutput;
+  return out;
+}
+
+// Whether `out` still holds it, alone in its folder (no partial left).
+bool only_the_previous_output(const fs::path& out) {
+  std::ifstream in(out);
+  std::string content;
+  std::getline(in, content);
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(out.parent_path())) ++files;
+  return content == kPreviousOutput && files == 1;
 }
 
 }  // namespace
@@ -110,7 +138,7 @@ TEST(VideoWriter, TimedFramesTakeTheSlotsOfTheirTimes) {
   o.width = 64;
   o.height = 48;
   o.fps = 25;
-  o.crf = 0;
+  o.encoding.crf = 0;
   const fs::path out = dir.path() / "timed.mp4";
   const std::vector<std::pair<double, int>> written{{10.00, 0},  {10.04, 20},  {10.08, 40},  {10.12, 60},
                                                     {10.16, 80}, {10.40, 100}, {10.41, 120}, {10.44, 140}};
@@ -161,7 +189,7 @@ TEST(VideoWriter, ColoursComeBackAsTheyWentIn) {
   VideoWriterOptions o;
   o.width = 96;
   o.height = 32;
-  o.crf = 0;
+  o.encoding.crf = 0;
   const std::vector<cv::Vec3b> colours{{0, 0, 255},    {0, 255, 0},  {255, 0, 0},
                                        {90, 130, 200}, {16, 16, 16}, {235, 235, 235}};
   cv::Mat frame(32, 96, CV_8UC3, cv::Scalar::all(128));
@@ -196,29 +224,18 @@ TEST(VideoWriter, OddSizesArePaddedForYuv420) {
 
 TEST(VideoWriter, AnAbandonedWriteKeepsTheOldFileAndLeavesNoPartial) {
   TempDir dir;
-  const fs::path out = dir.path() / "keep.mp4";
-  std::ofstream(out) << "previous good output";
-  VideoWriterOptions o;
-  o.width = 64;
-  o.height = 64;
+  const fs::path out = previous_output(dir);
+  VideoWriterOptions o = small_frames();
   {
     VideoWriter w(out, o);
     w.write(gradient_frame(0, 64, 64));
     // destroyed without finish(): an error or an interruption
   }
-  std::ifstream in(out);
-  std::string content;
-  std::getline(in, content);
-  EXPECT_EQ(content, "previous good output");
-  int files = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++files;
-  EXPECT_EQ(files, 1);
+  EXPECT_TRUE(only_the_previous_output(out));
 }
 
 TEST(VideoWriter, UnwritableOutputFolderIsAClearError) {
-  VideoWriterOptions o;
-  o.width = 64;
-  o.height = 64;
+  VideoWriterOptions o = small_frames();
   try {
     VideoWriter w("/proc/facecap-test/out.mp4", o);
     FAIL() << "expected an error";
@@ -229,12 +246,26 @@ TEST(VideoWriter, UnwritableOutputFolderIsAClearError) {
 
 TEST(VideoWriter, FinishingWithNoFramesIsAnError) {
   TempDir dir;
-  VideoWriterOptions o;
-  o.width = 64;
-  o.height = 64;
+  VideoWriterOptions o = small_frames();
   VideoWriter w(dir.path() / "none.mp4", o);
   EXPECT_THROW(w.finish(), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none.mp4"));
+}
+
+// x264 settings it lacks are refused before ffmpeg starts, leaving the
+// file that was there as it was.
+TEST(VideoWriter, EncodingsX264LacksAreAClearError) {
+  TempDir dir;
+  const fs::path out = previous_output(dir);
+  VideoWriterOptions o = small_frames();
+  for (const VideoEncoding& bad : {VideoEncoding{52, "veryfast"}, VideoEncoding{-1, "veryfast"},
+                                   VideoEncoding{18, "quick"}, VideoEncoding{18, ""}}) {
+    o.encoding = bad;
+    EXPECT_THROW(VideoWriter(out, o), Error) << bad.crf << " " << bad.preset;
+  }
+  EXPECT_TRUE(only_the_previous_output(out));
+  for (const char* preset : kX264Presets) EXPECT_NO_THROW(check_encoding({0, preset})) << preset;
+  EXPECT_NO_THROW(check_encoding({51, "veryslow"}));
 }
 
 }  // namespace facecap

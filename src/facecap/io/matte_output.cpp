@@ -13,7 +13,7 @@ namespace {
 
 VideoWriterOptions matte_options(VideoWriterOptions like, const SyntheticMark& mark) {
   like.audio_source.reset();
-  like.crf = 0;  // x264's lossless mode: a matte's levels are its content
+  like.encoding.crf = 0;  // x264's lossless mode: a matte's levels are its content
   like.metadata = synthetic_metadata(mark);
   return like;
 }

@@ -36,6 +36,7 @@ std::string video_container(const fs::path& path) {
 VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
     : path_(path), options_(std::move(options)), file_(path) {
   const std::string container = video_container(path);
+  check_encoding(options_.encoding);
   if (options_.width <= 0 || options_.height <= 0) throw Error("video writer: frame size not set");
   // yuv420p needs even sizes; odd inputs are padded by one pixel.
   options_.width += options_.width % 2;
@@ -67,8 +68,8 @@ VideoWriter::VideoWriter(const fs::path& path, VideoWriterOptions options)
                              "-b:a", "160k"});
     if (options_.audio_ends_with_video) args.push_back("-shortest");
   }
-  args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.preset, "-crf", std::to_string(options_.crf),
-                           "-pix_fmt", "yuv420p"});
+  args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.encoding.preset, "-crf",
+                           std::to_string(options_.encoding.crf), "-pix_fmt", "yuv420p"});
   if (container != "matroska") args.insert(args.end(), {"-movflags", "+faststart+use_metadata_tags"});
   for (const auto& [key, value] : options_.metadata) args.insert(args.end(), {"-metadata", key + "=" + value});
   args.insert(args.end(), {"-f", container, file_.temp_path().string()});

@@ -13,6 +13,7 @@
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/io/video_encoding.hpp"
 
 namespace facecap {
 
@@ -36,8 +37,7 @@ struct VideoWriterOptions {
   bool audio_ends_with_video = false;
   // Container metadata (mp4/mov/Matroska tags), e.g. {"comment", "..."}.
   std::map<std::string, std::string> metadata;
-  int crf = 18;                     // x264 quality: lower is better, 18 is visually lossless
-  std::string preset = "veryfast";  // x264 speed/size trade-off
+  VideoEncoding encoding;
 };
 
 class VideoWriter {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "facecap/io/video_encoding.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/job_cpu.hpp"
@@ -37,6 +38,7 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
 struct SwapJobOptions {
   CaptureOptions capture;
   SwapOptions swap;
+  VideoEncoding encoding;  // the output video's (and its matte's preset)
   int source_frames = 30;  // frames of a source video or folder the identity is solved from
   FacePick source_face;    // which face of the source where it shows several (capture.tracker.pick: the target's)
   // --all-faces: target faces (by index in the order found, as track

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "facecap/io/udp_sender.hpp"
+#include "facecap/io/video_encoding.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/refine/refiner.hpp"
 
@@ -42,6 +43,7 @@ struct TrackOptions {
   bool meshes = false;
   MeshSpace mesh_space = MeshSpace::kModel;
   bool overlay = false;
+  VideoEncoding encoding;  // the overlay videos'
   bool gltf = false;
   bool livelink = false;  // DIR/livelink_face.csv (io/livelink_csv.hpp)
   // Each frame's Live Link Face values also sent as a datagram as the frame

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "facecap/expr/expression_transform.hpp"
+#include "facecap/io/video_encoding.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/face_transform_stream.hpp"
@@ -23,6 +24,7 @@ namespace facecap {
 struct TransformJobOptions {
   CaptureOptions capture;
   TransformOptions transform;
+  VideoEncoding encoding;  // the output video's (and its matte's preset)
   std::filesystem::path models_dir = default_expression_models_dir();
   std::filesystem::path plot;  // PNG of weight curves (empty: none)
   // The transformed performance as an animated glTF (face_animation.hpp),

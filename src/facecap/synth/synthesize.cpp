@@ -51,7 +51,7 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
   vo.width = options.width;
   vo.height = options.height;
   vo.fps = options.fps;
-  vo.crf = 12;  // near-lossless: the renders are test inputs
+  vo.encoding.crf = 12;  // near-lossless: the renders are test inputs
   vo.metadata = synthetic_metadata(mark);
   VideoWriter writer(result.video, vo);
 
