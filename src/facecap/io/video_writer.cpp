@@ -228,8 +228,9 @@ double output_time(const InputInfo& input, int index, double time) {
   return has_timeline(input) ? time : index / (input.fps > 0 ? input.fps : kStillsFps);
 }
 
-VideoWriterOptions output_like(const InputInfo& input, int max_frames) {
+VideoWriterOptions output_like(const InputInfo& input, int max_frames, const VideoEncoding& encoding) {
   VideoWriterOptions o;
+  o.encoding = encoding;
   o.width = input.width;
   o.height = input.height;
   o.fps = input.fps > 0 ? input.fps : kStillsFps;

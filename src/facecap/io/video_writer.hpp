@@ -86,8 +86,9 @@ class VideoWriter {
 
 // An output of the input's size and rate carrying its audio (if any) from
 // where the input starts (InputInfo::first_frame), ending with the last
-// frame written when max_frames stops the run before the input's end (0: all).
-VideoWriterOptions output_like(const InputInfo& input, int max_frames = 0);
+// frame written when max_frames stops the run before the input's end (0: all),
+// encoded as `encoding` says.
+VideoWriterOptions output_like(const InputInfo& input, int max_frames = 0, const VideoEncoding& encoding = {});
 
 // Where frame `index` (at `time`, Frame::time) goes on an output_like(input)
 // video, for VideoWriter::write(bgr, time): its time on a video's or a

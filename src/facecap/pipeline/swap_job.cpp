@@ -180,8 +180,7 @@ SwapSetup prepare_swap(const FaceModel& model, const std::string& source_photo, 
 }
 
 VideoWriterOptions marked_output(const InputInfo& info, const SwapJobOptions& options, const SyntheticMark& mark) {
-  VideoWriterOptions vo = output_like(info, options.capture.max_frames);
-  vo.encoding = options.encoding;
+  VideoWriterOptions vo = output_like(info, options.capture.max_frames, options.encoding);
   vo.metadata = synthetic_metadata(mark);
   return vo;
 }

@@ -121,8 +121,7 @@ class FrameWriter {
       });
     }
     if (options.overlay) {
-      VideoWriterOptions vo = output_like(info, options.capture.max_frames);
-      vo.encoding = options.encoding;
+      VideoWriterOptions vo = output_like(info, options.capture.max_frames, options.encoding);
       vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
       overlay_ = std::make_unique<VideoWriter>(dir / kOverlayVideo, vo);
       if (options.refine) {

@@ -72,8 +72,7 @@ SyntheticMark transform_mark(const std::string& input, const InputInfo& info, co
 }
 
 VideoWriterOptions marked_output(const InputInfo& info, const TransformJobOptions& options, const SyntheticMark& mark) {
-  VideoWriterOptions vo = output_like(info, options.capture.max_frames);
-  vo.encoding = options.encoding;
+  VideoWriterOptions vo = output_like(info, options.capture.max_frames, options.encoding);
   vo.metadata = synthetic_metadata(mark);
   return vo;
 }
