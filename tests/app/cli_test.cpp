@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,6 +37,14 @@ RunResult run(const std::string& args) {
 }
 
 int lines(const std::string& s) { return test::count_lines(s); }
+
+// The JSON object a command prints; where it fails, an exception carrying its
+// exit code and output, which fails the test there.
+nlohmann::json json_from(const std::string& args) {
+  const RunResult r = run(args);
+  if (r.code != 0) throw std::runtime_error(args + " exited with " + std::to_string(r.code) + ": " + r.out);
+  return nlohmann::json::parse(r.out);
+}
 
 }  // namespace
 
@@ -519,10 +528,8 @@ TEST(Cli, SynthWithAPortraitsSkinSaysSoInItsMarks) {
 // dlib's landmarks, which are refused in one line.
 TEST(Cli, EvalTrackFitsSyntheticFramesAsPhotos) {
   FACECAP_REQUIRE_MODEL(model);
-  const RunResult r = run("eval track --synthetic 6 --photos 3 --size 640x480");
-  ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j.at("photos"), 2) << r.out;
+  const nlohmann::json j = json_from("eval track --synthetic 6 --photos 3 --size 640x480");
+  EXPECT_EQ(j.at("photos"), 2) << j.dump();
   EXPECT_GT(j.at("shape_error_mm").get<double>(), 0.0);
   EXPECT_LT(j.at("shape_error_mm").get<double>(), 5.0);
   for (const std::string& bad : {std::string("eval track --synthetic 6 --photos 3 --landmarks dlib"),
@@ -832,12 +839,10 @@ TEST(Cli, DeviceOptionNamesWhatItNeeds) {
 TEST(Cli, BenchTrackWithRefinementReportsEachPart) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
-  const RunResult r = run("bench track " + video.string() + " --refine --device cpu --max-frames 40");
-  ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json j = json_from("bench track " + video.string() + " --refine --device cpu --max-frames 40");
   const nlohmann::json& refine = j.at("refine");
   const int frames = refine.at("frames").get<int>();
-  ASSERT_EQ(frames, 40) << r.out;
+  ASSERT_EQ(frames, 40) << j.dump();
   EXPECT_EQ(refine.at("device"), "cpu");
   const auto& pass = refine.at("displacement_ms_per_level");
   const auto& solve = refine.at("displacement_solve_ms_per_level");
@@ -876,9 +881,7 @@ TEST(Cli, SavedDisplacementProblemsSolveAgainOnTheirOwn) {
                     problems.string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(std::filesystem::exists(problems / "frame0002_level0.fcdp"));
-  r = run("bench displacement " + problems.string() + " --device cpu --repeats 1");
-  ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json j = json_from("bench displacement " + problems.string() + " --device cpu --repeats 1");
   EXPECT_EQ(j.at("frames").get<int>(), 3);
   ASSERT_GE(j.at("levels").get<int>(), 1);
   const auto& ms = j.at("cpu").at("ms_per_level");
@@ -930,9 +933,7 @@ TEST(Cli, BenchSwapTrackedFirstTimesTheSwapAloneAndSaysSo) {
   FACECAP_REQUIRE_DATA(target, "talking_webcam_400x300.mp4");
   FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
   const std::string args = "bench swap --source " + photo.string() + " --target " + target.string();
-  const RunResult r = run(args + " --tracked-first --max-frames 12");
-  ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json j = json_from(args + " --tracked-first --max-frames 12");
   EXPECT_TRUE(j["swap"]["tracked_first"].get<bool>());
   EXPECT_EQ(j["swap"]["frames"].get<int>(), 12);
   EXPECT_GT(j["swap"]["swap_fps"].get<double>(), 0.0);
@@ -955,9 +956,7 @@ TEST(Cli, BenchSwapTrackedFirstTimesTheSwapAloneAndSaysSo) {
 TEST(Cli, BenchTransformGivesTheEditsSpeedAndItsCpuBudget) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
-  const RunResult r = run("bench transform " + video.string() + " --max-frames 40");
-  ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json j = json_from("bench transform " + video.string() + " --max-frames 40");
   const nlohmann::json& t = j["transform"];
   EXPECT_EQ(t["frames"].get<int>(), 40);
   EXPECT_GT(t["edit_fps"].get<double>(), 0.0);
