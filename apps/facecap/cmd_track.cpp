@@ -98,7 +98,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       "Capture head pose, focal length, identity and 53 expression weights per frame: DIR/frames.csv, "
       "DIR/frames.jsonl, DIR/identity.json, and optionally meshes, an animated glTF and an overlay video");
   struct Args {
-    std::string input, out, mesh_space = "model", subject = "facecap";
+    std::string input, out, mesh_space = "model", mesh_format = "obj", subject = "facecap";
     bool stream = false, all_faces = false;
     TrackOptions options;
     AllFacesOptions all;
@@ -106,9 +106,17 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file, image, folder of images, or cam:N")->required();
   cmd->add_option("-o,--output", a->out, "Output folder")->required();
-  cmd->add_flag("--meshes", a->options.meshes, "Write one OBJ per tracked frame (face region, with UVs) to DIR/meshes");
+  CLI::Option* meshes = cmd->add_flag("--meshes", a->options.meshes,
+                                      "Write one mesh per tracked frame (face region, with UVs) to DIR/meshes");
   cmd->add_option("--mesh-space", a->mesh_space, "Coordinates of the meshes: model (y up) or camera (OpenCV)")
       ->check(CLI::IsMember({"model", "camera"}))
+      ->capture_default_str();
+  cmd->add_option("--mesh-format", a->mesh_format,
+                  "File format of the meshes: obj (text: positions, UVs, quads) or ply (binary, about half the size, "
+                  "with each vertex's normal too, and with --refine its albedo as the vertex colour, which MeshLab, "
+                  "CloudCompare, Open3D and Blender show)")
+      ->check(CLI::IsMember({"obj", "ply"}))
+      ->needs(meshes)
       ->capture_default_str();
   CLI::Option* overlay =
       cmd->add_flag("--overlay", a->options.overlay,
@@ -170,6 +178,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->callback([a, &global] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
+    a->options.mesh_format = a->mesh_format == "ply" ? MeshFormat::kPly : MeshFormat::kObj;
     a->options.capture.fit.check();
     a->options.capture.quiet = global.quiet;
     if (a->options.livelink_stream) {

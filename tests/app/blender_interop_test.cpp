@@ -3,7 +3,8 @@
 // names, the texture, one key per tracked frame) and where its camera sees
 // the face at a key, against the file as the glTF specification reads it
 // (io/glb_reader.hpp, itself checked against the tracker in
-// face_animation_test.cpp).
+// face_animation_test.cpp). And a refined PLY mesh opened by Blender's PLY
+// importer, with its UVs and vertex colours.
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -19,6 +20,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
+#include "io/ply_reader.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -61,6 +63,14 @@ cv::Mat expected_coverage(const test::Glb& g, int key, int width, int height) {
   return mask;
 }
 
+// Whether Blender can run here; fails under CI, where setup.sh installs it.
+bool have_blender() { return test::run_command("command -v blender >/dev/null 2>&1").code == 0; }
+
+double srgb_to_linear(double byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
 double intersection_over_union(const cv::Mat& a, const cv::Mat& b) {
   return cv::countNonZero(a & b) / double(std::max(1, cv::countNonZero(a | b)));
 }
@@ -69,7 +79,7 @@ double intersection_over_union(const cv::Mat& a, const cv::Mat& b) {
 
 TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView) {
   FACECAP_REQUIRE_MODEL(model);
-  if (test::run_command("command -v blender >/dev/null 2>&1").code != 0) {
+  if (!have_blender()) {
     if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";
     GTEST_SKIP() << "blender not installed (setup.sh installs it): the glTF import is not checked";
   }
@@ -129,6 +139,45 @@ TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView
   // that a camera, a pose or a time one frame off would fail that bar.
   for (const int other : {key - 1, key + 1})
     EXPECT_LT(intersection_over_union(expected_coverage(g, other, width, height), expected), 0.97) << other;
+}
+
+// track --refine --meshes --mesh-format ply: Blender's PLY importer reads the
+// refined finest level with every vertex and triangle, one UV layer and the
+// albedo as a colour attribute, which it holds as the file's sRGB bytes
+// linearised.
+TEST(BlenderInterop, TheRefinedPlyMeshOpensWithItsUvsAndColours) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  if (!have_blender()) {
+    if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";
+    GTEST_SKIP() << "blender not installed (setup.sh installs it): the PLY import is not checked";
+  }
+  TempDir dir;
+  const test::CommandResult tracked =
+      test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() + " -o " + dir.path().string() +
+                        " --max-frames 32 --refine --meshes --mesh-format ply 2>&1");
+  ASSERT_EQ(tracked.code, 0) << tracked.out;
+  const fs::path ply_path = dir.path() / "meshes" / "frame_000031.ply";
+  const test::Ply ply = test::Ply::read(ply_path);
+  const fs::path report_path = dir.path() / "blender.json";
+  const test::CommandResult blender = test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
+                                                        std::string(FACECAP_BLENDER_PLY_PROBE) + " -- " +
+                                                        ply_path.string() + " " + report_path.string() + " 2>&1");
+  ASSERT_EQ(blender.code, 0) << blender.out;
+  std::ifstream in(report_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["meshes"], 1);
+  EXPECT_EQ(size_t(report["vertices"]), ply.vertices());
+  EXPECT_EQ(size_t(report["faces"]), ply.faces.size());
+  EXPECT_EQ(report["uv_layers"], 1);
+  ASSERT_EQ(report["colour_attributes"], 1);
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<double>& bytes = ply.vertex.at(k == 0 ? "red" : k == 1 ? "green" : "blue");
+    double mean = 0;
+    for (double b : bytes) mean += srgb_to_linear(b);
+    mean /= double(bytes.size());
+    EXPECT_NEAR(double(report["colour_mean"][k]), mean, 0.002) << "channel " << k;
+  }
 }
 
 }  // namespace facecap

@@ -14,6 +14,7 @@
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/livelink_csv.hpp"
 #include "facecap/io/mesh_writer.hpp"
+#include "facecap/io/ply_writer.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
@@ -275,21 +276,21 @@ class FrameWriter {
  private:
   void write_mesh(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
     if (!options_.meshes) return;
+    const bool ply = options_.mesh_format == MeshFormat::kPly;
     char name[64];
-    std::snprintf(name, sizeof(name), "frame_%06d.obj", f.index);
+    std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, ply ? "ply" : "obj");
     meshes_written_.insert(name);
+    const fs::path file = dir_ / "meshes" / name;
     const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
-    const std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
-                                (camera_space ? "\ncamera space (x right, y down, z forward), cm"
-                                              : "\nICT model space (y up, z out of the face), cm");
+    std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
+                          (camera_space ? "\ncamera space (x right, y down, z forward), cm"
+                                        : "\nICT model space (y up, z out of the face), cm");
     if (ref != nullptr && refiner_ != nullptr) {
       // The refined finest level, with UVs prolonged through the hierarchy.
       const MeshHierarchy& h = refiner_->hierarchy();
       const int finest = h.num_levels() - 1;
       if (!refined_uvs_) {
-        const std::vector<Vec2f> uv = per_vertex_uvs(face_mesh_);
-        Eigen::MatrixXf coarse_uv(2, uv.size());
-        for (size_t i = 0; i < uv.size(); ++i) coarse_uv.col(i) = uv[i];
+        const Eigen::MatrixXf coarse_uv = uv_matrix(coarse_uvs());
         const Eigen::MatrixXf fine = h.prolong_from_coarse(coarse_uv, finest);
         refined_uvs_ = std::vector<Vec2f>(fine.cols());
         for (Eigen::Index i = 0; i < fine.cols(); ++i) (*refined_uvs_)[i] = fine.col(i);
@@ -300,13 +301,48 @@ class FrameWriter {
         }
       }
       const Positions out = camera_space ? ref->positions : to_model(ref->positions, f.fit.pose);
-      write_obj(dir_ / "meshes" / name,
-                {&out, &refined_polygons_, &*refined_uvs_, comment + "\nrefined (finest level)"});
+      comment += "\nrefined (finest level)";
+      if (ply) {
+        const Positions normals =
+            camera_space ? ref->normals
+                         : Positions(f.fit.pose.model_to_camera_rotation().cast<float>().transpose() * ref->normals);
+        write_ply(file, {.positions = &out,
+                         .polygons = &refined_polygons_,
+                         .normals = &normals,
+                         .colours = &ref->albedo,
+                         .uvs = &*refined_uvs_,
+                         .comment = comment + "\nvertex colours: the albedo (RGB, as albedo.png)"});
+      } else {
+        write_obj(file, {&out, &refined_polygons_, &*refined_uvs_, comment});
+      }
     } else {
       const Positions out = camera_space ? coarse : to_model(coarse, f.fit.pose);
-      write_obj(dir_ / "meshes" / name, {&out, &face_polygons_, &model_.uvs, comment});
+      if (ply) {
+        const Positions normals = vertex_normals(out, face_mesh_.triangles);
+        write_ply(file, {.positions = &out,
+                         .polygons = &face_polygons_,
+                         .normals = &normals,
+                         .colours = nullptr,  // no albedo without --refine
+                         .uvs = &coarse_uvs(),
+                         .comment = comment});
+      } else {
+        write_obj(file, {&out, &face_polygons_, &model_.uvs, comment});
+      }
     }
     ++meshes_;
+  }
+
+  // One UV a face-region vertex (its corners share one on the face region:
+  // the layout's seams lie outside it).
+  const std::vector<Vec2f>& coarse_uvs() {
+    if (!coarse_uvs_) coarse_uvs_ = per_vertex_uvs(face_mesh_);
+    return *coarse_uvs_;
+  }
+
+  static Eigen::MatrixXf uv_matrix(const std::vector<Vec2f>& uvs) {
+    Eigen::MatrixXf m(2, Eigen::Index(uvs.size()));
+    for (size_t i = 0; i < uvs.size(); ++i) m.col(Eigen::Index(i)) = uvs[i];
+    return m;
   }
 
   // An earlier run's meshes in this folder that this run did not write (frames
@@ -316,7 +352,8 @@ class FrameWriter {
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(dir_ / "meshes", ec)) {
       const std::string name = entry.path().filename().string();
-      if (name.starts_with("frame_") && name.ends_with(".obj") && !meshes_written_.contains(name))
+      if (name.starts_with("frame_") && (name.ends_with(".obj") || name.ends_with(".ply")) &&
+          !meshes_written_.contains(name))
         fs::remove(entry.path(), ec);
     }
   }
@@ -445,7 +482,7 @@ class FrameWriter {
   std::vector<Polygon> face_polygons_;
   TriangleMesh face_mesh_;
   const Refiner* refiner_ = nullptr;
-  std::optional<std::vector<Vec2f>> refined_uvs_;
+  std::optional<std::vector<Vec2f>> coarse_uvs_, refined_uvs_;
   std::vector<Polygon> refined_polygons_;
   std::optional<ShotAnimations> animations_;
   std::vector<fs::path> animation_files_;

@@ -5,7 +5,8 @@
 //                      the 53 weights under their ARKit names
 //   DIR/frames.jsonl   the same per frame, plus the observed and fitted landmarks
 //   DIR/identity.json  identity weights, focal length, image size, conventions
-//   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with UVs
+//   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with
+//                      UVs (--mesh-format ply: binary PLY, with normals)
 //   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
 //   DIR/animation.glb  (--gltf) the capture as an animated glTF: the face
 //                      with the 53 blend shapes as morph targets, head pose
@@ -18,7 +19,8 @@
 // With --refine (shading-based refinement, §4.2-4.3) also:
 //   lighting columns l0..l8 per frame, DIR/albedo.png (ICT UV layout; one
 //   per shot, as the glTF),
-//   refined finest-level meshes with --meshes, and with --overlay
+//   refined finest-level meshes with --meshes (a PLY's vertex colours the
+//   albedo), and with --overlay
 //   DIR/shaded.mp4 (the refined geometry shaded) and DIR/heatmap.mp4 (the
 //   photometric error, paper Fig. 4.11).
 // Every file is written under a temporary name and renamed when complete.
@@ -37,11 +39,15 @@
 namespace facecap {
 
 enum class MeshSpace { kModel, kCamera };
+// OBJ: positions, UVs, quads; PLY (binary): also each vertex's normal, and
+// with --refine its albedo as the vertex colour (io/ply_writer.hpp).
+enum class MeshFormat { kObj, kPly };
 
 struct TrackOptions {
   CaptureOptions capture;
   bool meshes = false;
   MeshSpace mesh_space = MeshSpace::kModel;
+  MeshFormat mesh_format = MeshFormat::kObj;
   bool overlay = false;
   VideoEncoding encoding;  // the overlay videos'
   bool gltf = false;
