@@ -5,6 +5,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/io/udp_sender.hpp"
 #include "facecap/pipeline/track_each_face.hpp"
+#include "facecap/pipeline/track_each_image.hpp"
 #include "facecap/pipeline/track_job.hpp"
 
 namespace facecap::cli {
@@ -99,7 +100,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       "DIR/frames.jsonl, DIR/identity.json, and optionally meshes, an animated glTF and an overlay video");
   struct Args {
     std::string input, out, mesh_space = "model", mesh_format = "obj", subject = "facecap";
-    bool stream = false, all_faces = false;
+    bool stream = false, all_faces = false, each_image = false;
     TrackOptions options;
     AllFacesOptions all;
   };
@@ -176,6 +177,15 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   stream->excludes("--all-faces");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
+  cmd->add_flag("--each-image", a->each_image,
+                "INPUT is a folder of portraits, each fitted on its own as a photo is (its own identity and focal "
+                "length, any size) into DIR/<image name>, with one table of all: DIR/images.csv and "
+                "DIR/images.jsonl (a row per image: status, pose, 53 weights, 50 identity weights). Without it a "
+                "folder is one camera's frames of one face")
+      ->excludes(all_faces)
+      ->excludes(stream)
+      ->excludes("--livelink-udp")
+      ->excludes("--start");
   cmd->callback([a, &global] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
     a->options.mesh_format = a->mesh_format == "ply" ? MeshFormat::kPly : MeshFormat::kObj;
@@ -197,6 +207,18 @@ void register_track(CLI::App& app, GlobalOptions& global) {
           std::fprintf(stderr, "facecap: stdout was closed; --stream stops, and the files are still written\n");
         }
       };
+    }
+    if (a->each_image) {
+      const EachImageSummary each = run_track_each_image(model, a->input, a->out, a->options);
+      if (each.with_face == 0)
+        throw Error("no face found in any of the " + std::to_string(each.images) + " image(s) of " + a->input +
+                    " (each one's status is in " + each.tables.front().string() + ")");
+      std::fprintf(stderr, "images %d: a face fitted in %d, none found in %d, %d could not be read%s%s%s\n",
+                   each.images, each.with_face, each.images - each.with_face - each.unreadable, each.unreadable,
+                   each.first_error.empty() ? "" : " (the first: ", each.first_error.c_str(),
+                   each.first_error.empty() ? "" : ")");
+      for (const std::filesystem::path& table : each.tables) std::printf("%s\n", table.string().c_str());
+      return;
     }
     if (a->all_faces) {
       const EachFaceSummary each = run_track_each_face(model, a->input, a->out, a->options, a->all);

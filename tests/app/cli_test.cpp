@@ -210,6 +210,35 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "animation.glb"));  // nor a face to animate
 }
 
+// track --each-image: a folder where no image shows a face is an error that
+// says so in one line, after the table that gives each image's status; the
+// option is for folders and for one face an image, and says so otherwise.
+TEST(Cli, TrackEachImageSaysWhenNoImageHasAFace) {
+  FACECAP_REQUIRE_MODEL(model);
+  TempDir dir;
+  const fs::path folder = dir.path() / "images";
+  fs::create_directories(folder);
+  write_image((folder / "grey.png").string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar::all(128)));
+  std::ofstream(folder / "broken.jpg") << "not a jpeg";
+  const fs::path out = dir.path() / "out";
+  const RunResult r = run("track " + folder.string() + " -o " + out.string() + " --each-image");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("no face found in any of the 2 image(s)"), std::string::npos) << r.out;
+  std::ifstream csv(out / "images.csv");
+  std::string header, broken, grey;
+  ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, broken) && std::getline(csv, grey));
+  EXPECT_EQ(broken.rfind("broken.jpg,error,", 0), 0u) << broken;
+  EXPECT_EQ(grey.rfind("grey.png,lost,", 0), 0u) << grey;
+
+  for (const std::string& bad : {"track " + folder.string() + " -o " + out.string() + " --each-image --all-faces",
+                                 "track " + folder.string() + " -o " + out.string() + " --each-image --start 1",
+                                 "track " + folder.string() + " -o " + out.string() + " --mesh-format ply"}) {
+    const RunResult usage = run(bad);
+    EXPECT_EQ(usage.code, 2) << bad << ": " << usage.out;
+  }
+}
+
 TEST(Cli, EditsOfAVideoWithNoFaceWriteNothingAndSaySo) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");

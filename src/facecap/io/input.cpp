@@ -38,6 +38,15 @@ bool is_image_path(const fs::path& path) {
          ext == ".webp" || ext == ".ppm" || ext == ".pgm";
 }
 
+std::vector<fs::path> folder_images(const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file() && is_image_path(entry.path())) files.push_back(entry.path());
+  if (files.empty()) throw Error("input folder holds no images: " + dir.string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 namespace {
 
 std::string seconds_text(double seconds) {
@@ -83,12 +92,7 @@ class ImageSource final : public FrameSource {
 
 class FolderSource final : public FrameSource {
  public:
-  explicit FolderSource(const fs::path& dir) {
-    for (const auto& entry : fs::directory_iterator(dir)) {
-      if (entry.is_regular_file() && is_image_path(entry.path())) files_.push_back(entry.path());
-    }
-    if (files_.empty()) throw Error("input folder holds no images: " + dir.string());
-    std::sort(files_.begin(), files_.end());
+  explicit FolderSource(const fs::path& dir) : files_(folder_images(dir)) {
     info_.spec = dir.string();
     info_.kind = InputKind::kImageFolder;
     info_.frames = static_cast<int>(files_.size());

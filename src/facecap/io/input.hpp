@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -85,5 +86,10 @@ std::string av_error_text(int code);
 std::map<std::string, std::string> read_container_tags(const std::filesystem::path& path);
 
 bool is_image_path(const std::filesystem::path& path);
+
+// The images of a folder (by their extension; not its subfolders'), in name
+// order, as a folder input reads them. Throws facecap::Error where there are
+// none.
+std::vector<std::filesystem::path> folder_images(const std::filesystem::path& dir);
 
 }  // namespace facecap
