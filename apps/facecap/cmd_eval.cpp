@@ -1,7 +1,10 @@
+#include <filesystem>
+
 #include "commands.hpp"
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/pipeline/landmark_eval.hpp"
+#include "facecap/pipeline/landmark_folder_eval.hpp"
 #include "facecap/pipeline/photo_identity_eval.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/swap_eval.hpp"
@@ -24,7 +27,9 @@ nlohmann::json region_json(const RegionNme& r) {
 
 void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
   auto* cmd = eval.add_subcommand("landmarks",
-                                  "Landmark accuracy as JSON: dlib's 68 points on an annotated image (IMAGE PTS), "
+                                  "Landmark accuracy as JSON: dlib's 68 points on an annotated image (IMAGE PTS); on "
+                                  "a folder of annotated images (FOLDER: each image beside its .pts, as 300-W ships "
+                                  "them) dlib's and the fitted model's, with mean, median, failure rate and AUC_0.08; "
                                   "or detection rate and NME on synthetic renders (--synthetic N)");
   struct Args {
     std::string image, pts;
@@ -33,7 +38,7 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
     std::string face_photo;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("IMAGE", a->image, "Image file");
+  cmd->add_option("IMAGE", a->image, "Image file, or a folder of images each beside its .pts annotation");
   cmd->add_option("PTS", a->pts, "iBUG .pts annotation (1-based coordinates)");
   cmd->add_option("--synthetic", a->synthetic, "Render N synthetic frames instead and score against their truth");
   cmd->add_option("--seed", a->seed, "Seed of the synthetic performance")->capture_default_str();
@@ -54,7 +59,35 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
       return;
     }
     if (!a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
-    if (a->image.empty() || a->pts.empty()) throw Error("eval landmarks needs IMAGE and PTS, or --synthetic N");
+    if (!a->image.empty() && a->pts.empty() && std::filesystem::is_directory(a->image)) {
+      const FaceModel model = load_model(global);
+      const LandmarkFolderEval r = evaluate_landmark_folder(model, a->image, global.quiet);
+      const auto scores = [](const LandmarkScores& s) {
+        return nlohmann::json{{"images", s.images},
+                              {"scored", s.scored},
+                              {"nme_mean", s.nme_mean},
+                              {"nme_median", s.nme_median},
+                              {"failure_rate_0.08", s.failure_rate},
+                              {"auc_0.08", s.auc}};
+      };
+      nlohmann::json per_image = nlohmann::json::array();
+      for (const AnnotatedImageScore& i : r.images) {
+        nlohmann::json j = {{"image", i.image}, {"faces", i.faces}};
+        j["nme"] = i.nme ? nlohmann::json(*i.nme) : nlohmann::json();
+        j["fitted_nme"] = i.fitted_nme ? nlohmann::json(*i.fitted_nme) : nlohmann::json();
+        if (!i.error.empty()) j["error"] = i.error;
+        per_image.push_back(j);
+      }
+      print_json({{"folder", a->image},
+                  {"normaliser", "outer eye corners (300-W)"},
+                  {"unannotated_images", r.unannotated},
+                  {"dlib", scores(r.dlib)},
+                  {"fitted", scores(r.fitted)},
+                  {"per_image", per_image}});
+      return;
+    }
+    if (a->image.empty() || a->pts.empty())
+      throw Error("eval landmarks needs IMAGE and PTS, a folder of annotated images, or --synthetic N");
     const LandmarkEvalResult r = evaluate_landmarks(a->image, a->pts);
     nlohmann::json j = {{"image", a->image},
                         {"faces", r.faces},

@@ -570,6 +570,29 @@ TEST(Cli, EvalTrackFitsSyntheticFramesAsPhotos) {
   }
 }
 
+// eval landmarks FOLDER: one JSON object with both sets' summaries and a row
+// per annotated image; a folder without annotations is a one-line error.
+TEST(Cli, EvalLandmarksScoresAFolderOfAnnotatedImages) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(lfpw, "lfpw_image_0010.png");
+  FACECAP_REQUIRE_DATA(lfpw_pts, "lfpw_image_0010.pts");
+  TempDir dir;
+  fs::copy_file(lfpw, dir.path() / "face.png");
+  fs::copy_file(lfpw_pts, dir.path() / "face.pts");
+  const nlohmann::json j = json_from("eval landmarks " + dir.path().string());
+  EXPECT_EQ(j["dlib"]["images"], 1);
+  EXPECT_EQ(j["fitted"]["scored"], 1);
+  EXPECT_GT(double(j["fitted"]["auc_0.08"]), 0.4);  // 0.60 measured: NME 0.032
+  EXPECT_EQ(j["fitted"]["failure_rate_0.08"], 0.0);
+  ASSERT_EQ(j["per_image"].size(), 1u);
+  EXPECT_EQ(j["per_image"][0]["image"], "face.png");
+  fs::remove(dir.path() / "face.pts");
+  const RunResult bare = run("eval landmarks " + dir.path().string());
+  EXPECT_EQ(bare.code, 1) << bare.out;
+  EXPECT_EQ(lines(bare.out), 1) << bare.out;
+  EXPECT_NE(bare.out.find("annotation"), std::string::npos) << bare.out;
+}
+
 TEST(Cli, ProbeDescribesAVideoAsJson) {
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   const RunResult r = run("probe " + video.string());
