@@ -89,6 +89,7 @@ void print_track_files(const TrackSummary& s, FILE* out, bool livelink) {
   std::fprintf(out, "%s\n", (s.output_dir / "frames.csv").string().c_str());
   if (livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
+  for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
 }
 
 }  // namespace
@@ -112,13 +113,20 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--mesh-space", a->mesh_space, "Coordinates of the meshes: model (y up) or camera (OpenCV)")
       ->check(CLI::IsMember({"model", "camera"}))
       ->capture_default_str();
-  cmd->add_option("--mesh-format", a->mesh_format,
-                  "File format of the meshes: obj (text: positions, UVs, quads) or ply (binary, about half the size, "
-                  "with each vertex's normal too, and with --refine its albedo as the vertex colour, which MeshLab, "
-                  "CloudCompare, Open3D and Blender show)")
-      ->check(CLI::IsMember({"obj", "ply"}))
-      ->needs(meshes)
-      ->capture_default_str();
+  CLI::Option* point_cache = cmd->add_flag(
+      "--point-cache", a->options.point_cache,
+      "Write DIR/face.pc2: the meshes --meshes would write (with --refine the refined ones), every frame's in one "
+      "PC2 point cache, and DIR/face_rest.obj (or .ply), the mesh it animates: in Blender, import the mesh and add "
+      "a Mesh Cache modifier with the .pc2 (Frame Start: the header's start frame, 0 for a video's first shot); "
+      "frames without a face hold the last positions. One pair per shot (face_shot<N>.pc2 after the first)");
+  CLI::Option* mesh_format =
+      cmd->add_option(
+             "--mesh-format", a->mesh_format,
+             "File format of the meshes: obj (text: positions, UVs, quads) or ply (binary, about half the size, "
+             "with each vertex's normal too, and with --refine its albedo as the vertex colour, which MeshLab, "
+             "CloudCompare, Open3D and Blender show)")
+          ->check(CLI::IsMember({"obj", "ply"}))
+          ->capture_default_str();
   CLI::Option* overlay =
       cmd->add_flag("--overlay", a->options.overlay,
                     "Write DIR/overlay.mp4: landmarks and mesh over the input, with its audio (with --refine also "
@@ -186,9 +194,11 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       ->excludes(stream)
       ->excludes("--livelink-udp")
       ->excludes("--start");
-  cmd->callback([a, &global] {
+  cmd->callback([a, &global, meshes, point_cache, mesh_format] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
     a->options.mesh_format = a->mesh_format == "ply" ? MeshFormat::kPly : MeshFormat::kObj;
+    if (mesh_format->count() > 0 && meshes->count() == 0 && point_cache->count() == 0)
+      throw CLI::ValidationError("--mesh-format", "needs --meshes or --point-cache");
     a->options.capture.fit.check();
     a->options.capture.quiet = global.quiet;
     if (a->options.livelink_stream) {

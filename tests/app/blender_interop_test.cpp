@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -177,6 +178,56 @@ TEST(BlenderInterop, TheRefinedPlyMeshOpensWithItsUvsAndColours) {
     for (double b : bytes) mean += srgb_to_linear(b);
     mean /= double(bytes.size());
     EXPECT_NEAR(double(report["colour_mean"][k]), mean, 0.002) << "channel " << k;
+  }
+}
+
+// track --point-cache: Blender's Mesh Cache modifier, with its defaults,
+// plays the cache on the imported rest mesh: at scene frame k each vertex
+// is where the cache's sample k (the capture's frame k) puts it.
+TEST(BlenderInterop, ThePointCachePlaysOnItsRestMeshInBlender) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  if (!have_blender()) {
+    if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";
+    GTEST_SKIP() << "blender not installed (setup.sh installs it): the point cache is not checked";
+  }
+  TempDir dir;
+  const test::CommandResult tracked =
+      test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() + " -o " + dir.path().string() +
+                        " --max-frames 24 --point-cache --mesh-format ply 2>&1");
+  ASSERT_EQ(tracked.code, 0) << tracked.out;
+  const fs::path cache = dir.path() / "face.pc2";
+  const std::string bytes = test::read_file(cache);
+  ASSERT_GE(bytes.size(), 32u);
+  int32_t points = 0, samples = 0;
+  std::memcpy(&points, bytes.data() + 16, 4);
+  std::memcpy(&samples, bytes.data() + 28, 4);
+  ASSERT_EQ(samples, 24);
+  const std::vector<int> frames = {0, 9, 23}, vertices = {0, 1234, 5000, int(points) - 1};
+  const fs::path report_path = dir.path() / "blender.json";
+  const test::CommandResult blender = test::run_command(
+      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_PC2_PROBE) + " -- " +
+      (dir.path() / "face_rest.ply").string() + " " + cache.string() + " " + report_path.string() +
+      " 0,9,23 0,1234,5000," + std::to_string(points - 1) + " 2>&1");
+  ASSERT_EQ(blender.code, 0) << blender.out;
+  // The samples differ, so a sample played at another frame would show.
+  const auto sample_x = [&](int frame, int vertex) {
+    float x;
+    std::memcpy(&x, bytes.data() + 32 + (size_t(frame) * size_t(points) + size_t(vertex)) * 12, 4);
+    return x;
+  };
+  EXPECT_GT(std::abs(sample_x(9, 0) - sample_x(0, 0)) + std::abs(sample_x(23, 0) - sample_x(9, 0)), 1e-3);
+  std::ifstream in(report_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(int(report["vertices"]), points);
+  for (const int frame : frames) {
+    for (size_t k = 0; k < vertices.size(); ++k) {
+      float expected[3];
+      std::memcpy(expected, bytes.data() + 32 + (size_t(frame) * size_t(points) + size_t(vertices[k])) * 12, 12);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(double(report["frames"][std::to_string(frame)][k][c]), expected[c], 1e-5)
+            << "frame " << frame << " vertex " << vertices[k];
+    }
   }
 }
 

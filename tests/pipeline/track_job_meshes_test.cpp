@@ -2,13 +2,18 @@
 // vertex's normal, and with --refine its albedo as the vertex colour.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
+#include <stdexcept>
+#include <vector>
 
 #include "facecap/core/mesh.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
+#include "facecap/io/input.hpp"
 #include "facecap/model/obj_reader.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/track_job.hpp"
@@ -19,6 +24,7 @@ namespace facecap {
 
 namespace fs = std::filesystem;
 using test::Ply;
+using test::read_file;
 
 namespace {
 
@@ -130,6 +136,85 @@ TEST(TrackJobMeshes, ARefinedPlyCarriesTheAlbedoAsVertexColours) {
   ASSERT_GT(sampled, regions::kFace.num_vertices() / 2);
   EXPECT_LT(difference / sampled, 1.0);
   EXPECT_GT(red_over_blue / sampled, 40.0);  // 89 measured: skin, red far above blue; swapped channels fail
+}
+
+namespace {
+
+// A PC2 file read back: its header and every sample's points.
+struct Pc2 {
+  int points = 0, samples = 0;
+  float start = 0, sampling = 0;
+  std::vector<std::vector<float>> frames;  // x y z of each point in turn
+
+  Eigen::Vector3d point(int sample, size_t i) const {
+    const float* p = frames[size_t(sample)].data() + 3 * i;
+    return {p[0], p[1], p[2]};
+  }
+
+  static Pc2 read(const fs::path& file) {
+    const std::string bytes = read_file(file);
+    Pc2 c;
+    if (bytes.size() < 32 || bytes.compare(0, 12, std::string("POINTCACHE2\0", 12)) != 0)
+      throw std::runtime_error("not a PC2 file");
+    std::memcpy(&c.points, bytes.data() + 16, 4);
+    std::memcpy(&c.start, bytes.data() + 20, 4);
+    std::memcpy(&c.sampling, bytes.data() + 24, 4);
+    std::memcpy(&c.samples, bytes.data() + 28, 4);
+    if (bytes.size() != 32 + size_t(c.points) * size_t(c.samples) * 12) throw std::runtime_error("PC2 size");
+    for (int s = 0; s < c.samples; ++s) {
+      std::vector<float> points(3 * size_t(c.points));
+      std::memcpy(points.data(), bytes.data() + 32 + size_t(s) * size_t(c.points) * 12, size_t(c.points) * 12);
+      c.frames.push_back(std::move(points));
+    }
+    return c;
+  }
+};
+
+// A folder of talking_webcam's first 36 frames with frames 0, 1 and 31 blank.
+void frames_with_blanks(const fs::path& video, const fs::path& folder) {
+  auto source = open_input(video.string());
+  Frame f;
+  for (int i = 0; i < 36 && source->read(f); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "f%03d.png", i);
+    const bool blank = i == 0 || i == 1 || i == 31;
+    write_image((folder / name).string(),
+                blank ? cv::Mat(f.image.size(), f.image.type(), cv::Scalar::all(60)) : f.image);
+  }
+}
+
+}  // namespace
+
+// --point-cache: one sample per frame from the shot's first, each the mesh
+// --meshes writes for that frame, to the float; frames without a face hold
+// the nearest earlier mesh (the first face's before it), and the rest mesh is
+// the first face's frame mesh.
+TEST(TrackJobMeshes, APointCacheHoldsEveryFramesMesh) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const fs::path frames = dir.path() / "frames", out = dir.path() / "out";
+  fs::create_directories(frames);
+  frames_with_blanks(video, frames);
+  TrackOptions o = mesh_options(0, MeshFormat::kPly);
+  o.point_cache = true;
+  const TrackSummary s = run_track(*model, frames.string(), out, o);
+  ASSERT_EQ(s.capture.lost, 3);
+  EXPECT_EQ(s.point_cache_files, (std::vector<fs::path>{out / "face.pc2", out / "face_rest.ply"}));
+  const Pc2 cache = Pc2::read(out / "face.pc2");
+  EXPECT_EQ(cache.points, regions::kFace.num_vertices());
+  EXPECT_EQ(cache.start, 0.0f);
+  EXPECT_EQ(cache.sampling, 1.0f);
+  ASSERT_EQ(cache.samples, 36);
+  EXPECT_EQ(read_file(out / "face_rest.ply"), read_file(out / "meshes" / "frame_000002.ply"));
+  for (int k = 0; k < 36; ++k) {
+    const int shown = k < 2 ? 2 : k == 31 ? 30 : k;
+    const Ply mesh =
+        Ply::read(out / "meshes" /
+                  ("frame_" + std::string(6 - std::to_string(shown).size(), '0') + std::to_string(shown) + ".ply"));
+    for (size_t i = 0; i < mesh.vertices(); i += 97)
+      ASSERT_EQ(cache.point(k, i), mesh.point(i)) << "sample " << k << " vertex " << i;
+  }
 }
 
 }  // namespace facecap

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -215,9 +216,11 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   TrackOptions with_files = o;
   with_files.gltf = true;
   with_files.refine = true;
+  with_files.point_cache = true;
   const fs::path jd = dir.path() / "joined";
   fs::create_directories(jd);
-  for (const char* name : {"animation_shot4.glb", "albedo_shot4.png"}) std::ofstream(jd / name) << "earlier run";
+  for (const char* name : {"animation_shot4.glb", "albedo_shot4.png", "face_shot4.pc2"})
+    std::ofstream(jd / name) << "earlier run";
   const TrackSummary s = run_track(*model, joined.string(), jd, with_files);
   EXPECT_EQ(s.capture.cuts, 1);
   ASSERT_EQ(s.capture.shots.size(), 2u);
@@ -237,6 +240,28 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   ASSERT_EQ(csv.size(), 81u);
   EXPECT_TRUE(csv[40].ends_with(",0")) << csv[40];  // frame 39
   EXPECT_TRUE(csv[41].ends_with(",1")) << csv[41];  // frame 40
+
+  // One point cache per shot, each from its shot's first frame, of its own
+  // refined level.
+  ASSERT_EQ(s.point_cache_files, (std::vector<fs::path>{jd / "face.pc2", jd / "face_rest.obj", jd / "face_shot1.pc2",
+                                                        jd / "face_rest_shot1.obj"}));
+  EXPECT_FALSE(fs::exists(jd / "face_shot4.pc2"));
+  for (int shot = 0; shot < 2; ++shot) {
+    const std::string cache = test::read_file(s.point_cache_files[2 * size_t(shot)]);
+    ASSERT_GE(cache.size(), 32u);
+    int32_t points = 0, samples = 0;
+    float start = -1;
+    std::memcpy(&points, cache.data() + 16, 4);
+    std::memcpy(&start, cache.data() + 20, 4);
+    std::memcpy(&samples, cache.data() + 28, 4);
+    EXPECT_EQ(start, float(40 * shot)) << shot;
+    EXPECT_EQ(samples, 40) << shot;
+    EXPECT_EQ(cache.size(), 32 + size_t(points) * size_t(samples) * 12) << shot;
+    const auto rest = lines(s.point_cache_files[2 * size_t(shot) + 1]);
+    EXPECT_EQ(std::count_if(rest.begin(), rest.end(), [](const std::string& l) { return l.rfind("v ", 0) == 0; }),
+              points)
+        << shot;
+  }
 
   // One glTF per shot: its own face, keys, camera and albedo.
   ASSERT_EQ(s.animation_files, (std::vector<fs::path>{jd / "animation.glb", jd / "animation_shot1.glb"}));

@@ -15,6 +15,7 @@
 #include "facecap/io/livelink_csv.hpp"
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/ply_writer.hpp"
+#include "facecap/io/point_cache.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
@@ -39,6 +40,7 @@ constexpr const char* kLiveLinkCsv = "livelink_face.csv";
 constexpr const char* kShadedVideo = "shaded.mp4";
 constexpr const char* kHeatmapVideo = "heatmap.mp4";
 constexpr const char* kAlbedoImage = "albedo.png";
+constexpr const char* kPointCache = "face.pc2";
 
 // A text output written through a temporary file and renamed at the end.
 class StagedText {
@@ -136,9 +138,10 @@ class FrameWriter {
 
   void write(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& camera) {
     const bool ok = f.status != TrackStatus::kLost;
-    if (f.shot != shot_) {
+    if (f.shot != shot_ || shot_first_frame_ < 0) {
       end_shot();
       shot_ = f.shot;
+      shot_first_frame_ = f.index;
     }
     shot_has_face_ = shot_has_face_ || ok;
     std::ofstream& o = csv_.stream();
@@ -181,6 +184,7 @@ class FrameWriter {
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
     if (ok) write_mesh(f, ref, coarse);
+    if (ok && options_.point_cache) append_to_point_cache(f, ref, coarse);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
                            f.fit.expression, key_gaze(f.fit.gaze));
@@ -193,6 +197,10 @@ class FrameWriter {
   // again (RefineStage::on_shot_end), and again harmlessly by the next
   // shot's first frame.
   void end_shot() {
+    if (point_cache_) {
+      point_cache_->writer->finish();
+      point_cache_.reset();
+    }
     if (!shot_has_face_) return;
     shot_has_face_ = false;
     shot_albedo_png_.clear();
@@ -258,6 +266,11 @@ class FrameWriter {
     // run's animation.glb is removed, and so are its later shots' files).
     if (animations_) animation_files_ = animations_->finish();
     staged_albedo_.commit();
+    staged_point_caches_.commit();
+    if (options_.point_cache) {
+      remove_other_shot_files(dir_ / kPointCache, point_cache_files_, /*remove_first_when_none=*/true);
+      remove_other_shot_files(dir_ / point_cache_rest_name(), point_cache_rest_files_, /*remove_first_when_none=*/true);
+    }
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     csv_.commit();
     jsonl_.commit();
@@ -269,6 +282,15 @@ class FrameWriter {
 
   int meshes_written() const { return meshes_; }
   const std::vector<fs::path>& animation_files() const { return animation_files_; }
+  // --point-cache: each shot's cache, then its rest mesh.
+  std::vector<fs::path> point_cache_files() const {
+    std::vector<fs::path> files;
+    for (size_t k = 0; k < point_cache_files_.size(); ++k) {
+      files.push_back(point_cache_files_[k]);
+      files.push_back(point_cache_rest_files_[k]);
+    }
+    return files;
+  }
   int gaze_frames() const { return gaze_frames_; }
   const LiveLinkStreamer* livelink_stream() const { return livelink_stream_ ? &*livelink_stream_ : nullptr; }
   void set_refiner(const Refiner* r) { refiner_ = r; }
@@ -276,16 +298,31 @@ class FrameWriter {
  private:
   void write_mesh(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
     if (!options_.meshes) return;
-    const bool ply = options_.mesh_format == MeshFormat::kPly;
     char name[64];
-    std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, ply ? "ply" : "obj");
+    std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, mesh_extension());
     meshes_written_.insert(name);
-    const fs::path file = dir_ / "meshes" / name;
+    write_frame_mesh(dir_ / "meshes" / name, f, ref, coarse);
+    ++meshes_;
+  }
+
+  const char* mesh_extension() const { return options_.mesh_format == MeshFormat::kPly ? "ply" : "obj"; }
+
+  // Whether the frame's mesh is the refined finest level (else the coarse face region).
+  bool refined(const Refinement* ref) const { return ref != nullptr && refiner_ != nullptr; }
+  // The points of the frame's mesh, as --meshes writes them: in --mesh-space.
+  Positions mesh_positions(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) const {
+    const Positions& camera_points = refined(ref) ? ref->positions : coarse;
+    return options_.mesh_space == MeshSpace::kCamera ? camera_points : to_model(camera_points, f.fit.pose);
+  }
+
+  void write_frame_mesh(const fs::path& file, const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
+    const bool ply = options_.mesh_format == MeshFormat::kPly;
     const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
     std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
                           (camera_space ? "\ncamera space (x right, y down, z forward), cm"
                                         : "\nICT model space (y up, z out of the face), cm");
-    if (ref != nullptr && refiner_ != nullptr) {
+    const Positions out = mesh_positions(f, ref, coarse);
+    if (refined(ref)) {
       // The refined finest level, with UVs prolonged through the hierarchy.
       const MeshHierarchy& h = refiner_->hierarchy();
       const int finest = h.num_levels() - 1;
@@ -300,7 +337,6 @@ class FrameWriter {
           refined_polygons_.push_back(p);
         }
       }
-      const Positions out = camera_space ? ref->positions : to_model(ref->positions, f.fit.pose);
       comment += "\nrefined (finest level)";
       if (ply) {
         const Positions normals =
@@ -315,21 +351,48 @@ class FrameWriter {
       } else {
         write_obj(file, {&out, &refined_polygons_, &*refined_uvs_, comment});
       }
+    } else if (ply) {
+      const Positions normals = vertex_normals(out, face_mesh_.triangles);
+      write_ply(file, {.positions = &out,
+                       .polygons = &face_polygons_,
+                       .normals = &normals,
+                       .colours = nullptr,  // no albedo without --refine
+                       .uvs = &coarse_uvs(),
+                       .comment = comment});
     } else {
-      const Positions out = camera_space ? coarse : to_model(coarse, f.fit.pose);
-      if (ply) {
-        const Positions normals = vertex_normals(out, face_mesh_.triangles);
-        write_ply(file, {.positions = &out,
-                         .polygons = &face_polygons_,
-                         .normals = &normals,
-                         .colours = nullptr,  // no albedo without --refine
-                         .uvs = &coarse_uvs(),
-                         .comment = comment});
-      } else {
-        write_obj(file, {&out, &face_polygons_, &model_.uvs, comment});
-      }
+      write_obj(file, {&out, &face_polygons_, &model_.uvs, comment});
     }
-    ++meshes_;
+  }
+
+  std::string point_cache_rest_name() const { return std::string("face_rest.") + mesh_extension(); }
+
+  // --point-cache: the frame's mesh positions appended to its shot's cache,
+  // which opens at the shot's first frame with a face (its rest mesh that
+  // frame's mesh). The shot's frames without a face before it, and between
+  // faces, hold the nearest earlier positions (the first ones before the
+  // first face), so that sample k is the shot's frame k; a refined frame
+  // without its refinement counts as one without a face.
+  void append_to_point_cache(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
+    const Positions points = mesh_positions(f, ref, coarse);
+    if (!point_cache_) {
+      if (options_.refine && !refined(ref)) return;  // the cache holds the refined level: wait for it
+      const bool first = point_cache_files_.empty();
+      const fs::path file = shot_file(dir_ / kPointCache, shot_, first);
+      const fs::path rest = shot_file(dir_ / point_cache_rest_name(), shot_, first);
+      point_cache_files_.push_back(file);
+      point_cache_rest_files_.push_back(rest);
+      write_frame_mesh(staged_point_caches_.stage(rest), f, ref, coarse);
+      point_cache_.emplace(
+          OpenPointCache{std::make_unique<PointCacheWriter>(staged_point_caches_.stage(file), int(points.cols()),
+                                                            float(shot_first_frame_)),
+                         points, shot_first_frame_});
+    }
+    OpenPointCache& cache = *point_cache_;
+    if (points.cols() != cache.last.cols()) return;  // not the cache's level: held as a frame without a face
+    for (; cache.next_frame < f.index; ++cache.next_frame) cache.writer->append(cache.last);
+    cache.writer->append(points);
+    cache.last = points;
+    cache.next_frame = f.index + 1;
   }
 
   // One UV a face-region vertex (its corners share one on the face region:
@@ -490,7 +553,16 @@ class FrameWriter {
   bool shot_has_face_ = false;
   std::vector<uint8_t> shot_albedo_png_;
   std::vector<fs::path> albedo_files_;
-  StagedFiles staged_albedo_;  // each shot's albedo.png, in place when the capture completes
+  int shot_first_frame_ = -1;  // the index of the current shot's first frame
+  struct OpenPointCache {
+    std::unique_ptr<PointCacheWriter> writer;
+    Positions last;  // the last sample
+    int next_frame = 0;
+  };
+  std::optional<OpenPointCache> point_cache_;  // --point-cache: the current shot's
+  std::vector<fs::path> point_cache_files_, point_cache_rest_files_;
+  StagedFiles staged_point_caches_;  // each shot's cache and rest mesh, in place when the capture completes
+  StagedFiles staged_albedo_;        // each shot's albedo.png, in place when the capture completes
   int meshes_ = 0;
   std::unordered_set<std::string> meshes_written_;  // their file names
 };
@@ -563,6 +635,7 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
   if (summary.capture.frames == 0) throw Error("no frames could be read from " + impl_->input);
   impl_->writer.finish(summary.capture);
   summary.animation_files = impl_->writer.animation_files();
+  summary.point_cache_files = impl_->writer.point_cache_files();
   summary.meshes_written = impl_->writer.meshes_written();
   summary.gaze_frames = impl_->writer.gaze_frames();
   if (const LiveLinkStreamer* stream = impl_->writer.livelink_stream()) {

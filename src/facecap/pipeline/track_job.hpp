@@ -7,6 +7,8 @@
 //   DIR/identity.json  identity weights, focal length, image size, conventions
 //   DIR/meshes/        (--meshes) one OBJ per tracked frame, face region with
 //                      UVs (--mesh-format ply: binary PLY, with normals)
+//   DIR/face.pc2       (--point-cache) the same meshes as one point cache, with
+//                      DIR/face_rest.obj (.ply), the mesh it animates
 //   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
 //   DIR/animation.glb  (--gltf) the capture as an animated glTF: the face
 //                      with the 53 blend shapes as morph targets, head pose
@@ -48,6 +50,11 @@ struct TrackOptions {
   bool meshes = false;
   MeshSpace mesh_space = MeshSpace::kModel;
   MeshFormat mesh_format = MeshFormat::kObj;
+  // DIR/face.pc2: the meshes --meshes would write, as one point cache
+  // (io/point_cache.hpp) from the first frame with a face on, and its rest
+  // mesh DIR/face_rest.obj (.ply) whose vertex order it follows; one pair per
+  // shot (face_shot<N>.pc2 after the first).
+  bool point_cache = false;
   bool overlay = false;
   VideoEncoding encoding;  // the overlay videos'
   bool gltf = false;
@@ -74,11 +81,12 @@ struct TrackSummary {
   CaptureSummary capture;
   std::filesystem::path output_dir;
   int meshes_written = 0;
-  std::vector<std::filesystem::path> animation_files;  // --gltf: one per shot with a face (shot_animations.hpp)
-  int gaze_frames = 0;                                 // frames with an iris found (gaze.hpp)
-  int livelink_sent = 0;                               // TrackOptions::livelink_stream: datagrams sent
-  std::string livelink_address;                        // ...to this address, as resolved
-  std::string livelink_error;                          // why the first datagram that failed did ("" where none did)
+  std::vector<std::filesystem::path> animation_files;    // --gltf: one per shot with a face (shot_animations.hpp)
+  std::vector<std::filesystem::path> point_cache_files;  // --point-cache: each shot's cache, then its rest mesh
+  int gaze_frames = 0;                                   // frames with an iris found (gaze.hpp)
+  int livelink_sent = 0;                                 // TrackOptions::livelink_stream: datagrams sent
+  std::string livelink_address;                          // ...to this address, as resolved
+  std::string livelink_error;                            // why the first datagram that failed did ("" where none did)
   int refined_frames = 0;
   double refine_ms = 0;  // total, on the refinement thread
 };
