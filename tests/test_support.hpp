@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "facecap/core/paths.hpp"
 #include "facecap/model/face_model.hpp"
@@ -22,6 +23,8 @@ std::optional<std::filesystem::path> data_path(const std::string& name);
 
 // A file's whole content ("" when it cannot be read).
 std::string read_file(const std::filesystem::path& path);
+// Its lines, without their line breaks (none when it cannot be read).
+std::vector<std::string> read_lines(const std::filesystem::path& path);
 
 }  // namespace facecap::test
 

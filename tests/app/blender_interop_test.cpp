@@ -64,8 +64,15 @@ cv::Mat expected_coverage(const test::Glb& g, int key, int width, int height) {
   return mask;
 }
 
-// Whether Blender can run here; fails under CI, where setup.sh installs it.
 bool have_blender() { return test::run_command("command -v blender >/dev/null 2>&1").code == 0; }
+
+// Skips the test where Blender cannot run, saying which import goes
+// unchecked, or fails it under CI, where setup.sh installs Blender.
+#define FACECAP_REQUIRE_BLENDER(what)                                                                \
+  if (!have_blender()) {                                                                             \
+    if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";             \
+    GTEST_SKIP() << "blender not installed (setup.sh installs it): " << (what) << " is not checked"; \
+  }
 
 double srgb_to_linear(double byte) {
   const double c = byte / 255.0;
@@ -80,10 +87,7 @@ double intersection_over_union(const cv::Mat& a, const cv::Mat& b) {
 
 TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView) {
   FACECAP_REQUIRE_MODEL(model);
-  if (!have_blender()) {
-    if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";
-    GTEST_SKIP() << "blender not installed (setup.sh installs it): the glTF import is not checked";
-  }
+  FACECAP_REQUIRE_BLENDER("the glTF import");
   // A synthetic performance whose head turns from -15 to 37 degrees of yaw
   // over its 30 frames, so that the keys differ.
   TempDir dir;
@@ -149,10 +153,7 @@ TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView
 TEST(BlenderInterop, TheRefinedPlyMeshOpensWithItsUvsAndColours) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
-  if (!have_blender()) {
-    if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";
-    GTEST_SKIP() << "blender not installed (setup.sh installs it): the PLY import is not checked";
-  }
+  FACECAP_REQUIRE_BLENDER("the PLY import");
   TempDir dir;
   const test::CommandResult tracked =
       test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() + " -o " + dir.path().string() +
@@ -187,10 +188,7 @@ TEST(BlenderInterop, TheRefinedPlyMeshOpensWithItsUvsAndColours) {
 TEST(BlenderInterop, ThePointCachePlaysOnItsRestMeshInBlender) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
-  if (!have_blender()) {
-    if (running_under_ci()) FAIL() << "blender missing under CI (setup.sh installs it)";
-    GTEST_SKIP() << "blender not installed (setup.sh installs it): the point cache is not checked";
-  }
+  FACECAP_REQUIRE_BLENDER("the point cache");
   TempDir dir;
   const test::CommandResult tracked =
       test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() + " -o " + dir.path().string() +

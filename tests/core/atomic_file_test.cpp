@@ -121,4 +121,35 @@ TEST(AtomicFile, AFolderAsTheOutputIsAClearErrorUpFront) {
   EXPECT_NO_THROW(ensure_writable_file(dir.path() / "new" / "out.glb"));  // a missing folder is made
 }
 
+// The folders a job made go again unless it completes: empty ones only, or
+// with what they hold; one that was there before stays either way.
+TEST(FoldersMadeHere, AJobThatDoesNotCompleteLeavesNoFolderItMade) {
+  TempDir dir;
+  const std::filesystem::path before = dir.path() / "before", filled = dir.path() / "filled",
+                              empty = dir.path() / "empty";
+  std::filesystem::create_directories(before);
+  for (const bool with_contents : {false, true}) {
+    {
+      FoldersMadeHere made(with_contents);
+      for (const auto& d : {before, filled, empty}) {
+        made.add(d);
+        std::filesystem::create_directories(d);
+      }
+      std::ofstream(filled / "frames.csv") << "half";
+    }
+    EXPECT_TRUE(std::filesystem::exists(before));
+    EXPECT_FALSE(std::filesystem::exists(empty)) << with_contents;
+    EXPECT_EQ(std::filesystem::exists(filled), !with_contents);
+    std::filesystem::remove_all(filled);
+  }
+  {
+    FoldersMadeHere made(true);
+    made.add(filled);
+    std::filesystem::create_directories(filled);
+    std::ofstream(filled / "frames.csv") << "whole";
+    made.keep();
+  }
+  EXPECT_TRUE(std::filesystem::exists(filled / "frames.csv"));
+}
+
 }  // namespace facecap

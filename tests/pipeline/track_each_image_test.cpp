@@ -17,15 +17,9 @@
 namespace facecap {
 
 namespace fs = std::filesystem;
+using test::read_lines;
 
 namespace {
-
-std::vector<std::string> lines(const fs::path& file) {
-  std::ifstream in(file);
-  std::vector<std::string> out;
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
-}
 
 Landmarks landmarks_of(const nlohmann::json& points) {
   Landmarks lm;
@@ -66,14 +60,14 @@ TEST(TrackEachImage, EachImageIsFittedAsItsOwnRunAndTabled) {
   EXPECT_EQ(s.unreadable, 1);
   EXPECT_NE(s.first_error.find("e_broken.jpg"), std::string::npos) << s.first_error;
 
-  const std::vector<std::string> csv = lines(out / "images.csv");
+  const std::vector<std::string> csv = read_lines(out / "images.csv");
   ASSERT_EQ(csv.size(), 7u);
   const std::vector<std::string> header = split_csv_line(csv[0]);
   ASSERT_EQ(header.size(), 1 + 12 + 53 + 9 + 50u);  // image, status ... landmark_error, weights, gaze, identity
   EXPECT_EQ(header[0], "image");
   EXPECT_EQ(header[1], "status");
   EXPECT_EQ(header.back(), "id_49");
-  const std::vector<std::string> jsonl = lines(out / "images.jsonl");
+  const std::vector<std::string> jsonl = read_lines(out / "images.jsonl");
   ASSERT_EQ(jsonl.size(), 6u);
   const std::vector<std::string> names = {"a_biden.jpg", "a_biden.png", "b_obama.jpg",
                                           "c,lfpw.png",  "d_grey.png",  "e_broken.jpg"};
@@ -95,10 +89,10 @@ TEST(TrackEachImage, EachImageIsFittedAsItsOwnRunAndTabled) {
   // Obama's portrait fitted alone: the same fields and identity.
   const fs::path alone = dir.path() / "alone";
   const TrackSummary single = run_track(*model, (folder / "b_obama.jpg").string(), alone, o);
-  const std::vector<std::string> single_row = split_csv_line(lines(alone / "frames.csv")[1]);
+  const std::vector<std::string> single_row = split_csv_line(read_lines(alone / "frames.csv")[1]);
   const std::vector<std::string> table_row = split_csv_line(csv[3]);
   for (size_t k = 2; k + 1 < single_row.size(); ++k)  // without frame, time and shot
-    EXPECT_EQ(table_row[k - 1], single_row[k]) << lines(alone / "frames.csv")[0].substr(0, 80) << " field " << k;
+    EXPECT_EQ(table_row[k - 1], single_row[k]) << read_lines(alone / "frames.csv")[0].substr(0, 80) << " field " << k;
   const nlohmann::json obama_row = nlohmann::json::parse(jsonl[2]);
   for (int k = 0; k < 50; ++k)
     EXPECT_DOUBLE_EQ(obama_row["identity_weights"][k].get<double>(), single.capture.identity.identity[k]) << k;

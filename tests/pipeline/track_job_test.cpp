@@ -33,12 +33,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> lines(const fs::path& p) {
-  std::ifstream in(p);
-  std::vector<std::string> out;
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
+std::vector<std::string> lines(const fs::path& p) { return test::read_lines(p); }
 
 int count_fields(const std::string& line) { return static_cast<int>(std::count(line.begin(), line.end(), ',')) + 1; }
 

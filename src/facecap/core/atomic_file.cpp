@@ -76,6 +76,22 @@ void StagedFiles::commit() {
   files_.clear();
 }
 
+void FoldersMadeHere::add(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) folders_.push_back(dir);
+}
+
+FoldersMadeHere::~FoldersMadeHere() {
+  if (keep_) return;
+  std::error_code ec;
+  for (auto it = folders_.rbegin(); it != folders_.rend(); ++it) {
+    if (with_contents_)
+      fs::remove_all(*it, ec);
+    else
+      fs::remove(*it, ec);  // only if empty
+  }
+}
+
 void write_binary_file(const fs::path& path, const void* data, size_t bytes) {
   AtomicFile file(path);
   {

@@ -51,6 +51,28 @@ class StagedFiles {
   std::vector<std::unique_ptr<AtomicFile>> files_;
 };
 
+// The folders a job makes for its outputs (add() before each is made),
+// removed again unless the job completes (keep()), so that one that fails or
+// is interrupted leaves none of them; a folder that was there before is never
+// removed. `with_contents`: removed with what they hold, for a job whose
+// folders fill as it goes (track --each-image); else only while empty, for
+// one whose files appear only as it completes (track --all-faces).
+class FoldersMadeHere {
+ public:
+  explicit FoldersMadeHere(bool with_contents = false) : with_contents_(with_contents) {}
+  ~FoldersMadeHere();
+  FoldersMadeHere(const FoldersMadeHere&) = delete;
+  FoldersMadeHere& operator=(const FoldersMadeHere&) = delete;
+
+  void add(const std::filesystem::path& dir);
+  void keep() { keep_ = true; }
+
+ private:
+  std::vector<std::filesystem::path> folders_;  // the innermost last
+  bool with_contents_ = false;
+  bool keep_ = false;
+};
+
 // Throws facecap::Error unless `dir` exists (or can be created) and is writable.
 void ensure_writable_dir(const std::filesystem::path& dir);
 

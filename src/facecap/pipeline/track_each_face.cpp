@@ -38,19 +38,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
   auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
   // A run that fails (no face, Ctrl-C) leaves no folder it made: the files
   // in them are removed first, as the outputs go (declared after this).
-  struct FoldersMadeHere {
-    std::vector<fs::path> folders;  // the innermost last
-    bool keep = false;
-    void add(const fs::path& dir) {
-      std::error_code ec;
-      if (!fs::exists(dir, ec)) folders.push_back(dir);
-    }
-    ~FoldersMadeHere() {
-      std::error_code ec;
-      if (!keep)
-        for (auto it = folders.rbegin(); it != folders.rend(); ++it) fs::remove(*it, ec);  // only if empty
-    }
-  } made;
+  FoldersMadeHere made;
   made.add(output_dir);
   ensure_writable_dir(output_dir);
   if (options.livelink_stream) UdpSender{options.livelink_stream->target};  // an unknown host fails before the work
@@ -100,7 +88,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
                                                             {"faces", list}}
                                                      .dump(2) +
                                                  "\n");
-  made.keep = true;
+  made.keep();
   // An earlier run's folders of faces this run did not have would read as
   // this run's (as stale meshes would): removed where they hold a capture.
   const int n = static_cast<int>(summary.faces.size());

@@ -65,23 +65,6 @@ std::vector<std::string> image_fields(const std::string& frames_csv_line) {
   return {all.begin() + 2, all.end() - 1};
 }
 
-// The folders this run makes, removed with what is in them unless the run
-// completes: an interrupted run leaves nothing (folders that were there
-// before it are left alone).
-struct FoldersMadeHere {
-  std::vector<fs::path> folders;
-  bool keep = false;
-  void add(const fs::path& dir) {
-    std::error_code ec;
-    if (!fs::exists(dir, ec)) folders.push_back(dir);
-  }
-  ~FoldersMadeHere() {
-    std::error_code ec;
-    if (!keep)
-      for (auto it = folders.rbegin(); it != folders.rend(); ++it) fs::remove_all(*it, ec);
-  }
-};
-
 }  // namespace
 
 EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& folder, const fs::path& output_dir,
@@ -90,7 +73,7 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
     throw Error("--each-image takes a folder of images, and " + folder.string() + " is none");
   const std::vector<fs::path> images = folder_images(folder);
   const std::vector<std::string> names = image_folder_names(images);
-  FoldersMadeHere made;
+  FoldersMadeHere made(/*with_contents=*/true);  // each image's folder fills as the run goes
   made.add(output_dir);
   ensure_writable_dir(output_dir);
   TrackOptions own = options;
@@ -169,7 +152,7 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
   summary.tables = {output_dir / "images.csv", output_dir / "images.jsonl"};
   write_text_file(summary.tables[0], csv);
   write_text_file(summary.tables[1], jsonl);
-  made.keep = true;
+  made.keep();
   return summary;
 }
 
