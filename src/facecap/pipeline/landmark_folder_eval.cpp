@@ -1,7 +1,6 @@
 #include "facecap/pipeline/landmark_folder_eval.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/interrupt.hpp"
