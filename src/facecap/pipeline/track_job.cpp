@@ -6,16 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-#include <unordered_set>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/livelink_csv.hpp"
-#include "facecap/io/mesh_writer.hpp"
-#include "facecap/io/ply_writer.hpp"
-#include "facecap/io/point_cache.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
@@ -24,6 +20,7 @@
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
+#include "facecap/pipeline/track_meshes.hpp"
 #include "facecap/render/overlay.hpp"
 #include "facecap/render/photometric.hpp"
 #include "facecap/render/shading.hpp"
@@ -40,7 +37,6 @@ constexpr const char* kLiveLinkCsv = "livelink_face.csv";
 constexpr const char* kShadedVideo = "shaded.mp4";
 constexpr const char* kHeatmapVideo = "heatmap.mp4";
 constexpr const char* kAlbedoImage = "albedo.png";
-constexpr const char* kPointCache = "face.pc2";
 
 // A text output written through a temporary file and renamed at the end.
 class StagedText {
@@ -73,12 +69,6 @@ nlohmann::json landmarks_json(const Landmarks& lm) {
   return a;
 }
 
-// Camera-space points back to the model frame: X = F R^T (Y - t).
-Positions to_model(const Positions& camera_points, const HeadPose& pose) {
-  const Mat3f rf = pose.model_to_camera_rotation().cast<float>();
-  return rf.transpose() * (camera_points.colwise() - pose.translation.cast<float>());
-}
-
 // Everything the track job writes, frame by frame, in frame order.
 class FrameWriter {
  public:
@@ -90,9 +80,9 @@ class FrameWriter {
         dir_(dir),
         options_(options),
         csv_(dir / "frames.csv"),
-        jsonl_(dir / "frames.jsonl") {
+        jsonl_(dir / "frames.jsonl"),
+        meshes_(model, dir, options_) {
     face_polygons_.assign(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
-    face_mesh_ = model.region_mesh(regions::kFace);
     std::ofstream& o = csv_.stream();
     o << "frame,time,status,rx,ry,rz,tx,ty,tz,focal,yaw_deg,pitch_deg,roll_deg,landmark_error";
     for (const std::string& name : model.expression_names) o << ',' << name;
@@ -101,7 +91,6 @@ class FrameWriter {
     o << ",gaze_yaw_deg,gaze_pitch_deg,gaze_camera_x,gaze_camera_y,gaze_camera_z,iris_right_x,iris_right_y,iris_left_x,"
          "iris_left_y";
     o << ",shot\n";  // last, so that the columns before keep their places
-    if (options.meshes) fs::create_directories(dir / "meshes");
     if (options.livelink || options.livelink_stream) {
       livelink_face_.emplace(model.expression_names);
       livelink_values_ = livelink_face_->values(Eigen::VectorXf::Zero(model.num_expressions()), {});
@@ -183,8 +172,7 @@ class FrameWriter {
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
-    if (ok) write_mesh(f, ref, coarse);
-    if (ok && options_.point_cache) append_to_point_cache(f, ref, coarse);
+    if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
                            f.fit.expression, key_gaze(f.fit.gaze));
@@ -197,10 +185,7 @@ class FrameWriter {
   // again (RefineStage::on_shot_end), and again harmlessly by the next
   // shot's first frame.
   void end_shot() {
-    if (point_cache_) {
-      point_cache_->writer->finish();
-      point_cache_.reset();
-    }
+    meshes_.end_shot();
     if (!shot_has_face_) return;
     shot_has_face_ = false;
     shot_albedo_png_.clear();
@@ -266,161 +251,26 @@ class FrameWriter {
     // run's animation.glb is removed, and so are its later shots' files).
     if (animations_) animation_files_ = animations_->finish();
     staged_albedo_.commit();
-    staged_point_caches_.commit();
-    if (options_.point_cache) {
-      remove_other_shot_files(dir_ / kPointCache, point_cache_files_, /*remove_first_when_none=*/true);
-      remove_other_shot_files(dir_ / point_cache_rest_name(), point_cache_rest_files_, /*remove_first_when_none=*/true);
-    }
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     csv_.commit();
     jsonl_.commit();
     if (livelink_) livelink_->commit();
     for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
       if (w) w->finish();
-    if (options_.meshes) remove_earlier_meshes();
+    meshes_.finish();
   }
 
-  int meshes_written() const { return meshes_; }
+  int meshes_written() const { return meshes_.meshes_written(); }
   const std::vector<fs::path>& animation_files() const { return animation_files_; }
-  // --point-cache: each shot's cache, then its rest mesh.
-  std::vector<fs::path> point_cache_files() const {
-    std::vector<fs::path> files;
-    for (size_t k = 0; k < point_cache_files_.size(); ++k) {
-      files.push_back(point_cache_files_[k]);
-      files.push_back(point_cache_rest_files_[k]);
-    }
-    return files;
-  }
+  std::vector<fs::path> point_cache_files() const { return meshes_.point_cache_files(); }
   int gaze_frames() const { return gaze_frames_; }
   const LiveLinkStreamer* livelink_stream() const { return livelink_stream_ ? &*livelink_stream_ : nullptr; }
-  void set_refiner(const Refiner* r) { refiner_ = r; }
+  void set_refiner(const Refiner* r) {
+    refiner_ = r;
+    meshes_.set_refiner(r);
+  }
 
  private:
-  void write_mesh(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
-    if (!options_.meshes) return;
-    char name[64];
-    std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, mesh_extension());
-    meshes_written_.insert(name);
-    write_frame_mesh(dir_ / "meshes" / name, f, ref, coarse);
-    ++meshes_;
-  }
-
-  const char* mesh_extension() const { return options_.mesh_format == MeshFormat::kPly ? "ply" : "obj"; }
-
-  // Whether the frame's mesh is the refined finest level (else the coarse face region).
-  bool refined(const Refinement* ref) const { return ref != nullptr && refiner_ != nullptr; }
-  // The points of the frame's mesh, as --meshes writes them: in --mesh-space.
-  Positions mesh_positions(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) const {
-    const Positions& camera_points = refined(ref) ? ref->positions : coarse;
-    return options_.mesh_space == MeshSpace::kCamera ? camera_points : to_model(camera_points, f.fit.pose);
-  }
-
-  void write_frame_mesh(const fs::path& file, const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
-    const bool ply = options_.mesh_format == MeshFormat::kPly;
-    const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
-    std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
-                          (camera_space ? "\ncamera space (x right, y down, z forward), cm"
-                                        : "\nICT model space (y up, z out of the face), cm");
-    const Positions out = mesh_positions(f, ref, coarse);
-    if (refined(ref)) {
-      // The refined finest level, with UVs prolonged through the hierarchy.
-      const MeshHierarchy& h = refiner_->hierarchy();
-      const int finest = h.num_levels() - 1;
-      if (!refined_uvs_) {
-        const Eigen::MatrixXf coarse_uv = uv_matrix(coarse_uvs());
-        const Eigen::MatrixXf fine = h.prolong_from_coarse(coarse_uv, finest);
-        refined_uvs_ = std::vector<Vec2f>(fine.cols());
-        for (Eigen::Index i = 0; i < fine.cols(); ++i) (*refined_uvs_)[i] = fine.col(i);
-        for (const Triangle& t : h.level(finest).triangles) {
-          Polygon p;
-          for (int k = 0; k < 3; ++k) p.v[k] = p.uv[k] = t[k];
-          refined_polygons_.push_back(p);
-        }
-      }
-      comment += "\nrefined (finest level)";
-      if (ply) {
-        const Positions normals =
-            camera_space ? ref->normals
-                         : Positions(f.fit.pose.model_to_camera_rotation().cast<float>().transpose() * ref->normals);
-        write_ply(file, {.positions = &out,
-                         .polygons = &refined_polygons_,
-                         .normals = &normals,
-                         .colours = &ref->albedo,
-                         .uvs = &*refined_uvs_,
-                         .comment = comment + "\nvertex colours: the albedo (RGB, as albedo.png)"});
-      } else {
-        write_obj(file, {&out, &refined_polygons_, &*refined_uvs_, comment});
-      }
-    } else if (ply) {
-      const Positions normals = vertex_normals(out, face_mesh_.triangles);
-      write_ply(file, {.positions = &out,
-                       .polygons = &face_polygons_,
-                       .normals = &normals,
-                       .colours = nullptr,  // no albedo without --refine
-                       .uvs = &coarse_uvs(),
-                       .comment = comment});
-    } else {
-      write_obj(file, {&out, &face_polygons_, &model_.uvs, comment});
-    }
-  }
-
-  std::string point_cache_rest_name() const { return std::string("face_rest.") + mesh_extension(); }
-
-  // --point-cache: the frame's mesh positions appended to its shot's cache,
-  // which opens at the shot's first frame with a face (its rest mesh that
-  // frame's mesh). The shot's frames without a face before it, and between
-  // faces, hold the nearest earlier positions (the first ones before the
-  // first face), so that sample k is the shot's frame k; a refined frame
-  // without its refinement counts as one without a face.
-  void append_to_point_cache(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
-    const Positions points = mesh_positions(f, ref, coarse);
-    if (!point_cache_) {
-      if (options_.refine && !refined(ref)) return;  // the cache holds the refined level: wait for it
-      const bool first = point_cache_files_.empty();
-      const fs::path file = shot_file(dir_ / kPointCache, shot_, first);
-      const fs::path rest = shot_file(dir_ / point_cache_rest_name(), shot_, first);
-      point_cache_files_.push_back(file);
-      point_cache_rest_files_.push_back(rest);
-      write_frame_mesh(staged_point_caches_.stage(rest), f, ref, coarse);
-      point_cache_.emplace(
-          OpenPointCache{std::make_unique<PointCacheWriter>(staged_point_caches_.stage(file), int(points.cols()),
-                                                            float(shot_first_frame_)),
-                         points, shot_first_frame_});
-    }
-    OpenPointCache& cache = *point_cache_;
-    if (points.cols() != cache.last.cols()) return;  // not the cache's level: held as a frame without a face
-    for (; cache.next_frame < f.index; ++cache.next_frame) cache.writer->append(cache.last);
-    cache.writer->append(points);
-    cache.last = points;
-    cache.next_frame = f.index + 1;
-  }
-
-  // One UV a face-region vertex (its corners share one on the face region:
-  // the layout's seams lie outside it).
-  const std::vector<Vec2f>& coarse_uvs() {
-    if (!coarse_uvs_) coarse_uvs_ = per_vertex_uvs(face_mesh_);
-    return *coarse_uvs_;
-  }
-
-  static Eigen::MatrixXf uv_matrix(const std::vector<Vec2f>& uvs) {
-    Eigen::MatrixXf m(2, Eigen::Index(uvs.size()));
-    for (size_t i = 0; i < uvs.size(); ++i) m.col(Eigen::Index(i)) = uvs[i];
-    return m;
-  }
-
-  // An earlier run's meshes in this folder that this run did not write (frames
-  // past its end, or lost in it) would read as part of its sequence: removed,
-  // as an earlier identity.json is. Other files are left alone.
-  void remove_earlier_meshes() const {
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir_ / "meshes", ec)) {
-      const std::string name = entry.path().filename().string();
-      if (name.starts_with("frame_") && (name.ends_with(".obj") || name.ends_with(".ply")) &&
-          !meshes_written_.contains(name))
-        fs::remove(entry.path(), ec);
-    }
-  }
-
   // --livelink, --livelink-udp: the frame's weights, head angles and each
   // eye's gaze as Live Link Face values (io/livelink_face.hpp), a row of the
   // take and a datagram of the stream.
@@ -543,28 +393,16 @@ class FrameWriter {
   std::unique_ptr<VideoWriter> overlay_, shaded_, heatmap_;
   int gaze_frames_ = 0;
   std::vector<Polygon> face_polygons_;
-  TriangleMesh face_mesh_;
   const Refiner* refiner_ = nullptr;
-  std::optional<std::vector<Vec2f>> coarse_uvs_, refined_uvs_;
-  std::vector<Polygon> refined_polygons_;
   std::optional<ShotAnimations> animations_;
   std::vector<fs::path> animation_files_;
   int shot_ = 0;
   bool shot_has_face_ = false;
   std::vector<uint8_t> shot_albedo_png_;
   std::vector<fs::path> albedo_files_;
+  StagedFiles staged_albedo_;  // each shot's albedo.png, in place when the capture completes
   int shot_first_frame_ = -1;  // the index of the current shot's first frame
-  struct OpenPointCache {
-    std::unique_ptr<PointCacheWriter> writer;
-    Positions last;  // the last sample
-    int next_frame = 0;
-  };
-  std::optional<OpenPointCache> point_cache_;  // --point-cache: the current shot's
-  std::vector<fs::path> point_cache_files_, point_cache_rest_files_;
-  StagedFiles staged_point_caches_;  // each shot's cache and rest mesh, in place when the capture completes
-  StagedFiles staged_albedo_;        // each shot's albedo.png, in place when the capture completes
-  int meshes_ = 0;
-  std::unordered_set<std::string> meshes_written_;  // their file names
+  TrackMeshes meshes_;         // --meshes, --point-cache
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
-// track --meshes --mesh-format ply: the same surfaces as the OBJs, with each
-// vertex's normal, and with --refine its albedo as the vertex colour.
+// TrackMeshes (track --meshes, --point-cache): a PLY frame is the OBJ frame's
+// surface with each vertex's normal, and with --refine its albedo as the
+// vertex colour; a point cache holds every frame's mesh.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -49,7 +50,7 @@ int files_with_extension(const fs::path& dir, const char* extension) {
 // faces (quads kept) and UVs, plus normals: unit, and on the face's front
 // (model space, z out of the face) pointing forward. An earlier run's OBJs
 // are not left to read as part of the PLY sequence.
-TEST(TrackJobMeshes, APlyFrameIsTheObjFrameWithNormals) {
+TEST(TrackMeshes, APlyFrameIsTheObjFrameWithNormals) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   TempDir dir;
@@ -102,7 +103,7 @@ TEST(TrackJobMeshes, APlyFrameIsTheObjFrameWithNormals) {
 // order: sampled back from albedo.png at each vertex's UV (the nearest
 // texel), they agree to a fraction of a level (0.28 measured: at 400x300 the
 // hierarchy is one level, whose albedo the PNG bakes).
-TEST(TrackJobMeshes, ARefinedPlyCarriesTheAlbedoAsVertexColours) {
+TEST(TrackMeshes, ARefinedPlyCarriesTheAlbedoAsVertexColours) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   TempDir dir;
@@ -189,7 +190,7 @@ void frames_with_blanks(const fs::path& video, const fs::path& folder) {
 // --meshes writes for that frame, to the float; frames without a face hold
 // the nearest earlier mesh (the first face's before it), and the rest mesh is
 // the first face's frame mesh.
-TEST(TrackJobMeshes, APointCacheHoldsEveryFramesMesh) {
+TEST(TrackMeshes, APointCacheHoldsEveryFramesMesh) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   TempDir dir;

@@ -1,0 +1,177 @@
+#include "facecap/pipeline/track_meshes.hpp"
+
+#include <cstdio>
+#include <memory>
+
+#include "facecap/core/version.hpp"
+#include "facecap/io/mesh_writer.hpp"
+#include "facecap/io/ply_writer.hpp"
+#include "facecap/model/regions.hpp"
+#include "facecap/pipeline/shot_animations.hpp"
+#include "facecap/refine/mesh_hierarchy.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPointCache = "face.pc2";
+
+// Camera-space points back to the model frame: X = F R^T (Y - t).
+Positions to_model(const Positions& camera_points, const HeadPose& pose) {
+  const Mat3f rf = pose.model_to_camera_rotation().cast<float>();
+  return rf.transpose() * (camera_points.colwise() - pose.translation.cast<float>());
+}
+
+Eigen::MatrixXf uv_matrix(const std::vector<Vec2f>& uvs) {
+  Eigen::MatrixXf m(2, Eigen::Index(uvs.size()));
+  for (size_t i = 0; i < uvs.size(); ++i) m.col(Eigen::Index(i)) = uvs[i];
+  return m;
+}
+
+}  // namespace
+
+TrackMeshes::TrackMeshes(const FaceModel& model, const fs::path& dir, const TrackOptions& options)
+    : model_(model), dir_(dir), options_(options) {
+  face_polygons_.assign(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
+  face_mesh_ = model.region_mesh(regions::kFace);
+  if (options.meshes) fs::create_directories(dir / "meshes");
+}
+
+void TrackMeshes::add(const CapturedFrame& f, int shot_first_frame, const Refinement* ref, const Positions& coarse) {
+  if (options_.meshes) write_mesh(f, ref, coarse);
+  if (options_.point_cache) append_to_point_cache(f, shot_first_frame, ref, coarse);
+}
+
+void TrackMeshes::end_shot() {
+  if (!point_cache_) return;
+  point_cache_->writer->finish();
+  point_cache_.reset();
+}
+
+void TrackMeshes::finish() {
+  end_shot();
+  staged_point_caches_.commit();
+  if (options_.point_cache) {
+    remove_other_shot_files(dir_ / kPointCache, point_cache_files_, /*remove_first_when_none=*/true);
+    remove_other_shot_files(dir_ / point_cache_rest_name(), point_cache_rest_files_, /*remove_first_when_none=*/true);
+  }
+  if (options_.meshes) remove_earlier_meshes();
+}
+
+std::vector<fs::path> TrackMeshes::point_cache_files() const {
+  std::vector<fs::path> files;
+  for (size_t k = 0; k < point_cache_files_.size(); ++k) {
+    files.push_back(point_cache_files_[k]);
+    files.push_back(point_cache_rest_files_[k]);
+  }
+  return files;
+}
+
+void TrackMeshes::write_mesh(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, mesh_extension());
+  meshes_written_.insert(name);
+  write_frame_mesh(dir_ / "meshes" / name, f, ref, coarse);
+  ++meshes_;
+}
+
+const char* TrackMeshes::mesh_extension() const { return options_.mesh_format == MeshFormat::kPly ? "ply" : "obj"; }
+
+Positions TrackMeshes::mesh_positions(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) const {
+  const Positions& camera_points = refined(ref) ? ref->positions : coarse;
+  return options_.mesh_space == MeshSpace::kCamera ? camera_points : to_model(camera_points, f.fit.pose);
+}
+
+void TrackMeshes::write_frame_mesh(const fs::path& file, const CapturedFrame& f, const Refinement* ref,
+                                   const Positions& coarse) {
+  const bool ply = options_.mesh_format == MeshFormat::kPly;
+  const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
+  std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
+                        (camera_space ? "\ncamera space (x right, y down, z forward), cm"
+                                      : "\nICT model space (y up, z out of the face), cm");
+  const Positions out = mesh_positions(f, ref, coarse);
+  if (refined(ref)) {
+    // The refined finest level, with UVs prolonged through the hierarchy.
+    const MeshHierarchy& h = refiner_->hierarchy();
+    const int finest = h.num_levels() - 1;
+    if (!refined_uvs_) {
+      const Eigen::MatrixXf coarse_uv = uv_matrix(coarse_uvs());
+      const Eigen::MatrixXf fine = h.prolong_from_coarse(coarse_uv, finest);
+      refined_uvs_ = std::vector<Vec2f>(fine.cols());
+      for (Eigen::Index i = 0; i < fine.cols(); ++i) (*refined_uvs_)[i] = fine.col(i);
+      for (const Triangle& t : h.level(finest).triangles) {
+        Polygon p;
+        for (int k = 0; k < 3; ++k) p.v[k] = p.uv[k] = t[k];
+        refined_polygons_.push_back(p);
+      }
+    }
+    comment += "\nrefined (finest level)";
+    if (ply) {
+      const Positions normals =
+          camera_space ? ref->normals
+                       : Positions(f.fit.pose.model_to_camera_rotation().cast<float>().transpose() * ref->normals);
+      write_ply(file, {.positions = &out,
+                       .polygons = &refined_polygons_,
+                       .normals = &normals,
+                       .colours = &ref->albedo,
+                       .uvs = &*refined_uvs_,
+                       .comment = comment + "\nvertex colours: the albedo (RGB, as albedo.png)"});
+    } else {
+      write_obj(file, {&out, &refined_polygons_, &*refined_uvs_, comment});
+    }
+  } else if (ply) {
+    const Positions normals = vertex_normals(out, face_mesh_.triangles);
+    write_ply(file, {.positions = &out,
+                     .polygons = &face_polygons_,
+                     .normals = &normals,
+                     .colours = nullptr,  // no albedo without --refine
+                     .uvs = &coarse_uvs(),
+                     .comment = comment});
+  } else {
+    write_obj(file, {&out, &face_polygons_, &model_.uvs, comment});
+  }
+}
+
+std::string TrackMeshes::point_cache_rest_name() const { return std::string("face_rest.") + mesh_extension(); }
+
+void TrackMeshes::append_to_point_cache(const CapturedFrame& f, int shot_first_frame, const Refinement* ref,
+                                        const Positions& coarse) {
+  const Positions points = mesh_positions(f, ref, coarse);
+  if (!point_cache_) {
+    if (options_.refine && !refined(ref)) return;  // the cache holds the refined level: wait for it
+    const bool first = point_cache_files_.empty();
+    const fs::path file = shot_file(dir_ / kPointCache, f.shot, first);
+    const fs::path rest = shot_file(dir_ / point_cache_rest_name(), f.shot, first);
+    point_cache_files_.push_back(file);
+    point_cache_rest_files_.push_back(rest);
+    write_frame_mesh(staged_point_caches_.stage(rest), f, ref, coarse);
+    point_cache_.emplace(OpenPointCache{std::make_unique<PointCacheWriter>(staged_point_caches_.stage(file),
+                                                                           int(points.cols()), float(shot_first_frame)),
+                                        points, shot_first_frame});
+  }
+  OpenPointCache& cache = *point_cache_;
+  if (points.cols() != cache.last.cols()) return;  // not the cache's level: held as a frame without a face
+  for (; cache.next_frame < f.index; ++cache.next_frame) cache.writer->append(cache.last);
+  cache.writer->append(points);
+  cache.last = points;
+  cache.next_frame = f.index + 1;
+}
+
+const std::vector<Vec2f>& TrackMeshes::coarse_uvs() {
+  if (!coarse_uvs_) coarse_uvs_ = per_vertex_uvs(face_mesh_);
+  return *coarse_uvs_;
+}
+
+void TrackMeshes::remove_earlier_meshes() const {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir_ / "meshes", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with("frame_") && (name.ends_with(".obj") || name.ends_with(".ply")) &&
+        !meshes_written_.contains(name))
+      fs::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace facecap
