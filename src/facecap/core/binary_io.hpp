@@ -33,6 +33,8 @@ class ByteWriter {
     raw(s.data(), s.size());
   }
   const std::string& bytes() const { return bytes_; }
+  // Room for `more` bytes after those written, where a record's size is known.
+  void reserve(size_t more) { bytes_.reserve(bytes_.size() + more); }
 
  private:
   std::string bytes_;

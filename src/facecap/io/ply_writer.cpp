@@ -4,33 +4,16 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <sstream>
 #include <string>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/binary_io.hpp"
 #include "facecap/core/error.hpp"
 
 namespace facecap {
 
 namespace {
-
-// The body: each record's fields appended as the machine stores them.
-class ByteBuffer {
- public:
-  explicit ByteBuffer(std::string header) : bytes_(std::move(header)) {}
-  template <typename T>
-  void put(T value) {
-    char raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    bytes_.append(raw, sizeof(T));
-  }
-  const std::string& bytes() const { return bytes_; }
-  void reserve(size_t more) { bytes_.reserve(bytes_.size() + more); }
-
- private:
-  std::string bytes_;
-};
 
 uint8_t to_byte(float unit) { return uint8_t(std::lround(std::clamp(unit, 0.0f, 1.0f) * 255.0f)); }
 
@@ -64,22 +47,25 @@ void write_ply(const std::filesystem::path& path, const PlyMesh& mesh) {
   if (mesh.uvs) header << "property float s\nproperty float t\n";
   header << "element face " << mesh.polygons->size() << "\nproperty list uchar int vertex_indices\nend_header\n";
 
-  ByteBuffer body(header.str());
-  body.reserve(size_t(n) * 35 + mesh.polygons->size() * 17);
+  ByteWriter body;
+  const std::string head = header.str();
+  body.raw(head.data(), head.size());
+  body.reserve(size_t(n) * (12 + (mesh.normals ? 12 : 0) + (mesh.colours ? 3 : 0) + (mesh.uvs ? 8 : 0)) +
+               mesh.polygons->size() * 17);
   for (Eigen::Index i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) body.put<float>(p(k, i));
+    for (int k = 0; k < 3; ++k) body.pod<float>(p(k, i));
     if (mesh.normals)
-      for (int k = 0; k < 3; ++k) body.put<float>((*mesh.normals)(k, i));
+      for (int k = 0; k < 3; ++k) body.pod<float>((*mesh.normals)(k, i));
     if (mesh.colours)
-      for (int k = 0; k < 3; ++k) body.put<uint8_t>(to_byte((*mesh.colours)(k, i)));
+      for (int k = 0; k < 3; ++k) body.pod<uint8_t>(to_byte((*mesh.colours)(k, i)));
     if (mesh.uvs) {
-      body.put<float>((*mesh.uvs)[size_t(i)].x());
-      body.put<float>((*mesh.uvs)[size_t(i)].y());
+      body.pod<float>((*mesh.uvs)[size_t(i)].x());
+      body.pod<float>((*mesh.uvs)[size_t(i)].y());
     }
   }
   for (const Polygon& poly : *mesh.polygons) {
-    body.put<uint8_t>(uint8_t(poly.size()));
-    for (int k = 0; k < poly.size(); ++k) body.put<int32_t>(poly.v[k]);
+    body.pod<uint8_t>(uint8_t(poly.size()));
+    for (int k = 0; k < poly.size(); ++k) body.pod<int32_t>(poly.v[k]);
   }
   write_binary_file(path, body.bytes().data(), body.bytes().size());
 }

@@ -2,10 +2,9 @@
 
 #include <bit>
 #include <cstdint>
-#include <cstring>
 #include <string>
-#include <vector>
 
+#include "facecap/core/binary_io.hpp"
 #include "facecap/core/error.hpp"
 
 namespace facecap {
@@ -16,27 +15,20 @@ static_assert(std::endian::native == std::endian::little, "PC2 is little-endian;
 
 constexpr long kSampleCountOffset = 12 + 4 + 4 + 4 + 4;  // signature, version, points, start, sampling
 
-template <typename T>
-void put(std::vector<char>& out, T value) {
-  char raw[sizeof(T)];
-  std::memcpy(raw, &value, sizeof(T));
-  out.insert(out.end(), raw, raw + sizeof(T));
-}
-
 }  // namespace
 
 PointCacheWriter::PointCacheWriter(const std::filesystem::path& path, int points, float start_frame, float sampling)
     : path_(path), file_(std::fopen(path.c_str(), "wb")), points_(points) {
   if (!file_) throw Error("cannot write " + path.string());
   if (points <= 0 || !(sampling > 0)) throw Error("a point cache needs points and a positive sampling");
-  std::vector<char> header(12, '\0');
-  std::memcpy(header.data(), "POINTCACHE2", 11);
-  put<int32_t>(header, 1);
-  put<int32_t>(header, points);
-  put<float>(header, start_frame);
-  put<float>(header, sampling);
-  put<int32_t>(header, 0);
-  if (std::fwrite(header.data(), 1, header.size(), file_.get()) != header.size())
+  ByteWriter header;
+  header.raw("POINTCACHE2", 12);  // with its terminating zero
+  header.pod<int32_t>(1);
+  header.pod<int32_t>(points);
+  header.pod<float>(start_frame);
+  header.pod<float>(sampling);
+  header.pod<int32_t>(0);  // the samples, filled in by finish()
+  if (std::fwrite(header.bytes().data(), 1, header.bytes().size(), file_.get()) != header.bytes().size())
     throw Error("cannot write " + path.string());
 }
 
