@@ -85,9 +85,10 @@ void report_all_faces(const AllFacesSummary& all) {
 }
 
 // The files a capture wrote, one per line.
-void print_track_files(const TrackSummary& s, FILE* out, bool livelink) {
+void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& options) {
   std::fprintf(out, "%s\n", (s.output_dir / "frames.csv").string().c_str());
-  if (livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
+  if (options.landmarks_csv) std::fprintf(out, "%s\n", (s.output_dir / "landmarks.csv").string().c_str());
+  if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
 }
@@ -137,6 +138,10 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "
                 "textured with the albedo). A video that cuts gets one per shot: DIR/animation_shot<N>.glb after the "
                 "first");
+  cmd->add_flag("--landmarks-csv", a->options.landmarks_csv,
+                "Write DIR/landmarks.csv: each frame's 68 landmarks in OpenFace's columns: the detector's (x_0 ... "
+                "y_67, pixels), the fitted model's projected (fit_x_0 ... fit_y_67) and the fitted model's in camera "
+                "space (X_0 ... Z_67, millimetres, x right, y down, z forward)");
   cmd->add_flag("--livelink", a->options.livelink,
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "
@@ -235,7 +240,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       for (size_t k = 0; k < each.runs.size(); ++k)
         report_face(each.faces[k], each.runs[k], a->input, a->options.refine);
       report_all_faces(each.capture);
-      for (const TrackSummary& s : each.runs) print_track_files(s, stdout, a->options.livelink);
+      for (const TrackSummary& s : each.runs) print_track_files(s, stdout, a->options);
       std::printf("%s\n", (std::filesystem::path(a->out) / "faces.json").string().c_str());
       std::printf("%s\n", (std::filesystem::path(a->out) / "faces.png").string().c_str());
       return;
@@ -249,7 +254,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   (note.empty() ? "" : "; " + note));
     }
     report_track(s, a->input, a->options.refine, a->options.capture.fit.known_identity.has_value());
-    print_track_files(s, a->stream ? stderr : stdout, a->options.livelink);  // with --stream, stdout holds the rows
+    print_track_files(s, a->stream ? stderr : stdout, a->options);  // with --stream, stdout holds the rows
   });
 }
 

@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "app/command.hpp"
+#include "facecap/core/csv_line.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/marked_image.hpp"
@@ -849,6 +850,21 @@ TEST(Cli, TrackStreamsEachFramesRowOnStdout) {
   EXPECT_NE(
       std::find(err.begin(), err.end(), "facecap: stdout was closed; --stream stops, and the files are still written"),
       err.end());
+}
+
+// --landmarks-csv: the table is written and named with the other files, a
+// row a frame as wide as its header (landmark_table.hpp).
+TEST(Cli, TrackWritesTheLandmarkTableAndNamesIt) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const RunResult r = run("track " + video.string() + " --landmarks-csv --max-frames 4 -o " + dir.path().string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const fs::path table = dir.path() / "landmarks.csv";
+  EXPECT_NE(r.out.find(table.string()), std::string::npos) << r.out;
+  const std::vector<std::string> rows = test::read_lines(table);
+  ASSERT_EQ(rows.size(), 5u);
+  for (const std::string& row : rows) EXPECT_EQ(split_csv_line(row).size(), 3u + 7u * 68u) << row.substr(0, 40);
 }
 
 // The README's main job, end to end on a short performance: it prints its

@@ -1,5 +1,5 @@
 #pragma once
-// One line of a comma-separated file, as facecap writes them (no quoting).
+// Comma-separated files as facecap writes them (no quoting).
 #include <string>
 #include <vector>
 
@@ -7,5 +7,9 @@ namespace facecap {
 
 // The fields of `line`; a trailing comma ends with an empty field.
 std::vector<std::string> split_csv_line(const std::string& line);
+
+// A number as the tables write it: six significant digits (%.6g), as
+// spreadsheets show them.
+std::string csv_number(double v);
 
 }  // namespace facecap

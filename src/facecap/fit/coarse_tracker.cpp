@@ -183,7 +183,8 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
   fit.correspondences = report.correspondences;
   fit.pose = params.pose();
   fit.expression = params.expression().cast<float>();
-  fit.fitted = fitter_.project(params, identity_.identity, identity_.focal, *frame.landmarks);
+  fit.fitted_points = fitter_.landmark_points(params, identity_.identity, identity_.focal, *frame.landmarks);
+  fit.fitted = fitter_.project(fit.fitted_points, identity_.focal);
   fit.valid = report.landmark_error <= fitter_.options().lost_landmark_error;
   if (!fit.valid) fit.irises = {};
   if (gaze && fit.valid) fit.gaze = estimate_gaze(eyeballs_, fit.pose, camera, gaze->irises);

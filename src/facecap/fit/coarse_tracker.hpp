@@ -23,10 +23,11 @@ struct CoarseFit {
   bool valid = false;  // false: no face, or landmarks the model cannot explain
   HeadPose pose;
   double focal = 0.0;
-  Eigen::VectorXf expression;             // 53 weights in [0, 1]
-  double landmark_error = 0.0;            // NME of the projected fit against the observed landmarks
-  Landmarks observed = zero_landmarks();  // the detector's landmarks
-  Landmarks fitted = zero_landmarks();    // the model's landmarks projected
+  Eigen::VectorXf expression;                             // 53 weights in [0, 1]
+  double landmark_error = 0.0;                            // NME of the projected fit against the observed landmarks
+  Landmarks observed = zero_landmarks();                  // the detector's landmarks
+  Landmarks fitted = zero_landmarks();                    // the model's landmarks projected
+  LandmarkPoints fitted_points = zero_landmark_points();  // ...and in camera space (cm), unprojected
   Correspondences correspondences{};
   IrisPair irises;    // the iris centres found inside the eye landmarks (iris.hpp), with an IrisSearch
   GazeEstimate gaze;  // from the irises on the fitted head (gaze.hpp)

@@ -25,21 +25,33 @@ double FaceFitter::focal_guess() const {
   return options_.focal_guess > 0 ? options_.focal_guess : 1.0 * std::max(width_, height_);
 }
 
-Landmarks FaceFitter::project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
-                              const Landmarks& observed, Correspondences* correspondences) const {
+LandmarkPoints FaceFitter::landmark_points(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
+                                           const Landmarks& observed, Correspondences* correspondences) const {
   const HeadPose pose = params.pose();
   const Mat3d rf = pose.model_to_camera_rotation();
   const Eigen::VectorXd w = params.expression();
-  const PinholeCamera cam = camera(focal);
-  const Correspondences c = pose_correspondences(model_, basis_, identity, w, pose, cam, observed, slide_jaw());
+  const Correspondences c =
+      pose_correspondences(model_, basis_, identity, w, pose, camera(focal), observed, slide_jaw());
   if (correspondences != nullptr) *correspondences = c;
-  Landmarks out;
-  for (int i = 0; i < 68; ++i) {
+  LandmarkPoints out;
+  for (int i = 0; i < kNumLandmarks; ++i) {
     const Vec3d x = (1.0 - c[i].t) * basis_.position(basis_.slot(c[i].a), identity, w) +
                     c[i].t * basis_.position(basis_.slot(c[i].b), identity, w);
-    out[i] = cam.project(Vec3d(rf * x + pose.translation)).cast<float>();
+    out[i] = rf * x + pose.translation;
   }
   return out;
+}
+
+Landmarks FaceFitter::project(const LandmarkPoints& points, double focal) const {
+  const PinholeCamera cam = camera(focal);
+  Landmarks out;
+  for (int i = 0; i < kNumLandmarks; ++i) out[i] = cam.project(points[i]).cast<float>();
+  return out;
+}
+
+Landmarks FaceFitter::project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
+                              const Landmarks& observed, Correspondences* correspondences) const {
+  return project(landmark_points(params, identity, focal, observed, correspondences), focal);
 }
 
 double FaceFitter::landmark_error(const Landmarks& observed, const FrameParameters& params,

@@ -69,10 +69,15 @@ class FaceFitter {
                                    Eigen::VectorXd& identity, double& focal,
                                    const std::vector<IrisCentres>* irises = nullptr) const;
 
-  // The model's 68 landmarks for a fit, projected; the jaw landmarks are the
-  // outline points nearest to the observed ones (jaw_contour.hpp).
+  // The model's 68 landmark points for a fit in camera space (cm); the jaw
+  // landmarks are the outline points nearest to the observed ones
+  // (jaw_contour.hpp).
+  LandmarkPoints landmark_points(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
+                                 const Landmarks& observed, Correspondences* correspondences = nullptr) const;
+  // The same points projected.
   Landmarks project(const FrameParameters& params, const Eigen::VectorXd& identity, double focal,
                     const Landmarks& observed, Correspondences* correspondences = nullptr) const;
+  Landmarks project(const LandmarkPoints& points, double focal) const;
 
   double landmark_error(const Landmarks& observed, const FrameParameters& params, const Eigen::VectorXd& identity,
                         double focal) const;

@@ -44,6 +44,14 @@ struct Correspondence {
   double t = 0.0;
 };
 using Correspondences = std::array<Correspondence, 68>;
+// The model's 68 landmark points (Correspondences' points) in camera space:
+// centimetres, x right, y down, z forward (core/camera.hpp).
+using LandmarkPoints = std::array<Vec3d, kNumLandmarks>;
+inline LandmarkPoints zero_landmark_points() {
+  LandmarkPoints p;
+  p.fill(Vec3d::Zero());
+  return p;
+}
 
 // Correspondences for a pose and shape: the landmark map's vertices, and for
 // the jaw landmarks (0-7, 9-16) either (slide) the nearest point of the

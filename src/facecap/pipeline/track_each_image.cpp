@@ -1,6 +1,5 @@
 #include "facecap/pipeline/track_each_image.hpp"
 
-#include <cstdio>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -120,11 +119,7 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
         ++summary.with_face;
         row["identity_weights"] = std::vector<double>(id.identity.data(), id.identity.data() + id.identity.size());
         row["focal_px"] = id.focal;
-        char number[32];
-        for (Eigen::Index k = 0; k < id.identity.size() && k < modes; ++k) {
-          std::snprintf(number, sizeof(number), "%.6g", id.identity[k]);
-          fields.push_back(number);
-        }
+        for (Eigen::Index k = 0; k < id.identity.size() && k < modes; ++k) fields.push_back(csv_number(id.identity[k]));
       }
     }
     row["image"] = file;

@@ -1,6 +1,5 @@
 #include "facecap/pipeline/track_job.hpp"
 
-#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -8,6 +7,7 @@
 #include <string>
 
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
 #include "facecap/io/gltf_writer.hpp"
@@ -16,6 +16,7 @@
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/face_animation.hpp"
+#include "facecap/pipeline/landmark_table.hpp"
 #include "facecap/pipeline/livelink_streamer.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
@@ -34,6 +35,7 @@ namespace {
 // Files of the output folder that an input could be (a re-tracked overlay).
 constexpr const char* kOverlayVideo = "overlay.mp4";
 constexpr const char* kLiveLinkCsv = "livelink_face.csv";
+constexpr const char* kLandmarkTable = "landmarks.csv";
 constexpr const char* kShadedVideo = "shaded.mp4";
 constexpr const char* kHeatmapVideo = "heatmap.mp4";
 constexpr const char* kAlbedoImage = "albedo.png";
@@ -56,12 +58,6 @@ class StagedText {
   AtomicFile file_;
   std::ofstream out_;
 };
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", v);
-  return buf;
-}
 
 nlohmann::json landmarks_json(const Landmarks& lm) {
   nlohmann::json a = nlohmann::json::array();
@@ -94,6 +90,10 @@ class FrameWriter {
     if (options.livelink || options.livelink_stream) {
       livelink_face_.emplace(model.expression_names);
       livelink_values_ = livelink_face_->values(Eigen::VectorXf::Zero(model.num_expressions()), {});
+    }
+    if (options.landmarks_csv) {
+      landmarks_.emplace(dir / kLandmarkTable);
+      landmarks_->stream() << landmark_table_header() << '\n';
     }
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
@@ -134,17 +134,17 @@ class FrameWriter {
     }
     shot_has_face_ = shot_has_face_ || ok;
     std::ofstream& o = csv_.stream();
-    o << f.index << ',' << number(f.time) << ',' << to_string(f.status);
+    o << f.index << ',' << csv_number(f.time) << ',' << to_string(f.status);
     nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}, {"shot", f.shot}};
     if (!f.error.empty()) row["error"] = f.error;
     if (ok) {
       const Vec3d ypr = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
-      for (int k = 0; k < 3; ++k) o << ',' << number(f.fit.pose.rotation[k]);
-      for (int k = 0; k < 3; ++k) o << ',' << number(f.fit.pose.translation[k]);
-      o << ',' << number(f.fit.focal);
-      for (int k = 0; k < 3; ++k) o << ',' << number(ypr[k]);
-      o << ',' << number(f.fit.landmark_error);
-      for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) o << ',' << number(f.fit.expression[k]);
+      for (int k = 0; k < 3; ++k) o << ',' << csv_number(f.fit.pose.rotation[k]);
+      for (int k = 0; k < 3; ++k) o << ',' << csv_number(f.fit.pose.translation[k]);
+      o << ',' << csv_number(f.fit.focal);
+      for (int k = 0; k < 3; ++k) o << ',' << csv_number(ypr[k]);
+      o << ',' << csv_number(f.fit.landmark_error);
+      for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k) o << ',' << csv_number(f.fit.expression[k]);
       nlohmann::json weights;
       for (Eigen::Index k = 0; k < f.fit.expression.size(); ++k)
         weights[model_.expression_names[k]] = f.fit.expression[k];
@@ -157,7 +157,7 @@ class FrameWriter {
       row["landmarks"] = landmarks_json(f.fit.observed);
       row["fitted_landmarks"] = landmarks_json(f.fit.fitted);
       if (ref != nullptr) {
-        for (int k = 0; k < 9; ++k) o << ',' << number(ref->lighting[k]);
+        for (int k = 0; k < 9; ++k) o << ',' << csv_number(ref->lighting[k]);
         row["lighting"] = std::vector<double>(ref->lighting.data(), ref->lighting.data() + 9);
       } else if (options_.refine) {
         o << std::string(9, ',');
@@ -168,6 +168,8 @@ class FrameWriter {
     }
     write_gaze(f, o, row);
     o << ',' << f.shot << '\n';
+    if (landmarks_)
+      landmarks_->stream() << landmark_table_row(f.index, f.time, to_string(f.status), ok ? &f.fit : nullptr) << '\n';
     if (livelink_face_) write_livelink(f);
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
@@ -254,6 +256,7 @@ class FrameWriter {
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     csv_.commit();
     jsonl_.commit();
+    if (landmarks_) landmarks_->commit();
     if (livelink_) livelink_->commit();
     for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
       if (w) w->finish();
@@ -299,8 +302,8 @@ class FrameWriter {
       ++gaze_frames_;
       const Vec2d angles = g.angles_deg();
       const Vec3d camera = f.fit.pose.model_to_camera_rotation() * g.direction();
-      o << ',' << number(angles.x()) << ',' << number(angles.y());
-      for (int k = 0; k < 3; ++k) o << ',' << number(camera[k]);
+      o << ',' << csv_number(angles.x()) << ',' << csv_number(angles.y());
+      for (int k = 0; k < 3; ++k) o << ',' << csv_number(camera[k]);
       gaze = {{"yaw_deg", angles.x()},
               {"pitch_deg", angles.y()},
               {"direction_head", {g.direction().x(), g.direction().y(), g.direction().z()}},
@@ -322,7 +325,7 @@ class FrameWriter {
     }
     for (int eye = 0; eye < 2; ++eye) {
       if (g.eyes[eye]) {
-        o << ',' << number(f.fit.irises[eye]->centre.x()) << ',' << number(f.fit.irises[eye]->centre.y());
+        o << ',' << csv_number(f.fit.irises[eye]->centre.x()) << ',' << csv_number(f.fit.irises[eye]->centre.y());
       } else {
         o << ",,";
       }
@@ -385,6 +388,7 @@ class FrameWriter {
   // --livelink, --livelink-udp: a row and a datagram per frame; a lost frame
   // holds the last tracked one's values (importers read rows as frames, and
   // a rig keeps its face), the first ones the rest pose.
+  std::optional<StagedText> landmarks_;  // --landmarks-csv (landmark_table.hpp)
   std::optional<LiveLinkFace> livelink_face_;
   LiveLinkFace::Values livelink_values_{};
   std::optional<StagedText> livelink_;

@@ -15,6 +15,9 @@
 //                      and weights keyed per frame, the fitted camera
 //                      (face_animation.hpp); with --refine its albedo texture.
 //                      A video that cuts: one per shot (shot_animations.hpp)
+//   DIR/landmarks.csv  (--landmarks-csv) each frame's 68 landmarks: the
+//                      detector's, the fit's projected and the fit's in
+//                      camera space (mm), in OpenFace's columns
 //   DIR/livelink_face.csv (--livelink) the weights, head pose and gaze as a
 //                      Live Link Face take, for Unreal (MetaHuman) and
 //                      ARKit rigs (io/livelink_csv.hpp)
@@ -58,6 +61,9 @@ struct TrackOptions {
   bool overlay = false;
   VideoEncoding encoding;  // the overlay videos'
   bool gltf = false;
+  // DIR/landmarks.csv: each frame's detected, fitted and 3D landmarks
+  // (landmark_table.hpp: OpenFace's columns)
+  bool landmarks_csv = false;
   bool livelink = false;  // DIR/livelink_face.csv (io/livelink_csv.hpp)
   // Each frame's Live Link Face values also sent as a datagram as the frame
   // is written (io/livelink_packet.hpp: Unreal's Live Link, a MetaHuman).
