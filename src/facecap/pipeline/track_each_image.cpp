@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -92,20 +93,20 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
     const std::string file = images[i].filename().string();
     nlohmann::json row;
     std::vector<std::string> fields = {file};
-    cv::Size size;
+    std::unique_ptr<FrameSource> source;
     try {
-      const InputInfo info = open_input(images[i].string())->info();
-      size = cv::Size(info.width, info.height);
+      source = open_input(images[i].string());
     } catch (const Error& e) {  // an image that cannot be read is its row's business, not the run's
       row = {{"status", "error"}, {"error", e.what()}};
       fields.push_back("error");
       if (summary.unreadable++ == 0) summary.first_error = e.what();
     }
-    if (row.empty()) {
+    if (source) {
+      const InputInfo info = source->info();
       const fs::path dir = output_dir / names[i];
       made.add(dir);
       row_json.clear();
-      const TrackSummary s = run_track(model, images[i].string(), dir, own);
+      const TrackSummary s = run_track(model, *source, images[i].string(), dir, own);
       const std::vector<std::string> lines = file_lines(dir / "frames.csv");
       if (lines.size() != 2 || row_json.empty()) throw Error("expected one frame in " + (dir / "frames.csv").string());
       if (header.empty()) header = image_fields(lines[0]);
@@ -113,7 +114,7 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
       row = nlohmann::json::parse(row_json);
       for (const char* key : {"frame", "time", "shot"}) row.erase(key);
       row["folder"] = names[i];
-      row["size"] = {size.width, size.height};
+      row["size"] = {info.width, info.height};
       const IdentityEstimate& id = s.capture.identity;
       if (s.capture.lost < s.capture.frames) {
         ++summary.with_face;

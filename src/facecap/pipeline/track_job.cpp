@@ -491,10 +491,15 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
 TrackSummary run_track(const FaceModel& model, const std::string& input, const fs::path& dir,
                        const TrackOptions& options) {
   auto source = open_input(input, options.capture.start_seconds);  // validates the input before anything is written
-  TrackOutput output(model, source->info(), input, dir, options);
+  return run_track(model, *source, input, dir, options);
+}
+
+TrackSummary run_track(const FaceModel& model, FrameSource& source, const std::string& input, const fs::path& dir,
+                       const TrackOptions& options) {
+  TrackOutput output(model, source.info(), input, dir, options);
   CaptureOptions capture = options.capture;
   capture.keep_images = options.overlay || options.refine;
-  return output.finish(run_capture(model, *source, capture, output.sink()));
+  return output.finish(run_capture(model, source, capture, output.sink()));
 }
 
 }  // namespace facecap

@@ -99,6 +99,10 @@ struct TrackSummary {
 
 TrackSummary run_track(const FaceModel& model, const std::string& input, const std::filesystem::path& output_dir,
                        const TrackOptions& options);
+// The same of an input already opened (open_input with
+// options.capture.start_seconds), named `input` in the outputs.
+TrackSummary run_track(const FaceModel& model, FrameSource& source, const std::string& input,
+                       const std::filesystem::path& output_dir, const TrackOptions& options);
 
 // The files of one capture in a folder, as run_track writes them, for a
 // capture driven elsewhere (track --all-faces: one per face). `info`: the
