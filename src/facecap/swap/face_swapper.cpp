@@ -7,13 +7,11 @@
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/core/error.hpp"
-#include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
 #include "facecap/refine/refiner.hpp"
-#include "facecap/render/outline_distance.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
 #include "facecap/render/texture_levels.hpp"
@@ -23,6 +21,7 @@
 #include "facecap/swap/brightness_hue.hpp"
 #include "facecap/swap/chroma_spread.hpp"
 #include "facecap/swap/expression_ratio.hpp"
+#include "facecap/swap/face_render.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/frame_preparation.hpp"
 #include "facecap/swap/light_colour.hpp"
@@ -30,7 +29,6 @@
 #include "facecap/swap/noise_matching.hpp"
 #include "facecap/swap/occlusion_mask.hpp"
 #include "facecap/swap/residual_shading.hpp"
-#include "facecap/swap/silhouette_fade.hpp"
 #include "facecap/swap/size_match.hpp"
 #include "facecap/swap/skin_texture.hpp"
 #include "facecap/swap/weighted_channels.hpp"
@@ -94,6 +92,32 @@ std::vector<std::vector<cv::Point2f>> feature_outlines(const std::vector<cv::Poi
     return std::vector<cv::Point2f>(anchors.begin() + first, anchors.begin() + last + 1);
   };
   return {run(36, 41), run(42, 47), run(48, 59)};
+}
+
+// Multi-band blend (as the expression transformation's, §5.3.3) of the
+// render over the warped background (both `out.window`-sized), with the
+// alpha map as the mask: the coarse bands cross the outline smoothly, the
+// fine ones keep it sharp.
+void blend_face(const cv::Mat& background, const cv::Mat& render, SwappedFrame& out) {
+  cv::Mat region = out.image(out.window);
+  background.copyTo(region);
+  FaceLayer layer;
+  layer.box = out.window;
+  layer.colour = background.clone();
+  // The layer's colour is the render already mixed by alpha, so it has no
+  // step where alpha starts: the pyramid's coarse bands, which reach past
+  // the mask, would carry that step out to the blend's edge.
+  for (int y = 0; y < out.window.height; ++y) {
+    const auto* c = render.ptr<cv::Vec3f>(y);
+    const float* a = out.alpha.ptr<float>(y);
+    auto* o = layer.colour.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < out.window.width; ++x) {
+      if (a[x] <= 0) continue;
+      for (int k = 0; k < 3; ++k) o[x][k] = cv::saturate_cast<uchar>(a[x] * c[x][k] + (1 - a[x]) * o[x][k]);
+    }
+  }
+  out.alpha.convertTo(layer.mask, CV_8U, 255.0);
+  composite_layer(out.image, layer, 0, 1.0);
 }
 
 }  // namespace
@@ -332,6 +356,130 @@ struct FaceSwapper::Impl {
     cv::merge(channels, texture);
     texture_levels = TextureLevels(texture);
   }
+
+  // TargetFrame::lighting_final: what was gathered under provisional lighting starts again.
+  void restart_appearance() {
+    appearance_seen = 0;
+    target_sum = FaceTexture();
+    if (ratio) ratio->clear_reference();
+    if (occlusion) occlusion->clear_reference();
+  }
+
+  std::unique_ptr<FramePreparation> new_preparation() const {
+    if (!occlusion) return nullptr;
+    return std::make_unique<FramePreparation>(model, skin, occlusion->grid(), options.moving_covers);
+  }
+
+  // What covers the target face (occlusion_mask.hpp, on `occlusion`'s grid),
+  // and the face's skin texture seen in the frame with the covers left out,
+  // which the expression ratio can use on the same grid.
+  struct Cover {
+    cv::Mat cover;
+    std::optional<FaceTexture> skin;
+  };
+  Cover find_cover(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
+                   bool appearance_frame) {
+    PreparedFrame own;
+    const PreparedFrame* prepared = target.prepared;
+    if (!prepared) {
+      if (!preparation) preparation = new_preparation();
+      own = preparation->prepare(frame, target_points, target.camera, target.lighting, target.index);
+      prepared = &own;
+    }
+    const FaceTexture& seen = prepared->seen;
+    Cover c;
+    c.skin = FaceTexture{seen.albedo, seen.weight.clone()};
+    drop_non_skin(*c.skin);
+    if (appearance_frame) occlusion->add_reference(seen);
+    c.cover = occlusion->covered(seen, prepared->moving);
+    c.skin->weight.setTo(0, c.cover > 0);  // the expression ratio's change is the face's, not a cover's
+    return c;
+  }
+
+  // The target's fine change of appearance since its first frames, as
+  // gains in the texture's layout (expression_ratio.hpp).
+  cv::Mat expression_gains(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
+                           const std::vector<std::vector<cv::Point>>& holes,
+                           const std::optional<FaceTexture>& uncovered_skin, bool appearance_frame) {
+    const FaceTexture now = uncovered_skin && occlusion->grid_size() == ratio->grid_size()
+                                ? *uncovered_skin
+                                : ratio->unshade(frame, target_points, target.camera, target.lighting, holes);
+    if (appearance_frame) ratio->add_reference(now);
+    return ratio->gains(now);
+  }
+
+  // One of the first frames: its unshaded texture joins the target's
+  // appearance, and the source's texture is harmonised again (eq. 6.3-6.5).
+  void add_appearance_frame(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
+                            const std::vector<std::vector<cv::Point>>& holes) {
+    FaceTexture tex = unshade_face(frame, target_points, skin.triangles, target.camera, target.lighting, map, holes);
+    drop_non_skin(tex);
+    if (appearance_seen == 0) {
+      target_first = tex;
+      matched_noise = cv::Mat();
+    }
+    accumulate(target_sum, tex);
+    ++appearance_seen;
+    harmonise();
+  }
+
+  // The target light's colour now against the appearance frames'
+  // (light_colour.hpp) and the shading pattern its SH lighting leaves
+  // unexplained (residual_shading.hpp), from the same lit vertices.
+  FaceLight target_light(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
+                         const Positions& target_normals, const cv::Mat& cover) const {
+    FaceLight light;
+    if (target_vertex_albedo.cols() == 0 || !(options.follow_light_colour || residual)) return light;
+    const std::vector<LitVertex> lit =
+        lit_vertices(frame, target_points, target_normals,
+                     cover.empty() ? target_vertex_seen : uncovered(skin, target_vertex_seen, cover), target.camera,
+                     target.lighting);
+    if (options.follow_light_colour) light.tint = light_colour(lit, target_vertex_albedo);
+    if (residual) light.residual_gains = residual->gains(lit, target_vertex_albedo);
+    return light;
+  }
+
+  // §6.3: the target background in `window`, warped to the swapped face's outline.
+  cv::Mat warped_background(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
+                            const Positions& target_normals, const Positions& swapped_points,
+                            const Positions& swapped_normals, const cv::Mat& cover, const cv::Rect& window) {
+    const std::vector<cv::Point2f> from = project_vertices(target_points, anchors, target.camera);
+    std::vector<cv::Point2f> to = project_vertices(swapped_points, anchors, target.camera);
+    // What covers an anchor holds still, beyond the face's outline too
+    // (the rest of a hand, a microphone's stand).
+    for (size_t k = 0; k < to.size() && !cover.empty(); ++k) {
+      if (anchor_uvs[k] && cover_at(cover, *anchor_uvs[k]) > 0.5f) to[k] = from[k];
+    }
+    const std::vector<bool> shown =
+        anchors_facing(anchors, target_points, target_normals, swapped_points, swapped_normals, skin.num_vertices);
+    cv::Mat background;
+    warp.warp(frame, kept(from, shown), kept(to, shown), window, background, feature_outlines(to));
+    return background;
+  }
+
+  // The covers stay in front, where the frame has them: neither the new
+  // face nor the background's warp moves them. `out` (its image, alpha and
+  // covered share) loses the new face where `cover` says.
+  void keep_covers_in_front(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& window,
+                            const cv::Mat& cover, SwappedFrame& out) const {
+    cv::Mat in_front = cover_in_image(skin, target_points, window, out.window.size(), cover);
+    // Across the openings of the skin mesh (the mouth, the eyes) where a
+    // cover lies on both sides of them: up to 6 % of the window each way
+    // (the window is about 1.4 face widths: some 12 mm).
+    const int across = std::max(1, cvRound(0.06 * out.window.width));
+    cv::morphologyEx(in_front, in_front, cv::MORPH_CLOSE,
+                     cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * across + 1, 2 * across + 1)));
+    const double full = cv::sum(out.alpha)[0];
+    out.alpha = out.alpha.mul(1.0f - in_front);
+    out.covered = full > 0 ? 1.0 - cv::sum(out.alpha)[0] / full : 0.0;
+    if (out.covered > 0) {
+      cv::Mat swapped_f, frame_f;
+      out.image(out.window).convertTo(swapped_f, CV_32FC3);
+      frame(out.window).convertTo(frame_f, CV_32FC3);
+      const cv::Mat mixed = swapped_f + times_weight(frame_f - swapped_f, in_front);
+      mixed.convertTo(out.image(out.window), CV_8UC3);
+    }
+  }
 };
 
 FaceSwapper::FaceSwapper(const FaceModel& model, const cv::Mat& photo, SourceFace source, SwapOptions options)
@@ -355,11 +503,7 @@ std::optional<SizeMatch> FaceSwapper::size_match() const {
   return impl_->size;
 }
 
-std::unique_ptr<FramePreparation> FaceSwapper::make_preparation() const {
-  const Impl& m = *impl_;
-  if (!m.occlusion) return nullptr;
-  return std::make_unique<FramePreparation>(m.model, m.skin, m.occlusion->grid(), m.options.moving_covers);
-}
+std::unique_ptr<FramePreparation> FaceSwapper::make_preparation() const { return impl_->new_preparation(); }
 
 SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, SwapTimings* timings) {
   Impl& m = *impl_;
@@ -377,83 +521,27 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   if (m.options.match_target_size) source_shape = m.size.apply(source_shape);
   const Positions swapped_points = to_camera(source_shape, target.pose);
 
-  auto t0 = std::chrono::steady_clock::now();
   // What was gathered under provisional lighting starts again (TargetFrame::lighting_final).
-  if (!target.lighting_final) {
-    m.appearance_seen = 0;
-    m.target_sum = FaceTexture();
-    if (m.ratio) m.ratio->clear_reference();
-    if (m.occlusion) m.occlusion->clear_reference();
-  }
+  if (!target.lighting_final) m.restart_appearance();
   const std::vector<std::vector<cv::Point>> holes = feature_holes(m.model, target_points, target.camera);
   const bool appearance_frame = m.appearance_seen < m.options.appearance_frames;
-  // What covers the target face; its skin texture, on the same grid as the
-  // expression ratio's, serves that too.
-  cv::Mat cover;
-  std::optional<FaceTexture> skin_now;
-  double occlusion_ms = 0;
-  if (m.occlusion) {
-    t0 = std::chrono::steady_clock::now();
-    PreparedFrame own;
-    const PreparedFrame* prepared = target.prepared;
-    if (!prepared) {
-      if (!m.preparation) m.preparation = make_preparation();
-      own = m.preparation->prepare(frame, target_points, target.camera, target.lighting, target.index);
-      prepared = &own;
-    }
-    const FaceTexture& seen = prepared->seen;
-    skin_now = FaceTexture{seen.albedo, seen.weight.clone()};
-    drop_non_skin(*skin_now);
-    if (appearance_frame) m.occlusion->add_reference(seen);
-    cover = m.occlusion->covered(seen, prepared->moving);
-    skin_now->weight.setTo(0, cover > 0);  // the expression ratio's change is the face's, not a cover's
-    occlusion_ms = ms_since(t0);
-    t.occlusion_ms += occlusion_ms;
-  }
-  cv::Mat ratio_gains;
-  double ratio_ms = 0;
-  if (m.ratio) {
-    t0 = std::chrono::steady_clock::now();
-    const FaceTexture now = skin_now && m.occlusion->grid_size() == m.ratio->grid_size()
-                                ? *skin_now
-                                : m.ratio->unshade(frame, target_points, target.camera, target.lighting, holes);
-    if (appearance_frame) m.ratio->add_reference(now);
-    ratio_gains = m.ratio->gains(now);
-    ratio_ms = ms_since(t0);
-    t.ratio_ms += ratio_ms;
-  }
-  const float ratio_texels = ratio_gains.empty() ? 0.0f : float(ratio_gains.cols - 1);
+  auto t0 = std::chrono::steady_clock::now();
+  const Impl::Cover cover = m.occlusion ? m.find_cover(frame, target, target_points, appearance_frame) : Impl::Cover{};
+  const double occlusion_ms = m.occlusion ? ms_since(t0) : 0.0;
+  t.occlusion_ms += occlusion_ms;
   t0 = std::chrono::steady_clock::now();
-  if (appearance_frame) {
-    FaceTexture tex =
-        unshade_face(frame, target_points, m.skin.triangles, target.camera, target.lighting, m.map, holes);
-    drop_non_skin(tex);
-    if (m.appearance_seen == 0) {
-      m.target_first = tex;
-      m.matched_noise = cv::Mat();
-    }
-    accumulate(m.target_sum, tex);
-    ++m.appearance_seen;
-    m.harmonise();
-  }
+  const cv::Mat ratio_gains =
+      m.ratio ? m.expression_gains(frame, target, target_points, holes, cover.skin, appearance_frame) : cv::Mat();
+  const double ratio_ms = m.ratio ? ms_since(t0) : 0.0;
+  t.ratio_ms += ratio_ms;
+  t0 = std::chrono::steady_clock::now();
+  if (appearance_frame) m.add_appearance_frame(frame, target, target_points, holes);
   const double appearance_ms = ms_since(t0);
   t.appearance_ms += appearance_ms;
 
-  // The target light's colour now against the appearance frames'
-  // (light_colour.hpp), and the shading pattern its SH lighting leaves
-  // unexplained (residual_shading.hpp), from the same lit vertices.
   const Positions target_normals = vertex_normals(target_points, m.skin.triangles);
-  Vec3f tint = Vec3f::Ones();
-  cv::Mat gains;
-  if (m.target_vertex_albedo.cols() > 0 && (m.options.follow_light_colour || m.residual)) {
-    const std::vector<LitVertex> lit =
-        lit_vertices(frame, target_points, target_normals,
-                     cover.empty() ? m.target_vertex_seen : uncovered(m.skin, m.target_vertex_seen, cover),
-                     target.camera, target.lighting);
-    if (m.options.follow_light_colour) tint = light_colour(lit, m.target_vertex_albedo);
-    if (m.residual) gains = m.residual->gains(lit, m.target_vertex_albedo);
-  }
-  const float gain_texels = gains.empty() ? 0.0f : float(gains.cols - 1);
+  FaceLight light = m.target_light(frame, target, target_points, target_normals, cover.cover);
+  light.expression_gains = ratio_gains;
 
   SwappedFrame out;
   out.image = frame.clone();
@@ -464,73 +552,11 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
                cv::Rect(0, 0, frame.cols, frame.rows);
   if (out.window.area() == 0) return out;
 
-  // Eq. 6.7: the harmonised albedo under the target's lighting, on the swapped mesh's normals.
   const PinholeCamera window = target.camera.cropped(out.window.x, out.window.y);
-  RasterBuffers buffers;
-  buffers.resize(out.window.width, out.window.height);
-  rasterize(swapped_points, m.skin.triangles, window, buffers);
   const Positions normals = vertex_normals(swapped_points, m.skin.triangles);
-  cv::Mat render(out.window.size(), CV_32FC3, cv::Scalar::all(0));
-  out.alpha = cv::Mat(out.window.size(), CV_32F, cv::Scalar(0));
-  const float texels = float(m.map.size - 1);
-  // The texture at the density the face is seen at (texture_levels.hpp).
-  const float lod = m.texture_levels.lod_for(texels_per_pixel(m.skin, swapped_points, target.camera, m.map.size));
-  // The silhouette fade's band: a tenth of the face's width (a cylinder's
-  // surface turns 53 degrees from the view ray, where the fade ends, a
-  // tenth of its width inside its outline).
-  const cv::Mat outline_px = outline_distance(buffers);
-  cv::Mat turned(out.window.size(), CV_32F, cv::Scalar(1));  // undrawn: no surface facing the camera
-  const SilhouetteFade fade{m.options.silhouette_fade_start,
-                            std::max(2.0f, 0.1f * float(projected_bounds(swapped_points, target.camera).width))};
-  // The UV of the pixel at buffer index i (drawn).
-  const auto uv_at = [&](size_t i) {
-    const Vec2f b = buffers.bary[i];
-    const Triangle& uv = m.skin.triangle_uvs[buffers.triangle[i]];
-    return Vec2f((1 - b.x() - b.y()) * m.skin.uvs[uv[0]] + b.x() * m.skin.uvs[uv[1]] + b.y() * m.skin.uvs[uv[2]]);
-  };
-  constexpr int kPixelsAhead = 8;
-  parallel_for(
-      out.window.height,
-      [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-          auto* colour = render.ptr<cv::Vec3f>(y);
-          float* a = out.alpha.ptr<float>(y);
-          const float* outline = outline_px.ptr<float>(y);
-          float* turn = turned.ptr<float>(y);
-          const size_t row = size_t(y) * out.window.width;
-          for (int x = 0; x < out.window.width; ++x) {
-            const size_t i = row + x;
-            // The texture a few pixels on, asked for now (TextureLevels::prefetch).
-            if (x + kPixelsAhead < out.window.width && buffers.triangle[i + kPixelsAhead] >= 0) {
-              const Vec2f ahead = uv_at(i + kPixelsAhead);
-              m.texture_levels.prefetch(lod, ahead.x() * texels, (1.0f - ahead.y()) * texels);
-            }
-            const int tri = buffers.triangle[i];
-            if (tri < 0) continue;
-            const Vec2f coord = uv_at(i);
-            const cv::Vec4f s = m.texture_levels.sample<4>(lod, coord.x() * texels, (1.0f - coord.y()) * texels);
-            const Vec3f normal = interpolate(buffers, m.skin.triangles, normals, i).normalized();
-            const Vec3f n = to_viewer_frame(normal);
-            const float shade = 255.0f * std::max(0.0f, sh_shade(target.lighting, n.x(), n.y(), n.z()));
-            cv::Vec3f light(shade * tint[0], shade * tint[1], shade * tint[2]);
-            if (!gains.empty())
-              light = light.mul(
-                  sample_bilinear_channels<3>(gains, coord.x() * gain_texels, (1.0f - coord.y()) * gain_texels));
-            if (ratio_gains.channels() == 3)
-              light = light.mul(sample_bilinear_channels<3>(ratio_gains, coord.x() * ratio_texels,
-                                                            (1.0f - coord.y()) * ratio_texels));
-            else if (!ratio_gains.empty())
-              light *= sample_bilinear_channels<1>(ratio_gains, coord.x() * ratio_texels,
-                                                   (1.0f - coord.y()) * ratio_texels)[0];
-            colour[x] = cv::Vec3f(s[0] * light[0], s[1] * light[1], s[2] * light[2]);
-            const Vec3f ray = interpolate(buffers, m.skin.triangles, swapped_points, i).normalized();
-            turn[x] = fade.turned(-normal.dot(ray));
-            a[x] = s[3] * fade.alpha(turn[x], outline[x]);
-          }
-        }
-      },
-      16);
-  soften_turned_away(render, turned, outline_px, fade);
+  cv::Mat render =
+      render_swapped_face(m.skin, m.texture_levels, swapped_points, normals, target.camera, window, out.window.size(),
+                          target.lighting, light, m.options.silhouette_fade_start, out.alpha);
   t.render_ms += ms_since(start) - appearance_ms - ratio_ms - occlusion_ms;
 
   if (m.options.wrinkles && target.hierarchy && target.hierarchy->num_levels() > 1 && target.fine.cols() > 0) {
@@ -540,71 +566,20 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
     t.wrinkle_ms += ms_since(t0) - setup_ms;
   }
 
-  // §6.3: the target background warped to the swapped face's outline.
   t0 = std::chrono::steady_clock::now();
-  cv::Mat background;
-  if (m.options.warp_background) {
-    const std::vector<cv::Point2f> from = project_vertices(target_points, m.anchors, target.camera);
-    std::vector<cv::Point2f> to = project_vertices(swapped_points, m.anchors, target.camera);
-    // What covers an anchor holds still, beyond the face's outline too
-    // (the rest of a hand, a microphone's stand).
-    for (size_t k = 0; k < to.size() && !cover.empty(); ++k) {
-      if (m.anchor_uvs[k] && cover_at(cover, *m.anchor_uvs[k]) > 0.5f) to[k] = from[k];
-    }
-    const std::vector<bool> shown =
-        anchors_facing(m.anchors, target_points, target_normals, swapped_points, normals, m.skin.num_vertices);
-    m.warp.warp(frame, kept(from, shown), kept(to, shown), out.window, background, feature_outlines(to));
-  } else {
-    background = frame(out.window).clone();
-  }
+  const cv::Mat background = m.options.warp_background
+                                 ? m.warped_background(frame, target, target_points, target_normals, swapped_points,
+                                                       normals, cover.cover, out.window)
+                                 : frame(out.window).clone();
   t.warp_ms += ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  // Multi-band blend (as the expression transformation's, §5.3.3) of the
-  // render over the warped background, with the alpha map as the mask: the
-  // coarse bands cross the outline smoothly, the fine ones keep it sharp.
-  cv::Mat region = out.image(out.window);
-  background.copyTo(region);
-  FaceLayer layer;
-  layer.box = out.window;
-  layer.colour = background.clone();
-  // The layer's colour is the render already mixed by alpha, so it has no
-  // step where alpha starts: the pyramid's coarse bands, which reach past
-  // the mask, would carry that step out to the blend's edge.
-  for (int y = 0; y < out.window.height; ++y) {
-    const auto* c = render.ptr<cv::Vec3f>(y);
-    const float* a = out.alpha.ptr<float>(y);
-    auto* o = layer.colour.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < out.window.width; ++x) {
-      if (a[x] <= 0) continue;
-      for (int k = 0; k < 3; ++k) o[x][k] = cv::saturate_cast<uchar>(a[x] * c[x][k] + (1 - a[x]) * o[x][k]);
-    }
-  }
-  out.alpha.convertTo(layer.mask, CV_8U, 255.0);
-  composite_layer(out.image, layer, 0, 1.0);
+  blend_face(background, render, out);
   t.blend_ms += ms_since(t0);
 
-  if (!cover.empty() && cv::countNonZero(cover) > 0) {
-    // The covers stay in front, where the frame has them: neither the new
-    // face nor the background's warp moves them.
+  if (!cover.cover.empty() && cv::countNonZero(cover.cover) > 0) {
     t0 = std::chrono::steady_clock::now();
-    cv::Mat in_front = cover_in_image(m.skin, target_points, window, out.window.size(), cover);
-    // Across the openings of the skin mesh (the mouth, the eyes) where a
-    // cover lies on both sides of them: up to 6 % of the window each way
-    // (the window is about 1.4 face widths: some 12 mm).
-    const int across = std::max(1, cvRound(0.06 * out.window.width));
-    cv::morphologyEx(in_front, in_front, cv::MORPH_CLOSE,
-                     cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * across + 1, 2 * across + 1)));
-    const double full = cv::sum(out.alpha)[0];
-    out.alpha = out.alpha.mul(1.0f - in_front);
-    out.covered = full > 0 ? 1.0 - cv::sum(out.alpha)[0] / full : 0.0;
-    if (out.covered > 0) {
-      cv::Mat swapped_f, frame_f;
-      out.image(out.window).convertTo(swapped_f, CV_32FC3);
-      frame(out.window).convertTo(frame_f, CV_32FC3);
-      const cv::Mat mixed = swapped_f + times_weight(frame_f - swapped_f, in_front);
-      mixed.convertTo(out.image(out.window), CV_8UC3);
-    }
+    m.keep_covers_in_front(frame, target_points, window, cover.cover, out);
     t.occlusion_ms += ms_since(t0);
   }
   return out;

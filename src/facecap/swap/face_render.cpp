@@ -1,0 +1,92 @@
+#include "facecap/swap/face_render.hpp"
+
+#include <algorithm>
+
+#include "facecap/compose/face_reshading.hpp"
+#include "facecap/core/image_sampling.hpp"
+#include "facecap/core/parallel.hpp"
+#include "facecap/render/outline_distance.hpp"
+#include "facecap/render/rasterizer.hpp"
+#include "facecap/render/shading.hpp"
+#include "facecap/swap/silhouette_fade.hpp"
+
+namespace facecap {
+
+cv::Mat render_swapped_face(const TriangleMesh& skin, const TextureLevels& texture, const Positions& points,
+                            const Positions& normals, const PinholeCamera& frame_camera, const PinholeCamera& window,
+                            cv::Size size, const ShCoeffs& lighting, const FaceLight& light,
+                            float silhouette_fade_start, cv::Mat& alpha) {
+  RasterBuffers buffers;
+  buffers.resize(size.width, size.height);
+  rasterize(points, skin.triangles, window, buffers);
+  cv::Mat render(size, CV_32FC3, cv::Scalar::all(0));
+  alpha = cv::Mat(size, CV_32F, cv::Scalar(0));
+  const int texture_size = texture.level(0).cols;
+  const float texels = float(texture_size - 1);
+  // The texture at the density the face is seen at (texture_levels.hpp).
+  const float lod = texture.lod_for(texels_per_pixel(skin, points, frame_camera, texture_size));
+  // The silhouette fade's band: a tenth of the face's width (a cylinder's
+  // surface turns 53 degrees from the view ray, where the fade ends, a
+  // tenth of its width inside its outline).
+  const cv::Mat outline_px = outline_distance(buffers);
+  cv::Mat turned(size, CV_32F, cv::Scalar(1));  // undrawn: no surface facing the camera
+  const SilhouetteFade fade{silhouette_fade_start,
+                            std::max(2.0f, 0.1f * float(projected_bounds(points, frame_camera).width))};
+  const cv::Mat& gains = light.residual_gains;
+  const cv::Mat& ratio_gains = light.expression_gains;
+  const float gain_texels = gains.empty() ? 0.0f : float(gains.cols - 1);
+  const float ratio_texels = ratio_gains.empty() ? 0.0f : float(ratio_gains.cols - 1);
+  const Vec3f tint = light.tint;
+  // The UV of the pixel at buffer index i (drawn).
+  const auto uv_at = [&](size_t i) {
+    const Vec2f b = buffers.bary[i];
+    const Triangle& uv = skin.triangle_uvs[buffers.triangle[i]];
+    return Vec2f((1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]]);
+  };
+  constexpr int kPixelsAhead = 8;
+  parallel_for(
+      size.height,
+      [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          auto* colour = render.ptr<cv::Vec3f>(y);
+          float* a = alpha.ptr<float>(y);
+          const float* outline = outline_px.ptr<float>(y);
+          float* turn = turned.ptr<float>(y);
+          const size_t row = size_t(y) * size.width;
+          for (int x = 0; x < size.width; ++x) {
+            const size_t i = row + x;
+            // The texture a few pixels on, asked for now (TextureLevels::prefetch).
+            if (x + kPixelsAhead < size.width && buffers.triangle[i + kPixelsAhead] >= 0) {
+              const Vec2f ahead = uv_at(i + kPixelsAhead);
+              texture.prefetch(lod, ahead.x() * texels, (1.0f - ahead.y()) * texels);
+            }
+            const int tri = buffers.triangle[i];
+            if (tri < 0) continue;
+            const Vec2f coord = uv_at(i);
+            const cv::Vec4f s = texture.sample<4>(lod, coord.x() * texels, (1.0f - coord.y()) * texels);
+            const Vec3f normal = interpolate(buffers, skin.triangles, normals, i).normalized();
+            const Vec3f n = to_viewer_frame(normal);
+            const float shade = 255.0f * std::max(0.0f, sh_shade(lighting, n.x(), n.y(), n.z()));
+            cv::Vec3f lit(shade * tint[0], shade * tint[1], shade * tint[2]);
+            if (!gains.empty())
+              lit = lit.mul(
+                  sample_bilinear_channels<3>(gains, coord.x() * gain_texels, (1.0f - coord.y()) * gain_texels));
+            if (ratio_gains.channels() == 3)
+              lit = lit.mul(sample_bilinear_channels<3>(ratio_gains, coord.x() * ratio_texels,
+                                                        (1.0f - coord.y()) * ratio_texels));
+            else if (!ratio_gains.empty())
+              lit *= sample_bilinear_channels<1>(ratio_gains, coord.x() * ratio_texels,
+                                                 (1.0f - coord.y()) * ratio_texels)[0];
+            colour[x] = cv::Vec3f(s[0] * lit[0], s[1] * lit[1], s[2] * lit[2]);
+            const Vec3f ray = interpolate(buffers, skin.triangles, points, i).normalized();
+            turn[x] = fade.turned(-normal.dot(ray));
+            a[x] = s[3] * fade.alpha(turn[x], outline[x]);
+          }
+        }
+      },
+      16);
+  soften_turned_away(render, turned, outline_px, fade);
+  return render;
+}
+
+}  // namespace facecap
