@@ -39,7 +39,9 @@ struct RefinedFrame {
 void BM_WriteObjRefinedFrame(benchmark::State& state) {
   const RefinedFrame f;
   TempDir dir;
-  for (auto _ : state) write_obj(dir.path() / "frame.obj", {&f.positions, &f.polygons, &f.uvs, "benchmark"});
+  for (auto _ : state)
+    write_obj(dir.path() / "frame.obj",
+              {.positions = &f.positions, .polygons = &f.polygons, .uvs = &f.uvs, .comment = "benchmark"});
 }
 BENCHMARK(BM_WriteObjRefinedFrame)->Unit(benchmark::kMillisecond);
 

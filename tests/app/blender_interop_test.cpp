@@ -19,6 +19,8 @@
 
 #include "app/command.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
+#include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
 #include "io/ply_reader.hpp"
@@ -180,6 +182,36 @@ TEST(BlenderInterop, TheRefinedPlyMeshOpensWithItsUvsAndColours) {
     mean /= double(bytes.size());
     EXPECT_NEAR(double(report["colour_mean"][k]), mean, 0.002) << "channel " << k;
   }
+}
+
+// A refined OBJ frame opens in Blender textured: its material library names
+// the capture's albedo.png, which Blender's importer loads as the surface's
+// base colour.
+TEST(BlenderInterop, TheRefinedObjMeshOpensTexturedWithTheAlbedo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  FACECAP_REQUIRE_BLENDER("the OBJ import");
+  TempDir dir;
+  const test::CommandResult tracked =
+      test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() + " -o " + dir.path().string() +
+                        " --max-frames 20 --refine --meshes 2>&1");
+  ASSERT_EQ(tracked.code, 0) << tracked.out;
+  const fs::path report_path = dir.path() / "blender.json";
+  const test::CommandResult blender = test::run_command(
+      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_OBJ_PROBE) + " -- " +
+      (dir.path() / "meshes" / "frame_000019.obj").string() + " " + report_path.string() + " 2>&1");
+  ASSERT_EQ(blender.code, 0) << blender.out;
+  std::ifstream in(report_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["meshes"], 1);
+  EXPECT_GE(int(report["vertices"]), regions::kFace.num_vertices());
+  EXPECT_EQ(report["uv_layers"], 1);
+  EXPECT_EQ(report["materials"], nlohmann::json::array({"face"}));
+  ASSERT_TRUE(report.contains("texture_file")) << report.dump();
+  EXPECT_EQ(fs::path(std::string(report["texture_file"])), fs::canonical(dir.path() / "albedo.png"));
+  const cv::Mat albedo = read_image((dir.path() / "albedo.png").string());
+  EXPECT_EQ(report["texture_size"], nlohmann::json::array({albedo.cols, albedo.rows}));
+  EXPECT_EQ(report["texture_is_base_colour"], true);
 }
 
 // track --point-cache: Blender's Mesh Cache modifier, with its defaults,

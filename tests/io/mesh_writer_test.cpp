@@ -28,15 +28,47 @@ TEST(MeshWriter, WritesTheObjRecordsExactly) {
   tri.uv = {2, 0, 3, -1};
   const std::vector<Polygon> polygons = {quad, tri};
   TempDir dir;
-  write_obj(dir.path() / "a.obj", {&p, &polygons, &uvs, "first line\nsecond"});
+  write_obj(dir.path() / "a.obj",
+            {.positions = &p, .polygons = &polygons, .uvs = &uvs, .comment = "first line\nsecond"});
   EXPECT_EQ(read_file(dir.path() / "a.obj"),
             "# first line\n# second\n"
             "v 0.00000 0.00000 10.12346\nv 1.00000 0.00000 -0.50000\nv 1.00000 1.00000 0.00000\n"
             "v 0.00000 1.00000 0.00000\nv -2.50000 0.00000 123.45678\n"
             "vt 0.000000 0.000000\nvt 1.000000 0.000000\nvt 1.000000 1.000000\nvt 0.250000 0.125000\n"
             "f 1/1 2/2 3/3 4/4\nf 3/3 5/1 4/4\n");
-  write_obj(dir.path() / "b.obj", {&p, &polygons, nullptr, ""});
+  write_obj(dir.path() / "b.obj", {.positions = &p, .polygons = &polygons});
   EXPECT_NE(read_file(dir.path() / "b.obj").find("\nf 1 2 3 4\nf 3 5 4\n"), std::string::npos);
+}
+
+// A material: the library named before the vertices, the material before
+// the faces; the library a diffuse material with its texture.
+TEST(MeshWriter, AnObjNamesItsMaterialAndTheLibraryItsTexture) {
+  Positions p(3, 3);
+  p << 0, 1, 0,  //
+      0, 0, 1,   //
+      0, 0, 0;
+  Polygon tri;
+  tri.v = {0, 1, 2, -1};
+  tri.uv = {0, 1, 2, -1};
+  const std::vector<Polygon> polygons = {tri};
+  const std::vector<Vec2f> uvs = {{0, 0}, {1, 0}, {0, 1}};
+  TempDir dir;
+  write_obj(dir.path() / "a.obj", {.positions = &p,
+                                   .polygons = &polygons,
+                                   .uvs = &uvs,
+                                   .comment = "c",
+                                   .material_library = "face.mtl",
+                                   .material = "face"});
+  EXPECT_EQ(read_file(dir.path() / "a.obj"),
+            "# c\nmtllib face.mtl\n"
+            "v 0.00000 0.00000 0.00000\nv 1.00000 0.00000 0.00000\nv 0.00000 1.00000 0.00000\n"
+            "vt 0.000000 0.000000\nvt 1.000000 0.000000\nvt 0.000000 1.000000\n"
+            "usemtl face\nf 1/1 2/2 3/3\n");
+  write_mtl(dir.path() / "face.mtl", "face", "../albedo.png", "one\ntwo");
+  EXPECT_EQ(read_file(dir.path() / "face.mtl"),
+            "# one\n# two\nnewmtl face\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nd 1\nillum 1\nmap_Kd ../albedo.png\n");
+  write_mtl(dir.path() / "plain.mtl", "face", "", "");
+  EXPECT_EQ(read_file(dir.path() / "plain.mtl").find("map_Kd"), std::string::npos);
 }
 
 // A refined frame's size read back by the model's OBJ reader.
@@ -55,7 +87,7 @@ TEST(MeshWriter, ALargeMeshReadsBackWithinTheWrittenPrecision) {
   for (Polygon& poly : polygons)
     for (int k = 0; k < 3; ++k) poly.v[k] = poly.uv[k] = vertex(rng);
   TempDir dir;
-  write_obj(dir.path() / "big.obj", {&p, &polygons, &uvs, "big"});
+  write_obj(dir.path() / "big.obj", {.positions = &p, .polygons = &polygons, .uvs = &uvs, .comment = "big"});
   const ObjData back = read_obj(dir.path() / "big.obj");
   ASSERT_EQ(back.num_vertices(), kVertices);
   ASSERT_EQ(back.uvs.size(), uvs.size());
@@ -78,12 +110,12 @@ TEST(MeshWriter, AnUnwritablePathIsAClearErrorAndNoFile) {
   Polygon tri;
   tri.v = {0, 1, 2, -1};
   const std::vector<Polygon> polygons = {tri};
-  EXPECT_THROW(write_obj("/proc/facecap-no-such-dir/a.obj", {&p, &polygons, nullptr, ""}), Error);
+  EXPECT_THROW(write_obj("/proc/facecap-no-such-dir/a.obj", {.positions = &p, .polygons = &polygons}), Error);
   TempDir dir;
   Polygon bad = tri;
   bad.v[2] = 7;  // no such vertex
   const std::vector<Polygon> broken = {bad};
-  EXPECT_THROW(write_obj(dir.path() / "a.obj", {&p, &broken, nullptr, ""}), Error);
+  EXPECT_THROW(write_obj(dir.path() / "a.obj", {.positions = &p, .polygons = &broken}), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "a.obj"));
 }
 

@@ -214,7 +214,7 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   with_files.point_cache = true;
   const fs::path jd = dir.path() / "joined";
   fs::create_directories(jd);
-  for (const char* name : {"animation_shot4.glb", "albedo_shot4.png", "face_shot4.pc2"})
+  for (const char* name : {"animation_shot4.glb", "albedo_shot4.png", "face_shot4.pc2", "face_shot4.mtl"})
     std::ofstream(jd / name) << "earlier run";
   const TrackSummary s = run_track(*model, joined.string(), jd, with_files);
   EXPECT_EQ(s.capture.cuts, 1);
@@ -256,7 +256,16 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
     EXPECT_EQ(std::count_if(rest.begin(), rest.end(), [](const std::string& l) { return l.rfind("v ", 0) == 0; }),
               points)
         << shot;
+    // Textured with its own shot's albedo.
+    const std::string library = shot == 0 ? "face.mtl" : "face_shot1.mtl";
+    EXPECT_NE(std::find(rest.begin(), rest.end(), "mtllib " + library), rest.end()) << shot;
+    const auto material = lines(jd / library);
+    EXPECT_NE(std::find(material.begin(), material.end(),
+                        std::string("map_Kd ") + (shot == 0 ? "albedo.png" : "albedo_shot1.png")),
+              material.end())
+        << shot;
   }
+  EXPECT_FALSE(fs::exists(jd / "face_shot4.mtl"));
 
   // One glTF per shot: its own face, keys, camera and albedo.
   ASSERT_EQ(s.animation_files, (std::vector<fs::path>{jd / "animation.glb", jd / "animation_shot1.glb"}));

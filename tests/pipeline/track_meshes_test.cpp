@@ -186,6 +186,38 @@ void frames_with_blanks(const fs::path& video, const fs::path& folder) {
 
 }  // namespace
 
+// A refined OBJ names the albedo as its texture, through a material library
+// beside it (meshes/face.mtl; face.mtl beside the point cache's rest mesh),
+// which every frame names. A run without --refine has no albedo: it names
+// none, and the earlier run's libraries go.
+TEST(TrackMeshes, ARefinedObjNamesTheAlbedoThroughItsMaterial) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  TrackOptions o = mesh_options(20, MeshFormat::kObj);
+  o.refine = true;
+  o.point_cache = true;
+  const TrackSummary s = run_track(*model, video.string(), dir.path(), o);
+  ASSERT_EQ(s.refined_frames, 20 - s.capture.lost);
+  ASSERT_TRUE(fs::exists(dir.path() / "albedo.png"));
+  const std::vector<std::string> library = test::read_lines(dir.path() / "meshes" / "face.mtl");
+  EXPECT_NE(std::find(library.begin(), library.end(), "newmtl face"), library.end());
+  EXPECT_NE(std::find(library.begin(), library.end(), "map_Kd ../albedo.png"), library.end());
+  const std::vector<std::string> rest_library = test::read_lines(dir.path() / "face.mtl");
+  EXPECT_NE(std::find(rest_library.begin(), rest_library.end(), "map_Kd albedo.png"), rest_library.end());
+  for (const fs::path& obj : {dir.path() / "meshes" / "frame_000019.obj", dir.path() / "face_rest.obj"}) {
+    const std::vector<std::string> lines = test::read_lines(obj);
+    EXPECT_NE(std::find(lines.begin(), lines.end(), "mtllib face.mtl"), lines.end()) << obj;
+    EXPECT_NE(std::find(lines.begin(), lines.end(), "usemtl face"), lines.end()) << obj;
+  }
+
+  o.refine = false;
+  run_track(*model, video.string(), dir.path(), o);
+  EXPECT_FALSE(fs::exists(dir.path() / "meshes" / "face.mtl"));
+  EXPECT_FALSE(fs::exists(dir.path() / "face.mtl"));
+  EXPECT_EQ(read_file(dir.path() / "meshes" / "frame_000019.obj").find("mtllib"), std::string::npos);
+}
+
 // --point-cache: one sample per frame from the shot's first, each the mesh
 // --meshes writes for that frame, to the float; frames without a face hold
 // the nearest earlier mesh (the first face's before it), and the rest mesh is

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
 #include <cstring>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -15,10 +13,6 @@
 namespace facecap {
 
 namespace {
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
 
 // Text built with std::to_chars straight into one growing buffer (exact,
 // locale-free, and with no per-record stream or string overhead: a refined
@@ -79,6 +73,11 @@ void write_obj(const std::filesystem::path& path, const ObjMesh& mesh) {
     b.text(line);
     b.text("\n");
   }
+  if (!mesh.material_library.empty()) {
+    b.text("mtllib ");
+    b.text(mesh.material_library);
+    b.text("\n");
+  }
   for (Eigen::Index i = 0; i < p.cols(); ++i) {
     b.text("v");
     for (int k = 0; k < 3; ++k) b.fixed(p(k, i), 5);
@@ -91,6 +90,11 @@ void write_obj(const std::filesystem::path& path, const ObjMesh& mesh) {
       b.fixed(t.y(), 6);
       b.text("\n");
     }
+  }
+  if (!mesh.material.empty()) {
+    b.text("usemtl ");
+    b.text(mesh.material);
+    b.text("\n");
   }
   for (const Polygon& poly : *mesh.polygons) {
     b.text("f");
@@ -105,15 +109,19 @@ void write_obj(const std::filesystem::path& path, const ObjMesh& mesh) {
     b.text("\n");
   }
 
-  AtomicFile file(path);
-  {
-    std::unique_ptr<std::FILE, FileCloser> out(std::fopen(file.temp_path().c_str(), "w"));
-    if (!out) throw Error("cannot write " + path.string());
-    const std::string_view text = b.view();
-    if (std::fwrite(text.data(), 1, text.size(), out.get()) != text.size() || std::fflush(out.get()) != 0)
-      throw Error("cannot write " + path.string());
-  }
-  file.commit();
+  const std::string_view text = b.view();
+  write_binary_file(path, text.data(), text.size());
+}
+
+void write_mtl(const std::filesystem::path& path, const std::string& name, const std::string& texture,
+               const std::string& comment) {
+  std::string text;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) text += "# " + line + "\n";
+  // Diffuse only: no ambient or specular term, fully opaque (illum 1).
+  text += "newmtl " + name + "\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nd 1\nillum 1\n";
+  if (!texture.empty()) text += "map_Kd " + texture + "\n";
+  write_text_file(path, text);
 }
 
 }  // namespace facecap

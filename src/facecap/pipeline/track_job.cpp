@@ -187,16 +187,21 @@ class FrameWriter {
   // again (RefineStage::on_shot_end), and again harmlessly by the next
   // shot's first frame.
   void end_shot() {
-    meshes_.end_shot();
-    if (!shot_has_face_) return;
+    if (!shot_has_face_) {
+      meshes_.end_shot();
+      return;
+    }
     shot_has_face_ = false;
     shot_albedo_png_.clear();
     if (refiner_ != nullptr) shot_albedo_png_ = face_albedo_png(model_, *refiner_);
+    const fs::path* albedo = nullptr;
     if (!shot_albedo_png_.empty()) {
       const fs::path file = shot_file(dir_ / kAlbedoImage, shot_, albedo_files_.empty());
       write_binary_file(staged_albedo_.stage(file), shot_albedo_png_.data(), shot_albedo_png_.size());
       albedo_files_.push_back(file);
+      albedo = &albedo_files_.back();
     }
+    meshes_.end_shot(albedo);  // the refined OBJs' material names the albedo
     if (animations_) animations_->end_shot();
   }
 

@@ -1,5 +1,6 @@
 #include "facecap/pipeline/track_meshes.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -17,6 +18,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kPointCache = "face.pc2";
+// The refined OBJs' material (the albedo texture) and its library's name.
+constexpr const char* kMaterial = "face";
+constexpr const char* kMaterialLibrary = "face.mtl";
 
 // Camera-space points back to the model frame: X = F R^T (Y - t).
 Positions to_model(const Positions& camera_points, const HeadPose& pose) {
@@ -44,7 +48,17 @@ void TrackMeshes::add(const CapturedFrame& f, int shot_first_frame, const Refine
   if (options_.point_cache) append_to_point_cache(f, shot_first_frame, ref, coarse);
 }
 
-void TrackMeshes::end_shot() {
+void TrackMeshes::end_shot(const fs::path* albedo) {
+  if (material_) {
+    for (const fs::path& dir : material_->dirs) {
+      const fs::path file = dir / material_->name;
+      const std::string texture = albedo != nullptr ? fs::relative(*albedo, dir).generic_string() : "";
+      write_mtl(staged_materials_.stage(file), kMaterial, texture,
+                "facecap " + std::string(kFacecapVersion) + ": the refined meshes' albedo (ICT UV layout)");
+      material_files_.push_back(file);
+    }
+    material_.reset();
+  }
   if (!point_cache_) return;
   point_cache_->writer->finish();
   point_cache_.reset();
@@ -53,6 +67,15 @@ void TrackMeshes::end_shot() {
 void TrackMeshes::finish() {
   end_shot();
   staged_point_caches_.commit();
+  staged_materials_.commit();
+  // An earlier run's libraries that this run did not write.
+  for (const fs::path& dir : {dir_ / "meshes", dir_}) {
+    if (dir == dir_ ? !options_.point_cache : !options_.meshes) continue;
+    std::vector<fs::path> written;
+    for (const fs::path& file : material_files_)
+      if (file.parent_path() == dir) written.push_back(file);
+    remove_other_shot_files(dir / kMaterialLibrary, written, /*remove_first_when_none=*/true);
+  }
   if (options_.point_cache) {
     remove_other_shot_files(dir_ / kPointCache, point_cache_files_, /*remove_first_when_none=*/true);
     remove_other_shot_files(dir_ / point_cache_rest_name(), point_cache_rest_files_, /*remove_first_when_none=*/true);
@@ -73,7 +96,7 @@ void TrackMeshes::write_mesh(const CapturedFrame& f, const Refinement* ref, cons
   char name[64];
   std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, mesh_extension());
   meshes_written_.insert(name);
-  write_frame_mesh(dir_ / "meshes" / name, f, ref, coarse);
+  write_frame_mesh(dir_ / "meshes" / name, dir_ / "meshes", f, ref, coarse);
   ++meshes_;
 }
 
@@ -84,8 +107,15 @@ Positions TrackMeshes::mesh_positions(const CapturedFrame& f, const Refinement* 
   return options_.mesh_space == MeshSpace::kCamera ? camera_points : to_model(camera_points, f.fit.pose);
 }
 
-void TrackMeshes::write_frame_mesh(const fs::path& file, const CapturedFrame& f, const Refinement* ref,
-                                   const Positions& coarse) {
+std::string TrackMeshes::material_library(const CapturedFrame& f, const fs::path& dir) {
+  if (!material_) material_ = ShotMaterial{shot_file(kMaterialLibrary, f.shot, material_shots_++ == 0).string(), {}};
+  if (std::find(material_->dirs.begin(), material_->dirs.end(), dir) == material_->dirs.end())
+    material_->dirs.push_back(dir);
+  return material_->name;
+}
+
+void TrackMeshes::write_frame_mesh(const fs::path& file, const fs::path& dir, const CapturedFrame& f,
+                                   const Refinement* ref, const Positions& coarse) {
   const bool ply = options_.mesh_format == MeshFormat::kPly;
   const bool camera_space = options_.mesh_space == MeshSpace::kCamera;
   std::string comment = "facecap " + std::string(kFacecapVersion) + " frame " + std::to_string(f.index) +
@@ -119,7 +149,12 @@ void TrackMeshes::write_frame_mesh(const fs::path& file, const CapturedFrame& f,
                        .uvs = &*refined_uvs_,
                        .comment = comment + "\nvertex colours: the albedo (RGB, as albedo.png)"});
     } else {
-      write_obj(file, {&out, &refined_polygons_, &*refined_uvs_, comment});
+      write_obj(file, {.positions = &out,
+                       .polygons = &refined_polygons_,
+                       .uvs = &*refined_uvs_,
+                       .comment = comment,
+                       .material_library = material_library(f, dir),
+                       .material = kMaterial});
     }
   } else if (ply) {
     const Positions normals = vertex_normals(out, face_mesh_.triangles);
@@ -130,7 +165,7 @@ void TrackMeshes::write_frame_mesh(const fs::path& file, const CapturedFrame& f,
                      .uvs = &coarse_uvs(),
                      .comment = comment});
   } else {
-    write_obj(file, {&out, &face_polygons_, &model_.uvs, comment});
+    write_obj(file, {.positions = &out, .polygons = &face_polygons_, .uvs = &model_.uvs, .comment = comment});
   }
 }
 
@@ -146,7 +181,7 @@ void TrackMeshes::append_to_point_cache(const CapturedFrame& f, int shot_first_f
     const fs::path rest = shot_file(dir_ / point_cache_rest_name(), f.shot, first);
     point_cache_files_.push_back(file);
     point_cache_rest_files_.push_back(rest);
-    write_frame_mesh(staged_point_caches_.stage(rest), f, ref, coarse);
+    write_frame_mesh(staged_point_caches_.stage(rest), dir_, f, ref, coarse);
     point_cache_.emplace(OpenPointCache{std::make_unique<PointCacheWriter>(staged_point_caches_.stage(file),
                                                                            int(points.cols()), float(shot_first_frame)),
                                         points, shot_first_frame});

@@ -1,7 +1,8 @@
 #pragma once
 // The meshes `facecap track` writes (track_job.hpp): one a frame with a face
 // (--meshes: DIR/meshes/frame_NNNNNN.obj, or .ply with --mesh-format ply:
-// io/mesh_writer.hpp, io/ply_writer.hpp) and one point cache a shot
+// io/mesh_writer.hpp, io/ply_writer.hpp; refined OBJs name the albedo as
+// their texture through DIR/meshes/face.mtl) and one point cache a shot
 // (--point-cache: DIR/face.pc2 with the mesh it animates, DIR/face_rest.obj
 // or .ply: io/point_cache.hpp; later shots' face_shot<N>.pc2 and
 // face_rest_shot<N>). A frame's mesh is the refined finest level where the
@@ -29,8 +30,10 @@ class TrackMeshes {
   // `shot_first_frame`: the index of the first frame of its shot.
   // `coarse`: the coarse face region in camera space.
   void add(const CapturedFrame& f, int shot_first_frame, const Refinement* ref, const Positions& coarse);
-  // The current shot's point cache complete (it appears with finish()).
-  void end_shot();
+  // The current shot's point cache complete, and the material library of
+  // its refined OBJ meshes written, naming `albedo` (the shot's albedo.png;
+  // null: none) as their texture (they appear with finish()).
+  void end_shot(const std::filesystem::path* albedo = nullptr);
   // Every shot's cache and rest mesh renamed into place, and an earlier
   // run's meshes and caches that this run did not write removed.
   void finish();
@@ -46,8 +49,13 @@ class TrackMeshes {
   bool refined(const Refinement* ref) const { return ref != nullptr && refiner_ != nullptr; }
   // The points of the frame's mesh, as --meshes writes them: in --mesh-space.
   Positions mesh_positions(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) const;
-  void write_frame_mesh(const std::filesystem::path& file, const CapturedFrame& f, const Refinement* ref,
-                        const Positions& coarse);
+  // `file` is written now (maybe under a staged name) and will be in `dir`.
+  void write_frame_mesh(const std::filesystem::path& file, const std::filesystem::path& dir, const CapturedFrame& f,
+                        const Refinement* ref, const Positions& coarse);
+  // The material library a refined OBJ frame in `dir` names (written at the
+  // end of its shot, beside it: DIR/meshes/face.mtl, DIR/face.mtl for the
+  // point cache's rest mesh; face_shot<N>.mtl for later shots).
+  std::string material_library(const CapturedFrame& f, const std::filesystem::path& dir);
   std::string point_cache_rest_name() const;
   // The frame's mesh positions appended to its shot's cache, which opens at
   // the shot's first frame with a face (its rest mesh that frame's mesh).
@@ -83,6 +91,16 @@ class TrackMeshes {
   std::optional<OpenPointCache> point_cache_;  // the current shot's
   std::vector<std::filesystem::path> point_cache_files_, point_cache_rest_files_;
   StagedFiles staged_point_caches_;  // each shot's cache and rest mesh, in place when the capture completes
+  // The current shot's material library: its file name and the folders
+  // whose OBJs name it.
+  struct ShotMaterial {
+    std::string name;
+    std::vector<std::filesystem::path> dirs;
+  };
+  std::optional<ShotMaterial> material_;
+  int material_shots_ = 0;                             // shots given a material library
+  std::vector<std::filesystem::path> material_files_;  // every library written
+  StagedFiles staged_materials_;                       // in place when the capture completes
 };
 
 }  // namespace facecap
