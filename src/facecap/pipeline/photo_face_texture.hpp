@@ -1,12 +1,15 @@
 #pragma once
-// A real portrait's skin as a texture for synthetic renders
-// (SynthOptions::face_texture): renders with known shape, pose, expression
-// and lighting that carry a real face's brows, lids, lips and skin, which a
-// landmark detector trained on photos sees as it sees photos.
+// A real face's skin as a texture in the ICT face UV layout: for synthetic
+// renders (SynthOptions::face_texture: renders with known shape, pose,
+// expression and lighting that carry a real face's brows, lids, lips and
+// skin, which a landmark detector trained on photos sees as it sees photos)
+// and for `track --texture`.
 #include <string>
 
 #include <opencv2/core.hpp>
 
+#include "facecap/core/camera.hpp"
+#include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/model/face_model.hpp"
 
 namespace facecap {
@@ -19,5 +22,16 @@ namespace facecap {
 // Throws facecap::Error naming the photo when it cannot be read or holds no
 // face.
 cv::Mat face_texture_from_photo(const FaceModel& model, const std::string& photo, int size = 1024, bool quiet = true);
+
+// The lighting of a frame's fitted face alone: the refinement's lighting
+// estimate on the coarse face (`points`: the face region in camera space),
+// its albedo fixed from this one frame, as a swap's source photo is lit.
+ShCoeffs face_lighting_of_frame(const FaceModel& model, const cv::Mat& image, const Positions& points,
+                                const PinholeCamera& camera);
+
+// A frame's fitted face unshaded by `lighting` into the ICT face UV layout
+// (as face_texture_from_photo). BGR CV_32FC3 in [0, 1], `size` x `size`.
+cv::Mat face_texture_of_frame(const FaceModel& model, const cv::Mat& image, const Positions& points,
+                              const PinholeCamera& camera, const ShCoeffs& lighting, int size = 1024);
 
 }  // namespace facecap

@@ -19,6 +19,7 @@
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/face_swap_stream.hpp"
 #include "facecap/pipeline/layered_frames.hpp"
+#include "facecap/pipeline/photo_face_texture.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
 
@@ -72,14 +73,7 @@ SourceReconstruction reconstruct_source(const FaceModel& model, const std::strin
   s.expression = fit->fit.expression;
   s.camera = PinholeCamera::centered(fit->fit.focal, r.photo.cols, r.photo.rows);
   s.camera_points = to_camera(model.evaluate(s.identity, s.expression, regions::kFace), fit->fit.pose);
-  // The photo is all the frames there are: it fixes the albedo at once, with
-  // the fixing frame's lighting/albedo rounds (4) rather than an early
-  // frame's (2). Self-swap (`eval swap --self`) mean 6.100 -> 6.070
-  // (address_720p_a), 9.502 -> 9.474 (_b).
-  RefineOptions photo_refine = lighting_only_refinement();
-  photo_refine.albedo.frames = 1;
-  Refiner refiner = make_face_refiner(model, photo_refine);
-  s.lighting = refiner.refine(r.photo, s.camera_points, s.camera).lighting;
+  s.lighting = face_lighting_of_frame(model, r.photo, s.camera_points, s.camera);
   return r;
 }
 

@@ -44,7 +44,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
   if (options.livelink_stream) UdpSender{options.livelink_stream->target};  // an unknown host fails before the work
   std::vector<std::unique_ptr<TrackOutput>> outputs;
   CaptureOptions capture = options.capture;
-  capture.keep_images = options.overlay || options.refine;
+  capture.keep_images = options.needs_images();
   EachFaceSummary summary;
   summary.capture =
       run_capture_all_faces(model, *source, capture, all, [&](const FoundFace& face, const InputInfo& info) {

@@ -11,6 +11,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
 #include "facecap/io/gltf_writer.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/io/livelink_csv.hpp"
 #include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
@@ -18,6 +19,7 @@
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/landmark_table.hpp"
 #include "facecap/pipeline/livelink_streamer.hpp"
+#include "facecap/pipeline/photo_face_texture.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
@@ -39,6 +41,7 @@ constexpr const char* kLandmarkTable = "landmarks.csv";
 constexpr const char* kShadedVideo = "shaded.mp4";
 constexpr const char* kHeatmapVideo = "heatmap.mp4";
 constexpr const char* kAlbedoImage = "albedo.png";
+constexpr const char* kTextureImage = "texture.png";
 
 // A text output written through a temporary file and renamed at the end.
 class StagedText {
@@ -107,7 +110,8 @@ class FrameWriter {
       animations_.emplace(dir / "animation.glb", [this](const ShotOutput& out, const ShotKeys& shot) {
         const IdentityEstimate& id = shot.identity;
         GltfAnimatedMesh glb = face_animation(model_, id.identity, shot.keys, {id.focal, info_.width, info_.height});
-        glb.primitives.front().base_colour_png = shot_albedo_png_;  // the face part
+        // The face part's texture: --texture's, else the albedo (--refine).
+        glb.primitives.front().base_colour_png = options_.texture ? shot_texture_png_ : shot_albedo_png_;
         glb.animation_name = shot_animation_name(fs::path(input_).stem().string(), shot.shot);
         write_glb(out.write_to, glb);
       });
@@ -174,6 +178,7 @@ class FrameWriter {
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
+    if (ok && options_.texture && shot_texture_png_.empty()) shot_texture_png_ = texture_png(f, ref, coarse, camera);
     if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
@@ -194,15 +199,11 @@ class FrameWriter {
     shot_has_face_ = false;
     shot_albedo_png_.clear();
     if (refiner_ != nullptr) shot_albedo_png_ = face_albedo_png(model_, *refiner_);
-    const fs::path* albedo = nullptr;
-    if (!shot_albedo_png_.empty()) {
-      const fs::path file = shot_file(dir_ / kAlbedoImage, shot_, albedo_files_.empty());
-      write_binary_file(staged_albedo_.stage(file), shot_albedo_png_.data(), shot_albedo_png_.size());
-      albedo_files_.push_back(file);
-      albedo = &albedo_files_.back();
-    }
-    meshes_.end_shot(albedo);  // the refined OBJs' material names the albedo
+    const fs::path* albedo = stage_shot_image(shot_albedo_png_, kAlbedoImage, albedo_files_);
+    const fs::path* texture = stage_shot_image(shot_texture_png_, kTextureImage, texture_files_);
+    meshes_.end_shot(options_.texture ? texture : albedo);  // the OBJs' material names their texture
     if (animations_) animations_->end_shot();
+    shot_texture_png_.clear();  // the next shot's comes from its own first face
   }
 
   void finish(const CaptureSummary& capture) {
@@ -257,8 +258,9 @@ class FrameWriter {
     // Like identity.json: no tracked frame, no face to animate (an earlier
     // run's animation.glb is removed, and so are its later shots' files).
     if (animations_) animation_files_ = animations_->finish();
-    staged_albedo_.commit();
+    staged_images_.commit();
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
+    if (options_.texture) remove_other_shot_files(dir_ / kTextureImage, texture_files_, /*remove_first_when_none=*/true);
     csv_.commit();
     jsonl_.commit();
     if (landmarks_) landmarks_->commit();
@@ -279,6 +281,28 @@ class FrameWriter {
   }
 
  private:
+  // A shot's image (PNG bytes; none where empty) staged under its shot's
+  // name (shot_file: the first shot with one takes `name`); returns where it
+  // will be, or null.
+  const fs::path* stage_shot_image(const std::vector<uint8_t>& png, const char* name, std::vector<fs::path>& files) {
+    if (png.empty()) return nullptr;
+    const fs::path file = shot_file(dir_ / name, shot_, files.empty());
+    write_binary_file(staged_images_.stage(file), png.data(), png.size());
+    files.push_back(file);
+    return &files.back();
+  }
+
+  // --texture: the frame's face unshaded into the UV layout, as PNG bytes;
+  // lit as the refinement estimated (with --refine), else by the frame's
+  // own lighting estimate.
+  std::vector<uint8_t> texture_png(const CapturedFrame& f, const Refinement* ref, const Positions& coarse,
+                                   const PinholeCamera& camera) const {
+    const ShCoeffs lighting = ref != nullptr ? ref->lighting : face_lighting_of_frame(model_, f.image, coarse, camera);
+    cv::Mat texture8;
+    face_texture_of_frame(model_, f.image, coarse, camera, lighting).convertTo(texture8, CV_8UC3, 255.0);
+    return encode_png(texture8);
+  }
+
   // --livelink, --livelink-udp: the frame's weights, head angles and each
   // eye's gaze as Live Link Face values (io/livelink_face.hpp), a row of the
   // take and a datagram of the stream.
@@ -409,7 +433,9 @@ class FrameWriter {
   bool shot_has_face_ = false;
   std::vector<uint8_t> shot_albedo_png_;
   std::vector<fs::path> albedo_files_;
-  StagedFiles staged_albedo_;  // each shot's albedo.png, in place when the capture completes
+  std::vector<uint8_t> shot_texture_png_;  // --texture: from the shot's first frame with a face
+  std::vector<fs::path> texture_files_;
+  StagedFiles staged_images_;  // each shot's albedo.png and texture.png, in place when the capture completes
   int shot_first_frame_ = -1;  // the index of the current shot's first frame
   TrackMeshes meshes_;         // --meshes, --point-cache
 };
@@ -458,7 +484,7 @@ TrackOutput::TrackOutput(const FaceModel& model, const InputInfo& info, const st
                          const TrackOptions& options) {
   ensure_writable_dir(dir);
   // Re-tracking an earlier run's overlay into its own folder would replace it.
-  for (const char* name : {kOverlayVideo, kShadedVideo, kHeatmapVideo, kAlbedoImage})
+  for (const char* name : {kOverlayVideo, kShadedVideo, kHeatmapVideo, kAlbedoImage, kTextureImage})
     ensure_not_an_input(dir / name, {input});
   impl_ = std::make_unique<Impl>(model, info, input, dir, options);
   output_dir_ = dir;
@@ -503,7 +529,7 @@ TrackSummary run_track(const FaceModel& model, FrameSource& source, const std::s
                        const TrackOptions& options) {
   TrackOutput output(model, source.info(), input, dir, options);
   CaptureOptions capture = options.capture;
-  capture.keep_images = options.overlay || options.refine;
+  capture.keep_images = options.needs_images();
   return output.finish(run_capture(model, source, capture, output.sink()));
 }
 

@@ -9,6 +9,8 @@
 //                      UVs (--mesh-format ply: binary PLY, with normals)
 //   DIR/face.pc2       (--point-cache) the same meshes as one point cache, with
 //                      DIR/face_rest.obj (.ply), the mesh it animates
+//   DIR/texture.png    (--texture) the face's skin from its first frame, in the
+//                      ICT UV layout: the meshes' and the glTF's texture
 //   DIR/overlay.mp4    (--overlay) landmarks and mesh over the input, its audio kept
 //   DIR/animation.glb  (--gltf) the capture as an animated glTF: the face
 //                      with the 53 blend shapes as morph targets, head pose
@@ -58,6 +60,10 @@ struct TrackOptions {
   // mesh DIR/face_rest.obj (.ply) whose vertex order it follows; one pair per
   // shot (face_shot<N>.pc2 after the first).
   bool point_cache = false;
+  // DIR/texture.png: the face's skin from each shot's first frame with a
+  // face, unshaded into the ICT UV layout (photo_face_texture.hpp), which the
+  // OBJ meshes and the glTF then take as their texture.
+  bool texture = false;
   bool overlay = false;
   VideoEncoding encoding;  // the overlay videos'
   bool gltf = false;
@@ -78,6 +84,8 @@ struct TrackOptions {
   bool refine = false;
   RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
+  // Whether the outputs draw on the frames' images (CaptureOptions::keep_images).
+  bool needs_images() const { return overlay || refine || texture; }
   // Optional: each frame's frames.jsonl row (one line of JSON, no newline),
   // in frame order, as soon as it is written (`track --stream`).
   std::function<void(const std::string&)> on_row;

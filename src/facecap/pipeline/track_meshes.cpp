@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kPointCache = "face.pc2";
-// The refined OBJs' material (the albedo texture) and its library's name.
+// The OBJs' material (their texture: texture.png, else the albedo) and its library's name.
 constexpr const char* kMaterial = "face";
 constexpr const char* kMaterialLibrary = "face.mtl";
 
@@ -48,13 +48,13 @@ void TrackMeshes::add(const CapturedFrame& f, int shot_first_frame, const Refine
   if (options_.point_cache) append_to_point_cache(f, shot_first_frame, ref, coarse);
 }
 
-void TrackMeshes::end_shot(const fs::path* albedo) {
+void TrackMeshes::end_shot(const fs::path* texture_file) {
   if (material_) {
     for (const fs::path& dir : material_->dirs) {
       const fs::path file = dir / material_->name;
-      const std::string texture = albedo != nullptr ? fs::relative(*albedo, dir).generic_string() : "";
+      const std::string texture = texture_file != nullptr ? fs::relative(*texture_file, dir).generic_string() : "";
       write_mtl(staged_materials_.stage(file), kMaterial, texture,
-                "facecap " + std::string(kFacecapVersion) + ": the refined meshes' albedo (ICT UV layout)");
+                "facecap " + std::string(kFacecapVersion) + ": the meshes' texture (ICT UV layout)");
       material_files_.push_back(file);
     }
     material_.reset();
@@ -165,7 +165,13 @@ void TrackMeshes::write_frame_mesh(const fs::path& file, const fs::path& dir, co
                      .uvs = &coarse_uvs(),
                      .comment = comment});
   } else {
-    write_obj(file, {.positions = &out, .polygons = &face_polygons_, .uvs = &model_.uvs, .comment = comment});
+    // With --texture, the coarse face has a texture too.
+    write_obj(file, {.positions = &out,
+                     .polygons = &face_polygons_,
+                     .uvs = &model_.uvs,
+                     .comment = comment,
+                     .material_library = options_.texture ? material_library(f, dir) : "",
+                     .material = options_.texture ? kMaterial : ""});
   }
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // The meshes `facecap track` writes (track_job.hpp): one a frame with a face
 // (--meshes: DIR/meshes/frame_NNNNNN.obj, or .ply with --mesh-format ply:
-// io/mesh_writer.hpp, io/ply_writer.hpp; refined OBJs name the albedo as
-// their texture through DIR/meshes/face.mtl) and one point cache a shot
+// io/mesh_writer.hpp, io/ply_writer.hpp; OBJs name their texture,
+// texture.png or the refinement's albedo.png, through DIR/meshes/face.mtl)
+// and one point cache a shot
 // (--point-cache: DIR/face.pc2 with the mesh it animates, DIR/face_rest.obj
 // or .ply: io/point_cache.hpp; later shots' face_shot<N>.pc2 and
 // face_rest_shot<N>). A frame's mesh is the refined finest level where the
@@ -31,9 +32,9 @@ class TrackMeshes {
   // `coarse`: the coarse face region in camera space.
   void add(const CapturedFrame& f, int shot_first_frame, const Refinement* ref, const Positions& coarse);
   // The current shot's point cache complete, and the material library of
-  // its refined OBJ meshes written, naming `albedo` (the shot's albedo.png;
-  // null: none) as their texture (they appear with finish()).
-  void end_shot(const std::filesystem::path* albedo = nullptr);
+  // its OBJ meshes written, naming `texture` (the shot's texture.png or
+  // albedo.png; null: none) as their texture (they appear with finish()).
+  void end_shot(const std::filesystem::path* texture = nullptr);
   // Every shot's cache and rest mesh renamed into place, and an earlier
   // run's meshes and caches that this run did not write removed.
   void finish();
@@ -52,7 +53,8 @@ class TrackMeshes {
   // `file` is written now (maybe under a staged name) and will be in `dir`.
   void write_frame_mesh(const std::filesystem::path& file, const std::filesystem::path& dir, const CapturedFrame& f,
                         const Refinement* ref, const Positions& coarse);
-  // The material library a refined OBJ frame in `dir` names (written at the
+  // The material library an OBJ frame in `dir` names, refined or with
+  // --texture (written at the
   // end of its shot, beside it: DIR/meshes/face.mtl, DIR/face.mtl for the
   // point cache's rest mesh; face_shot<N>.mtl for later shots).
   std::string material_library(const CapturedFrame& f, const std::filesystem::path& dir);
