@@ -138,11 +138,18 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "
                 "textured with the albedo). A video that cuts gets one per shot: DIR/animation_shot<N>.glb after the "
                 "first");
-  cmd->add_flag("--texture", a->options.texture,
-                "Write DIR/texture.png: the face's skin from the first frame with a face (a photo: the photo), "
-                "unshaded by its lighting into the ICT UV layout as a swap's source is: sharp, where --refine's "
-                "albedo.png is one colour a vertex. The --meshes OBJs (through meshes/face.mtl) and the --gltf "
-                "animation take it as their texture. One per shot (texture_shot<N>.png)");
+  CLI::Option* texture =
+      cmd->add_flag("--texture", a->options.texture,
+                    "Write DIR/texture.png: the face's skin over its first --texture-frames frames (a photo: the "
+                    "photo), unshaded by their lighting into the ICT UV layout, at the image's resolution where "
+                    "--refine's albedo.png is one colour a vertex. The --meshes OBJs (through meshes/face.mtl) and "
+                    "the --gltf animation take it as their texture. One per shot (texture_shot<N>.png)");
+  cmd->add_option("--texture-frames", a->options.texture_frames,
+                  "--texture: how many of a shot's first frames with a face it is gathered over (more see more of "
+                  "the face as the head turns)")
+      ->check(CLI::Range(1, 1000))
+      ->needs(texture)
+      ->capture_default_str();
   cmd->add_flag("--landmarks-csv", a->options.landmarks_csv,
                 "Write DIR/landmarks.csv: each frame's 68 landmarks in OpenFace's columns: the detector's (x_0 ... "
                 "y_67, pixels), the fitted model's projected (fit_x_0 ... fit_y_67) and the fitted model's in camera "

@@ -114,6 +114,8 @@ TEST(Cli, BadOptionValuesAreNamed) {
                            "track in.mp4 -o x --livelink-udp host:0",
                            "track in.mp4 -o x --livelink-udp :11111",
                            "track in.mp4 -o x --livelink-subject me",
+                           "track in.mp4 -o x --texture --texture-frames 0",
+                           "track in.mp4 -o x --texture-frames 5",
                            "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --face left",
                            "swap --source a.jpg --target b.mp4 -o x.mp4 --all-faces --gltf x.glb",
                            "swap --source a.jpg --target b.mp4 -o x.mp4 --leave-faces 0",

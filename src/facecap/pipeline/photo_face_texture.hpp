@@ -4,6 +4,7 @@
 // expression and lighting that carry a real face's brows, lids, lips and
 // skin, which a landmark detector trained on photos sees as it sees photos)
 // and for `track --texture`.
+#include <memory>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -33,5 +34,33 @@ ShCoeffs face_lighting_of_frame(const FaceModel& model, const cv::Mat& image, co
 // (as face_texture_from_photo). BGR CV_32FC3 in [0, 1], `size` x `size`.
 cv::Mat face_texture_of_frame(const FaceModel& model, const cv::Mat& image, const Positions& points,
                               const PinholeCamera& camera, const ShCoeffs& lighting, int size = 1024);
+
+// The skin texture of a face gathered over its first frames (`track
+// --texture`): each frame unshaded by its lighting (a lighting-only
+// refinement's over these frames, so that their albedo scale is one) with
+// the eyes, the mouth and what is off the skin's colour left out, weighed by
+// how squarely each texel was seen; their weighted mean completed from its
+// mirror image and filled, as a photo's is. One frame gives
+// face_texture_of_frame's texture.
+class FaceTextureGatherer {
+ public:
+  FaceTextureGatherer(const FaceModel& model, int frames, int size = 1024);
+  ~FaceTextureGatherer();
+  FaceTextureGatherer(FaceTextureGatherer&&) noexcept;
+  FaceTextureGatherer& operator=(FaceTextureGatherer&&) noexcept;
+
+  bool wants_more() const;
+  // A frame with its fitted face (`points`: the face region in camera space).
+  void add(const cv::Mat& image, const Positions& points, const PinholeCamera& camera);
+  bool empty() const;
+  // BGR CV_32FC3 in [0, 1]; empty before the first frame.
+  cv::Mat texture() const;
+  // Starts again (another shot: another face, another light).
+  void clear();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace facecap

@@ -94,6 +94,7 @@ class FrameWriter {
       livelink_face_.emplace(model.expression_names);
       livelink_values_ = livelink_face_->values(Eigen::VectorXf::Zero(model.num_expressions()), {});
     }
+    if (options.texture) texture_.emplace(model, options.texture_frames);
     if (options.landmarks_csv) {
       landmarks_.emplace(dir / kLandmarkTable);
       landmarks_->stream() << landmark_table_header() << '\n';
@@ -178,7 +179,7 @@ class FrameWriter {
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
-    if (ok && options_.texture && shot_texture_png_.empty()) shot_texture_png_ = texture_png(f, ref, coarse, camera);
+    if (ok && texture_ && texture_->wants_more()) texture_->add(f.image, coarse, camera);
     if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
@@ -200,10 +201,16 @@ class FrameWriter {
     shot_albedo_png_.clear();
     if (refiner_ != nullptr) shot_albedo_png_ = face_albedo_png(model_, *refiner_);
     const fs::path* albedo = stage_shot_image(shot_albedo_png_, kAlbedoImage, albedo_files_);
+    shot_texture_png_.clear();
+    if (texture_ && !texture_->empty()) {
+      cv::Mat texture8;
+      texture_->texture().convertTo(texture8, CV_8UC3, 255.0);
+      shot_texture_png_ = encode_png(texture8);
+      texture_->clear();  // the next shot's comes from its own frames
+    }
     const fs::path* texture = stage_shot_image(shot_texture_png_, kTextureImage, texture_files_);
     meshes_.end_shot(options_.texture ? texture : albedo);  // the OBJs' material names their texture
     if (animations_) animations_->end_shot();
-    shot_texture_png_.clear();  // the next shot's comes from its own first face
   }
 
   void finish(const CaptureSummary& capture) {
@@ -260,7 +267,8 @@ class FrameWriter {
     if (animations_) animation_files_ = animations_->finish();
     staged_images_.commit();
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
-    if (options_.texture) remove_other_shot_files(dir_ / kTextureImage, texture_files_, /*remove_first_when_none=*/true);
+    if (options_.texture)
+      remove_other_shot_files(dir_ / kTextureImage, texture_files_, /*remove_first_when_none=*/true);
     csv_.commit();
     jsonl_.commit();
     if (landmarks_) landmarks_->commit();
@@ -290,17 +298,6 @@ class FrameWriter {
     write_binary_file(staged_images_.stage(file), png.data(), png.size());
     files.push_back(file);
     return &files.back();
-  }
-
-  // --texture: the frame's face unshaded into the UV layout, as PNG bytes;
-  // lit as the refinement estimated (with --refine), else by the frame's
-  // own lighting estimate.
-  std::vector<uint8_t> texture_png(const CapturedFrame& f, const Refinement* ref, const Positions& coarse,
-                                   const PinholeCamera& camera) const {
-    const ShCoeffs lighting = ref != nullptr ? ref->lighting : face_lighting_of_frame(model_, f.image, coarse, camera);
-    cv::Mat texture8;
-    face_texture_of_frame(model_, f.image, coarse, camera, lighting).convertTo(texture8, CV_8UC3, 255.0);
-    return encode_png(texture8);
   }
 
   // --livelink, --livelink-udp: the frame's weights, head angles and each
@@ -433,7 +430,8 @@ class FrameWriter {
   bool shot_has_face_ = false;
   std::vector<uint8_t> shot_albedo_png_;
   std::vector<fs::path> albedo_files_;
-  std::vector<uint8_t> shot_texture_png_;  // --texture: from the shot's first frame with a face
+  std::optional<FaceTextureGatherer> texture_;  // --texture: the shot's first frames with a face
+  std::vector<uint8_t> shot_texture_png_;
   std::vector<fs::path> texture_files_;
   StagedFiles staged_images_;  // each shot's albedo.png and texture.png, in place when the capture completes
   int shot_first_frame_ = -1;  // the index of the current shot's first frame

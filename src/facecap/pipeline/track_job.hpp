@@ -60,10 +60,12 @@ struct TrackOptions {
   // mesh DIR/face_rest.obj (.ply) whose vertex order it follows; one pair per
   // shot (face_shot<N>.pc2 after the first).
   bool point_cache = false;
-  // DIR/texture.png: the face's skin from each shot's first frame with a
-  // face, unshaded into the ICT UV layout (photo_face_texture.hpp), which the
-  // OBJ meshes and the glTF then take as their texture.
+  // DIR/texture.png: the face's skin over each shot's first
+  // `texture_frames` frames with a face, unshaded into the ICT UV layout
+  // (photo_face_texture.hpp: FaceTextureGatherer), which the OBJ meshes and
+  // the glTF then take as their texture.
   bool texture = false;
+  int texture_frames = 30;
   bool overlay = false;
   VideoEncoding encoding;  // the overlay videos'
   bool gltf = false;
