@@ -935,9 +935,15 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   TrackOptions o;
   o.capture.quiet = true;
   o.gltf = true;
+  o.landmarks_csv = true;
   const TrackSummary s = run_track(*model, frames.path().string(), out.path(), o);
   const auto csv = lines(out.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
+  // So is the landmark table's row, and the next tracked frame's is whole.
+  const auto table = lines(out.path() / "landmarks.csv");
+  ASSERT_EQ(table.size(), 37u);
+  EXPECT_EQ(table[32], csv[32].substr(0, csv[32].find(",lost,") + 5) + std::string(7 * 68, ','));
+  EXPECT_EQ(table[34].find(",,"), std::string::npos) << table[34].substr(0, 80);
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
   // Every field after the status is empty, gaze included; then the shot.
   EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9 + 1, ',') + "0") << csv[32];
