@@ -161,6 +161,28 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
     const float s = std::sqrt(std::max(1.0f, b.area()) / std::max(1.0f, reference.area()));
     return s < options_.max_scale_change && s > 1.0f / options_.max_scale_change;
   };
+  // Whether `lm` is a face much smaller than `reference`: what the detector
+  // finds of a turned face it no longer sees whole (its lowered threshold in
+  // the per-frame check, or a whole-frame search) is its nose and mouth, a
+  // face two thirds the size whose landmarks the fit would follow away (a
+  // render turned 25 degrees: 16 frames at 1.4-1.8 times the distance).
+  auto part_of = [&](const Landmarks& lm, const Box& reference) {
+    const float s = std::sqrt(std::max(1.0f, bounding_box(lm).area()) / std::max(1.0f, reference.area()));
+    return s < 1.0f / options_.max_scale_change;
+  };
+  // The tracked landmarks of a frame whose check found no face: kept where a
+  // search finds only part of it.
+  std::optional<Landmarks> unconfirmed;
+  // The frame's face, followed from here on.
+  auto take = [&](TrackStatus status, const Landmarks& lm, const Box& box) {
+    out.status = status;
+    out.landmarks = lm;
+    out.box = box;
+    previous_ = lm;
+    last_seen_ = bounding_box(lm);
+    frames_unseen_ = 0;
+    return out;
+  };
 
   if (previous_) {
     const Box box = box_from_landmarks(*previous_);
@@ -192,25 +214,24 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
             std::max_element(faces.begin(), faces.end(), [&](const FaceDetection& a, const FaceDetection& b) {
               return box_overlap(a.box, tracked) < box_overlap(b.box, tracked);
             })->box;
+        bool part = false;
         if (box_overlap(det, tracked) < options_.min_box_overlap) {
           t0 = std::chrono::steady_clock::now();
-          lm = landmarks_.detect(grey, det);
+          const Landmarks anchored = landmarks_.detect(grey, det);
           out.landmarks_ms += ms_since(t0);
-          used = det;
-          reanchored = true;
+          part = part_of(anchored, bounding_box(*previous_));
+          if (!part) {
+            lm = anchored;
+            used = det;
+            reanchored = true;
+          }
         }
-        learn_box_relation(det, lm);
+        if (!part) learn_box_relation(det, lm);
+      } else {
+        unconfirmed = lm;
       }
     }
-    if (ok) {
-      out.status = reanchored ? TrackStatus::kRedetected : TrackStatus::kTracked;
-      out.landmarks = lm;
-      out.box = used;
-      previous_ = lm;
-      last_seen_ = bounding_box(lm);
-      frames_unseen_ = 0;
-      return out;
-    }
+    if (ok) return take(reanchored ? TrackStatus::kRedetected : TrackStatus::kTracked, lm, used);
     previous_.reset();
   }
 
@@ -242,15 +263,12 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   const auto t0 = std::chrono::steady_clock::now();
   const Landmarks lm = landmarks_.detect(grey, *box);
   out.landmarks_ms += ms_since(t0);
+  // The check missed a face the search finds only part of: it is still there.
+  if (unconfirmed && part_of(lm, bounding_box(*unconfirmed)))
+    return take(TrackStatus::kTracked, *unconfirmed, box_from_landmarks(*unconfirmed));
   learn_box_relation(*box, lm);
-  out.status = TrackStatus::kRedetected;
-  out.landmarks = lm;
-  out.box = *box;
-  previous_ = lm;
-  last_seen_ = bounding_box(lm);
-  frames_unseen_ = 0;
   frames_since_check_ = 0;
-  return out;
+  return take(TrackStatus::kRedetected, lm, *box);
 }
 
 }  // namespace facecap
