@@ -49,7 +49,7 @@ TEST(FaceRender, ShadesTheTextureWithTheLightsTintAndGains) {
   EXPECT_NEAR(centre[1], 255 * 0.8 * 0.4, 0.05);
   EXPECT_NEAR(centre[2], 255 * 0.8 * 0.3, 0.05);
   EXPECT_NEAR(alpha.at<float>(100, 100), 0.75f, 1e-4);  // the texture's alpha: facing the camera, no fade
-  EXPECT_EQ(alpha.at<float>(10, 10), 0.0f);  // off the square
+  EXPECT_EQ(alpha.at<float>(10, 10), 0.0f);             // off the square
   EXPECT_EQ(colour.at<cv::Vec3f>(10, 10), cv::Vec3f(0, 0, 0));
   EXPECT_NEAR(alpha.at<float>(100, 51), 0.75f, 1e-4);
 
