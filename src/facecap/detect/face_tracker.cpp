@@ -153,12 +153,15 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   }
   TrackedFace out;
 
+  // How much larger the face `lm` is than `reference` (the square root of their areas' ratio).
+  auto scale_of = [](const Landmarks& lm, const Box& reference) {
+    return std::sqrt(std::max(1.0f, bounding_box(lm).area()) / std::max(1.0f, reference.area()));
+  };
   auto plausible = [&](const Landmarks& lm, const Box& reference) {
-    const Box b = bounding_box(lm);
     if (outer_eye_distance(lm) < options_.min_eye_distance) return false;
-    const Vec2f c = b.center();
+    const Vec2f c = bounding_box(lm).center();
     if (c.x() < 0 || c.y() < 0 || c.x() >= grey.cols || c.y() >= grey.rows) return false;
-    const float s = std::sqrt(std::max(1.0f, b.area()) / std::max(1.0f, reference.area()));
+    const float s = scale_of(lm, reference);
     return s < options_.max_scale_change && s > 1.0f / options_.max_scale_change;
   };
   // Whether `lm` is a face much smaller than `reference`: what the detector
@@ -167,8 +170,7 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   // face two thirds the size whose landmarks the fit would follow away (a
   // render turned 25 degrees: 16 frames at 1.4-1.8 times the distance).
   auto part_of = [&](const Landmarks& lm, const Box& reference) {
-    const float s = std::sqrt(std::max(1.0f, bounding_box(lm).area()) / std::max(1.0f, reference.area()));
-    return s < 1.0f / options_.max_scale_change;
+    return scale_of(lm, reference) < 1.0f / options_.max_scale_change;
   };
   // The tracked landmarks of a frame whose check found no face: kept where a
   // search finds only part of it.
