@@ -52,6 +52,14 @@ class RecordBuffer {
   size_t used_ = 0;
 };
 
+// `comment` as OBJ and MTL files hold it: each line after "# ".
+std::string hash_comment(const std::string& comment) {
+  std::string out;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) out += "# " + line + "\n";
+  return out;
+}
+
 }  // namespace
 
 void write_obj(const std::filesystem::path& path, const ObjMesh& mesh) {
@@ -67,12 +75,7 @@ void write_obj(const std::filesystem::path& path, const ObjMesh& mesh) {
   // About 32 characters a vertex, 20 a UV and 24 a triangle at this precision.
   RecordBuffer b(size_t(p.cols()) * 32 + (uv ? mesh.uvs->size() * 20 : 0) + mesh.polygons->size() * 28 +
                  mesh.comment.size() + 64);
-  std::istringstream comment(mesh.comment);
-  for (std::string line; std::getline(comment, line);) {
-    b.text("# ");
-    b.text(line);
-    b.text("\n");
-  }
+  b.text(hash_comment(mesh.comment));
   if (!mesh.material_library.empty()) {
     b.text("mtllib ");
     b.text(mesh.material_library);
@@ -115,9 +118,7 @@ void write_obj(const std::filesystem::path& path, const ObjMesh& mesh) {
 
 void write_mtl(const std::filesystem::path& path, const std::string& name, const std::string& texture,
                const std::string& comment) {
-  std::string text;
-  std::istringstream lines(comment);
-  for (std::string line; std::getline(lines, line);) text += "# " + line + "\n";
+  std::string text = hash_comment(comment);
   // Diffuse only: no ambient or specular term, fully opaque (illum 1).
   text += "newmtl " + name + "\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nd 1\nillum 1\n";
   if (!texture.empty()) text += "map_Kd " + texture + "\n";
