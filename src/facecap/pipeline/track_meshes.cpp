@@ -53,7 +53,7 @@ void TrackMeshes::end_shot(const fs::path* texture_file) {
     for (const fs::path& dir : material_->dirs) {
       const fs::path file = dir / material_->name;
       const std::string texture = texture_file != nullptr ? fs::relative(*texture_file, dir).generic_string() : "";
-      write_mtl(staged_materials_.stage(file), kMaterial, texture,
+      write_mtl(staged_.stage(file), kMaterial, texture,
                 "facecap " + std::string(kFacecapVersion) + ": the meshes' texture (ICT UV layout)");
       material_files_.push_back(file);
     }
@@ -66,8 +66,7 @@ void TrackMeshes::end_shot(const fs::path* texture_file) {
 
 void TrackMeshes::finish() {
   end_shot();
-  staged_point_caches_.commit();
-  staged_materials_.commit();
+  staged_.commit();
   // An earlier run's libraries that this run did not write.
   for (const fs::path& dir : {dir_ / "meshes", dir_}) {
     if (dir == dir_ ? !options_.point_cache : !options_.meshes) continue;
@@ -187,10 +186,10 @@ void TrackMeshes::append_to_point_cache(const CapturedFrame& f, int shot_first_f
     const fs::path rest = shot_file(dir_ / point_cache_rest_name(), f.shot, first);
     point_cache_files_.push_back(file);
     point_cache_rest_files_.push_back(rest);
-    write_frame_mesh(staged_point_caches_.stage(rest), dir_, f, ref, coarse);
-    point_cache_.emplace(OpenPointCache{std::make_unique<PointCacheWriter>(staged_point_caches_.stage(file),
-                                                                           int(points.cols()), float(shot_first_frame)),
-                                        points, shot_first_frame});
+    write_frame_mesh(staged_.stage(rest), dir_, f, ref, coarse);
+    point_cache_.emplace(OpenPointCache{
+        std::make_unique<PointCacheWriter>(staged_.stage(file), int(points.cols()), float(shot_first_frame)), points,
+        shot_first_frame});
   }
   OpenPointCache& cache = *point_cache_;
   if (points.cols() != cache.last.cols()) return;  // not the cache's level: held as a frame without a face

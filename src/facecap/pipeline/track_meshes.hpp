@@ -92,7 +92,8 @@ class TrackMeshes {
   };
   std::optional<OpenPointCache> point_cache_;  // the current shot's
   std::vector<std::filesystem::path> point_cache_files_, point_cache_rest_files_;
-  StagedFiles staged_point_caches_;  // each shot's cache and rest mesh, in place when the capture completes
+  // Each shot's cache, rest mesh and material libraries, in place when the capture completes.
+  StagedFiles staged_;
   // The current shot's material library: its file name and the folders
   // whose OBJs name it.
   struct ShotMaterial {
@@ -102,7 +103,6 @@ class TrackMeshes {
   std::optional<ShotMaterial> material_;
   int material_shots_ = 0;                             // shots given a material library
   std::vector<std::filesystem::path> material_files_;  // every library written
-  StagedFiles staged_materials_;                       // in place when the capture completes
 };
 
 }  // namespace facecap
