@@ -5,6 +5,7 @@
 #include <dlib/revision.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -291,14 +292,56 @@ LandmarkDetector::~LandmarkDetector() = default;
 LandmarkDetector::LandmarkDetector(LandmarkDetector&&) noexcept = default;
 LandmarkDetector& LandmarkDetector::operator=(LandmarkDetector&&) noexcept = default;
 
-Landmarks LandmarkDetector::detect(const cv::Mat& grey_in, const Box& box) const {
+namespace {
+
+// dlib's rectangle of a box (inclusive pixel bounds).
+dlib::rectangle dlib_rect(const Box& box) {
+  return {long(std::lround(box.x)), long(std::lround(box.y)), long(std::lround(box.x + box.width - 1)),
+          long(std::lround(box.y + box.height - 1))};
+}
+
+// Each iBUG point's mirror image across the face's midline (jaw 0 <-> 16,
+// brows 17 <-> 26, nose wings 31 <-> 35, eye corners 36 <-> 45, mouth
+// corners 48 <-> 54 ...; the midline's points are their own).
+constexpr std::array<int, kNumLandmarks> kMirroredLandmark = {
+    16, 15, 14, 13, 12, 11, 10, 9,  8,  7,  6,  5,  4,  3,  2,  1,  0,  26, 25, 24, 23, 22, 21,
+    20, 19, 18, 17, 27, 28, 29, 30, 35, 34, 33, 32, 31, 45, 44, 43, 42, 47, 46, 39, 38, 37, 36,
+    41, 40, 54, 53, 52, 51, 50, 49, 48, 59, 58, 57, 56, 55, 64, 63, 62, 61, 60, 67, 66, 65};
+
+}  // namespace
+
+Landmarks LandmarkDetector::detect_once(const cv::Mat& grey_in, const Box& box) const {
   const cv::Mat grey = to_grey(grey_in);
-  dlib::cv_image<unsigned char> img(grey);
-  const dlib::rectangle rect(long(std::lround(box.x)), long(std::lround(box.y)),
-                             long(std::lround(box.x + box.width - 1)), long(std::lround(box.y + box.height - 1)));
-  const auto parts = impl_->predict(img, rect);
+  const auto parts = impl_->predict(dlib::cv_image<unsigned char>(grey), dlib_rect(box));
   Landmarks lm;
   for (int i = 0; i < kNumLandmarks; ++i) lm[i] = Vec2f(float(parts[i].x()), float(parts[i].y()));
+  return lm;
+}
+
+Landmarks LandmarkDetector::detect(const cv::Mat& grey, const Box& box) const {
+  return average_with_mirror(grey, box, detect_once(grey, box));
+}
+
+Landmarks LandmarkDetector::average_with_mirror(const cv::Mat& grey_in, const Box& box, const Landmarks& once) const {
+  const cv::Mat grey = to_grey(grey_in);
+  Landmarks lm = once;
+  // The mirror is of a crop twice the box's size about it, wider than every
+  // pixel the cascade reads (LandmarkDetector tests: the same points as the
+  // whole image mirrored).
+  const int x0 = std::clamp(int(std::floor(box.x - 0.5f * box.width)), 0, grey.cols);
+  const int x1 = std::clamp(int(std::ceil(box.x + 1.5f * box.width)), x0, grey.cols);
+  const int y0 = std::clamp(int(std::floor(box.y - 0.5f * box.height)), 0, grey.rows);
+  const int y1 = std::clamp(int(std::ceil(box.y + 1.5f * box.height)), y0, grey.rows);
+  if (x1 - x0 < 2 || y1 - y0 < 2) return lm;
+  cv::Mat mirrored;
+  cv::flip(grey(cv::Rect(x0, y0, x1 - x0, y1 - y0)), mirrored, 1);
+  // The crop's column u shows the image's column x1 - 1 - u.
+  const Box mirrored_box{float(x1) - box.x - box.width, box.y - float(y0), box.width, box.height};
+  const auto mirrored_parts = impl_->predict(dlib::cv_image<unsigned char>(mirrored), dlib_rect(mirrored_box));
+  for (int i = 0; i < kNumLandmarks; ++i) {
+    const auto& q = mirrored_parts[kMirroredLandmark[i]];
+    lm[i] = 0.5f * (lm[i] + Vec2f(float(x1 - 1 - q.x()), float(q.y() + y0)));
+  }
   return lm;
 }
 

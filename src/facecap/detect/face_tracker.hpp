@@ -74,6 +74,10 @@ struct FaceTrackerOptions {
   // lost, not fitted with this face's identity. Then `pick` chooses again.
   int follow_frames = 50;
   float follow_radius = 1.0f;
+  // The landmarks handed out are the mean of the cascade on the frame and on
+  // its mirror image (LandmarkDetector::detect; the tracker's own decisions
+  // are taken on the first pass alone); false hands out the first pass.
+  bool mirror_average = true;
 };
 
 struct TrackedFace {
