@@ -318,7 +318,8 @@ Landmarks LandmarkDetector::detect_once(const cv::Mat& grey_in, const Box& box) 
   return lm;
 }
 
-Landmarks LandmarkDetector::detect(const cv::Mat& grey, const Box& box) const {
+Landmarks LandmarkDetector::detect(const cv::Mat& image, const Box& box) const {
+  const cv::Mat grey = to_grey(image);  // once for both passes (a colour image would be converted twice)
   return average_with_mirror(grey, box, detect_once(grey, box));
 }
 

@@ -34,10 +34,9 @@ namespace {
 // mirror average (FaceTrackerOptions::mirror_average), the self-swaps came
 // out further from their videos (`eval swap --self`, mean: address_720p_a
 // 4.21 -> 4.43, emotions_pexels 11.11 -> 11.52, with the source photo's
-// landmarks averaged and the target's not)
-// and the cover a hand leaves behind lingered
-// (SwapJob.AHandOfTheSkinsOwnColourStaysInFront, four frames after the hand
-// has gone: 2.4 % of the face against 0.7 %).
+// landmarks averaged and the target's not) and the cover a hand leaves
+// behind lingered (SwapJob.AHandOfTheSkinsOwnColourStaysInFront, four
+// frames after the hand has gone: 2.4 % of the face against 0.7 %).
 CaptureOptions swap_capture(CaptureOptions capture = {}) {
   capture.tracker.mirror_average = false;
   return capture;
