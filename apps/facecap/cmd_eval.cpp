@@ -137,6 +137,9 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 "Keep the identity solve's own face size, without the size correction (diagnostic)");
   cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
       ->capture_default_str();
+  cmd->add_option("--roll", a->options.synth.camera_roll_deg,
+                  "The synthetic camera turned about its axis by this many degrees (90: on its side)")
+      ->capture_default_str();
   cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
   cmd->add_option("--photos", a->photos,
                   "--synthetic: instead, fit every K-th frame alone, as a photo (a swap's source) is, and report "

@@ -24,6 +24,10 @@ void register_synth(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--fps", a->options.fps, "Frame rate")->capture_default_str();
   cmd->add_option("--focal", a->options.focal, "Focal length in pixels (default 1.1 x width)");
   cmd->add_option("--yaw", a->options.max_yaw_deg, "Head turns sweep +-this many degrees")->capture_default_str();
+  cmd->add_option("--roll", a->options.camera_roll_deg,
+                  "The camera turned about its axis by this many degrees (90: on its side): the performance rolls in "
+                  "the image, clockwise")
+      ->capture_default_str();
   cmd->add_flag("--still", a->options.still, "Hold pose and expression (for jitter measurements)");
   cmd->add_flag("--detail", a->options.detail, "Add wrinkle-like displacements along the normals");
   cmd->add_option("--noise", a->options.noise_sigma, "Sensor noise sigma, grey levels")->capture_default_str();

@@ -13,6 +13,7 @@
 
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/detect/landmark_detector.hpp"
+#include "facecap/detect/upright_view.hpp"
 
 namespace facecap {
 
@@ -78,6 +79,16 @@ struct FaceTrackerOptions {
   // its mirror image (LandmarkDetector::detect; the tracker's own decisions
   // are taken on the first pass alone); false hands out the first pass.
   bool mirror_average = true;
+  // A face rolled past what the detector and the cascade take (about 40
+  // degrees: a head on a pillow, a camera on its side) is followed in the
+  // frame turned by a multiple of 45 degrees (UprightView): the turn changes
+  // where the face's roll in its view passes 30 degrees, and where the frame
+  // holds no face the detector sees in its view, the other turns are searched
+  // too: on the first frame without a face and every 4 x fine_search_every
+  // frames after (32; never where fine_search_every is 0). Not
+  // where several trackers share the frame's faces (FrameFaces): those stay
+  // upright.
+  bool any_roll = true;
 };
 
 struct TrackedFace {
@@ -125,9 +136,10 @@ class FaceTracker {
     std::optional<Box> last_seen;
     int frames_unseen = 0, frames_since_check = 0, failed_searches = 0;
     Eigen::Vector4f box_relation;
+    float view_degrees = 0;
   };
   Memory memory() const {
-    return {previous_, last_seen_, frames_unseen_, frames_since_check_, failed_searches_, box_relation_};
+    return {previous_, last_seen_, frames_unseen_, frames_since_check_, failed_searches_, box_relation_, view_degrees_};
   }
   void restore(const Memory& m) {
     previous_ = m.previous;
@@ -136,9 +148,22 @@ class FaceTracker {
     frames_since_check_ = m.frames_since_check;
     failed_searches_ = m.failed_searches;
     box_relation_ = m.box_relation;
+    view_degrees_ = m.view_degrees;
   }
+  // The turn of the view the face is followed in (UprightView; 0 upright).
+  float view_degrees() const { return view_degrees_; }
 
  private:
+  // next() in the view (or frame) `grey`, its coordinates throughout.
+  TrackedFace follow(const cv::Mat& grey, const FrameFaces& frame_faces);
+  // Where `grey` (the frame) holds no face in the current view: the other
+  // turns' searches, each taken up as follow() takes a face. The view the
+  // face was found in goes to `found_in`; `lost`, with the time added,
+  // where none was.
+  TrackedFace search_turned(const cv::Mat& grey, TrackedFace lost, std::optional<UprightView>& found_in);
+  // After a frame followed in `view`: a face whose roll there passes 30
+  // degrees is followed in the nearest turn from the next frame on.
+  void keep_upright(const cv::Mat& grey, const UprightView& view, const Landmarks& lm);
   std::optional<Box> detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const;
   // The face to take up of those a search found (the follow gate, then the pick).
   std::optional<Box> choose_among(std::vector<FaceDetection> faces) const;
@@ -158,6 +183,7 @@ class FaceTracker {
   // Detector box relative to the landmark bounding box: centre offset and
   // size, in units of the landmark box size (learned at each detection).
   Eigen::Vector4f box_relation_{0.0f, 0.06f, 1.0f, 0.95f};
+  float view_degrees_ = 0;  // the view previous_, last_seen_ and the box relation are in
 };
 
 }  // namespace facecap

@@ -68,12 +68,12 @@ Correspondences pose_correspondences(const FaceModel& model, const LandmarkBasis
     return rf * basis.position(basis.slot(v), identity, expression) + pose.translation;
   };
   if (!slide) {
-    const auto jaw = silhouette_vertices(basis.contour, camera_position);
+    const auto jaw = silhouette_vertices(basis.contour, camera_position, image_lateral(rf));
     for (int k = 0; k < 17; ++k) out[k] = {jaw[k], jaw[k], 0.0};
     return out;
   }
   for (const bool right : {true, false}) {
-    const std::vector<int> path = silhouette_path(basis.contour, right, camera_position);
+    const std::vector<int> path = silhouette_path(basis.contour, right, camera_position, image_lateral(rf));
     std::vector<Vec2d> projected(path.size());
     for (size_t j = 0; j < path.size(); ++j) projected[j] = camera.project(camera_position(path[j]));
     const int last_segment = static_cast<int>(path.size()) - 2;

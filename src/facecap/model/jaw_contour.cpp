@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace facecap {
 
@@ -59,15 +60,20 @@ JawContour build_jaw_contour(const FaceModel& model) {
 
 namespace {
 
-// The line vertex that projects furthest outward (x/z orders points by image
-// column for any focal length).
-int outermost(const std::vector<int>& line, bool right_side, const CameraPositionFn& camera_position) {
+// How far outward along `lateral` a vertex projects ((x, y) / z orders
+// points as their images for any focal length).
+double outward_measure(const Vec3d& p, bool right_side, const Vec2d& lateral) {
   const double outward = right_side ? -1.0 : 1.0;  // subject's right side appears at image left
+  return outward * (lateral.x() * p.x() + lateral.y() * p.y()) / p.z();
+}
+
+// The line vertex that projects furthest outward.
+int outermost(const std::vector<int>& line, bool right_side, const CameraPositionFn& camera_position,
+              const Vec2d& lateral) {
   double best = -std::numeric_limits<double>::infinity();
   int best_v = line.front();
   for (int v : line) {
-    const Vec3d p = camera_position(v);
-    const double x = outward * p.x() / p.z();
+    const double x = outward_measure(camera_position(v), right_side, lateral);
     if (x > best) {
       best = x;
       best_v = v;
@@ -78,17 +84,29 @@ int outermost(const std::vector<int>& line, bool right_side, const CameraPositio
 
 }  // namespace
 
-std::array<int, 17> silhouette_vertices(const JawContour& contour, const CameraPositionFn& camera_position) {
+Vec2d image_lateral(const Mat3d& model_to_camera) {
+  const Vec2d axis = model_to_camera.col(0).head<2>();
+  // A head turned side-on (yaw near 90 degrees) shows its axis end-on.
+  if (!(axis.norm() > 1e-6)) return {1, 0};
+  constexpr double kFrom = 15.0 * std::numbers::pi / 180.0, kTo = 45.0 * std::numbers::pi / 180.0;
+  const double roll = std::atan2(axis.y(), axis.x());
+  const double used = roll * std::clamp((std::abs(roll) - kFrom) / (kTo - kFrom), 0.0, 1.0);
+  return {std::cos(used), std::sin(used)};
+}
+
+std::array<int, 17> silhouette_vertices(const JawContour& contour, const CameraPositionFn& camera_position,
+                                        const Vec2d& lateral) {
   std::array<int, 17> out{};
-  for (int k = 0; k < 17; ++k) out[k] = outermost(contour.lines[k], k < 8, camera_position);
+  for (int k = 0; k < 17; ++k) out[k] = outermost(contour.lines[k], k < 8, camera_position, lateral);
   return out;
 }
 
-std::vector<int> silhouette_path(const JawContour& contour, bool right_side, const CameraPositionFn& camera_position) {
+std::vector<int> silhouette_path(const JawContour& contour, bool right_side, const CameraPositionFn& camera_position,
+                                 const Vec2d& lateral) {
   const auto& lines = right_side ? contour.right_path : contour.left_path;
   std::vector<int> out;
   out.reserve(lines.size() + 1);
-  for (const auto& line : lines) out.push_back(outermost(line, right_side, camera_position));
+  for (const auto& line : lines) out.push_back(outermost(line, right_side, camera_position, lateral));
   out.push_back(contour.chin);
   return out;
 }
@@ -96,7 +114,8 @@ std::vector<int> silhouette_path(const JawContour& contour, bool right_side, con
 std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positions& face_positions,
                                         const Mat3d& model_to_camera, const Vec3d& translation) {
   return silhouette_vertices(
-      contour, [&](int v) -> Vec3d { return model_to_camera * face_positions.col(v).cast<double>() + translation; });
+      contour, [&](int v) -> Vec3d { return model_to_camera * face_positions.col(v).cast<double>() + translation; },
+      image_lateral(model_to_camera));
 }
 
 std::array<int, 68> landmark_vertices_for_pose(const FaceModel& model, const JawContour& contour,

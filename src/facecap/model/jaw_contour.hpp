@@ -43,8 +43,22 @@ JawContour build_jaw_contour(const FaceModel& model);
 // camera_position(vertex): the vertex in camera space for the current pose and shape.
 using CameraPositionFn = std::function<Vec3d(int vertex)>;
 
-// For each jaw landmark, the short-list line vertex on the silhouette.
-std::array<int, 17> silhouette_vertices(const JawContour& contour, const CameraPositionFn& camera_position);
+// The image direction along which the jaw's silhouette is outermost, a
+// unit vector. A march line runs along the head's left-right axis (model x
+// under `model_to_camera`), and where it crosses the outline its image is
+// outermost across the outline, which runs along the head's up axis: past 45
+// degrees of roll that axis's image direction. Under 15 degrees the image's
+// x axis, as the fit was tuned with: with the head's axis at every roll,
+// the self-swaps of the real clips moved by -0.8 to +3.9 % (`eval swap
+// --self`: emotions_pexels, whose head rolls up to 27 degrees, 11.11 ->
+// 11.54; address_720p_b 7.51 -> 7.59) and the fit's NME on emotions_pexels
+// rose 0.8 %. In between, the angle scaled from 0 to the roll's.
+Vec2d image_lateral(const Mat3d& model_to_camera);
+
+// For each jaw landmark, the short-list line vertex on the silhouette;
+// `lateral`: image_lateral() of the pose.
+std::array<int, 17> silhouette_vertices(const JawContour& contour, const CameraPositionFn& camera_position,
+                                        const Vec2d& lateral);
 
 // The same for model-space face-region positions (column = global vertex
 // index) under the rotation `model_to_camera` (R * F of camera.hpp) and translation.
@@ -53,7 +67,8 @@ std::array<int, 17> silhouette_vertices(const JawContour& contour, const Positio
 
 // The outline of one side (right: iBUG 0-7, left: 9-16) as silhouette
 // vertices from the ear down to the chin (the chin vertex last).
-std::vector<int> silhouette_path(const JawContour& contour, bool right_side, const CameraPositionFn& camera_position);
+std::vector<int> silhouette_path(const JawContour& contour, bool right_side, const CameraPositionFn& camera_position,
+                                 const Vec2d& lateral);
 
 // The 68 correspondence vertices for a pose: the landmark map with the jaw
 // landmarks replaced by their silhouette vertices (short lists).

@@ -10,6 +10,25 @@ namespace facecap {
 
 namespace {
 
+// SH lighting `l` of a scene turned by `r` (viewer frame): l' with
+// l'^T SH(n) = l^T SH(r^T n) for every normal. The basis spans the
+// polynomials of degree 2 on the sphere, which rotations keep, so fitting
+// l' on nine or more normals is exact.
+ShCoeffs turned(const ShCoeffs& l, const Mat3d& r) {
+  constexpr int kNormals = 32;
+  Eigen::Matrix<double, kNormals, 9> a;
+  Eigen::Matrix<double, kNormals, 1> b;
+  for (int i = 0; i < kNormals; ++i) {
+    // A spiral over the sphere.
+    const double z = 1.0 - (2.0 * i + 1.0) / kNormals, phi = 2.399963229728653 * i;
+    const Vec3d n(std::sqrt(1.0 - z * z) * std::cos(phi), std::sqrt(1.0 - z * z) * std::sin(phi), z);
+    const Vec3d before = r.transpose() * n;
+    a.row(i) = sh_basis(n.x(), n.y(), n.z()).transpose();
+    b[i] = sh_shade(l, before.x(), before.y(), before.z());
+  }
+  return a.colPivHouseholderQr().solve(b);
+}
+
 constexpr double kPi = 3.14159265358979323846;
 
 void require(bool ok, const std::string& what) {
@@ -53,6 +72,7 @@ void SynthOptions::check() const {
   require(fps > 0 && fps <= 240, "fps must be in (0, 240]");
   require(focal >= 0, "--focal must be positive");
   require(max_yaw_deg >= 0 && max_yaw_deg <= 60, "--yaw must be between 0 and 60 degrees");
+  require(camera_roll_deg >= -180 && camera_roll_deg <= 180, "--roll must be between -180 and 180 degrees");
   require(face_height > 0.05 && face_height < 1.5, "face height share must be in (0.05, 1.5)");
   require(identity_modes >= 0 && identity_modes <= 100, "identity modes must be in [0, 100]");
   require(noise_sigma >= 0 && noise_sigma <= 50, "noise sigma must be in [0, 50]");
@@ -171,9 +191,13 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
     const double pitch = motion * options.max_pitch_deg * pitch_noise(t);
     const double roll = motion * options.max_roll_deg * roll_noise(t);
     const Mat3d r = rotation_from_yaw_pitch_roll_deg(yaw, pitch, roll);
-    frame.pose.rotation = axis_angle_from_rotation(r);
     const Vec3d centre(motion * 1.5 * tx_noise(t), motion * 1.0 * ty_noise(t), distance + motion * 3.0 * tz_noise(t));
-    frame.pose.translation = centre - r * flipped_centre;
+    // A camera rolled by the angle sees the scene turned the other way about
+    // its axis: in its frame (y down) everything turns clockwise by it.
+    const Mat3d camera_roll =
+        Eigen::AngleAxisd(options.camera_roll_deg * kPi / 180.0, Vec3d::UnitZ()).toRotationMatrix();
+    frame.pose.rotation = axis_angle_from_rotation(camera_roll * r);
+    frame.pose.translation = camera_roll * (centre - r * flipped_centre);
 
     Eigen::VectorXf w = Eigen::VectorXf::Zero(model.num_expressions());
     if (!options.still) {
@@ -206,6 +230,7 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
     frame.expression = w;
     frame.lighting = base_light;
     frame.lighting[0] += 0.03 * light_drift(t) * motion;
+    if (options.camera_roll_deg != 0) frame.lighting = turned(frame.lighting, camera_roll);
     perf.frames.push_back(frame);
   }
   return perf;

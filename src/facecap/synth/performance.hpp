@@ -24,6 +24,10 @@ struct SynthOptions {
   double max_yaw_deg = 30.0;  // head turns sweep +-this
   double max_pitch_deg = 8.0;
   double max_roll_deg = 5.0;
+  // The camera turned about its axis (on its side: 90): the whole
+  // performance rolls in the image by this many degrees, clockwise (the eye
+  // line's angle, roll_degrees()), its lighting with it.
+  double camera_roll_deg = 0.0;
   double face_height = 0.45;  // chin-to-brow height as a share of the image height
   bool still = false;         // hold pose and expression (for jitter measurements)
   bool detail = false;        // wrinkle-like displacements along the normals

@@ -49,6 +49,7 @@ void write_truth(const std::filesystem::path& path, const SynthTruth& truth) {
                   {"max_yaw_deg", o.max_yaw_deg},
                   {"max_pitch_deg", o.max_pitch_deg},
                   {"max_roll_deg", o.max_roll_deg},
+                  {"camera_roll_deg", o.camera_roll_deg},
                   {"face_height", o.face_height},
                   {"still", o.still},
                   {"detail", o.detail},
@@ -98,6 +99,7 @@ SynthTruth read_truth(const std::filesystem::path& path) {
     p.options.max_yaw_deg = o.at("max_yaw_deg");
     p.options.max_pitch_deg = o.at("max_pitch_deg");
     p.options.max_roll_deg = o.at("max_roll_deg");
+    p.options.camera_roll_deg = o.value("camera_roll_deg", 0.0);
     p.options.face_height = o.at("face_height");
     p.options.still = o.at("still");
     p.options.detail = o.at("detail");
