@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "facecap/core/error.hpp"
 #include "test_support.hpp"
 
@@ -72,6 +74,16 @@ TEST(SynthPerformance, BadOptionsAreRejectedByName) {
   o = SynthOptions{};
   o.width = 10;
   EXPECT_THROW(o.check(), Error);
+  for (const double roll : {-181.0, 200.0, std::nan("")}) {
+    o = SynthOptions{};
+    o.camera_roll_deg = roll;
+    try {
+      o.check();
+      FAIL() << roll;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--roll"), std::string::npos);
+    }
+  }
   // A face texture must be a square colour texture of floats.
   for (const cv::Mat& bad : {cv::Mat(64, 32, CV_32FC3), cv::Mat(64, 64, CV_8UC3), cv::Mat(8, 8, CV_32FC3)}) {
     o = SynthOptions{};
