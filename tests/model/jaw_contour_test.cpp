@@ -58,12 +58,12 @@ TEST(JawContour, SideTurningAwayMovesInward) {
 }
 
 // The camera rolled about its axis (a head on a pillow, a camera on its
-// side) turns the face's image and nothing else: past 45 degrees of roll the
-// silhouette is made of the same vertices as upright. Measured outermost
-// along the image x axis, as before image_lateral(), a face rolled that far
-// had its jaw points chosen across the outline (the fit of a clip turned 90
-// or 180 degrees then lay 1.1 px from the upright clip's, against 0.3-0.5
-// px).
+// side) turns the face's image and nothing else: by quarter turns and
+// half-way between them, the silhouette is made of the same vertices as
+// upright. Measured outermost along the image x axis, as before
+// image_lateral(), a face rolled that far had its jaw points chosen across
+// the outline (the fit of a clip turned 90 or 180 degrees then lay 1.1 px
+// from the upright clip's, against 0.3-0.5 px).
 TEST(JawContour, RollingTheCameraKeepsTheSilhouette) {
   FACECAP_REQUIRE_MODEL(model);
   const JawContour contour = build_jaw_contour(*model);
@@ -75,7 +75,7 @@ TEST(JawContour, RollingTheCameraKeepsTheSilhouette) {
       pose.rotation = axis_angle_from_rotation(rotation_from_yaw_pitch_roll_deg(yaw, pitch, 0));
       const Mat3d upright = pose.model_to_camera_rotation();
       const auto expected = silhouette_vertices(contour, face, upright, translation);
-      for (const double roll : {45.0, 60.0, 90.0, 180.0, -120.0}) {
+      for (const double roll : {45.0, 90.0, 135.0, 180.0, -90.0}) {
         const Mat3d camera_roll = Eigen::AngleAxisd(roll * M_PI / 180.0, Vec3d::UnitZ()).toRotationMatrix();
         // Rolling the camera turns the head's position with it.
         const auto rolled = silhouette_vertices(contour, face, camera_roll * upright, camera_roll * translation);

@@ -88,9 +88,12 @@ Vec2d image_lateral(const Mat3d& model_to_camera) {
   const Vec2d axis = model_to_camera.col(0).head<2>();
   // A head turned side-on (yaw near 90 degrees) shows its axis end-on.
   if (!(axis.norm() > 1e-6)) return {1, 0};
-  constexpr double kFrom = 15.0 * std::numbers::pi / 180.0, kTo = 45.0 * std::numbers::pi / 180.0;
+  constexpr double kQuarter = std::numbers::pi / 2;
+  constexpr double kFrom = kQuarter / 6, kTo = kQuarter / 2;  // 15 and 45 degrees
   const double roll = std::atan2(axis.y(), axis.x());
-  const double used = roll * std::clamp((std::abs(roll) - kFrom) / (kTo - kFrom), 0.0, 1.0);
+  const double quarter = kQuarter * std::round(roll / kQuarter);
+  const double off = roll - quarter;  // from the nearest of the image's axes
+  const double used = quarter + off * std::clamp((std::abs(off) - kFrom) / (kTo - kFrom), 0.0, 1.0);
   return {std::cos(used), std::sin(used)};
 }
 

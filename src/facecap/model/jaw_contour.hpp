@@ -46,13 +46,15 @@ using CameraPositionFn = std::function<Vec3d(int vertex)>;
 // The image direction along which the jaw's silhouette is outermost, a
 // unit vector. A march line runs along the head's left-right axis (model x
 // under `model_to_camera`), and where it crosses the outline its image is
-// outermost across the outline, which runs along the head's up axis: past 45
-// degrees of roll that axis's image direction. Under 15 degrees the image's
-// x axis, as the fit was tuned with: with the head's axis at every roll,
-// the self-swaps of the real clips moved by -0.8 to +3.9 % (`eval swap
-// --self`: emotions_pexels, whose head rolls up to 27 degrees, 11.11 ->
-// 11.54; address_720p_b 7.51 -> 7.59) and the fit's NME on emotions_pexels
-// rose 0.8 %. In between, the angle scaled from 0 to the roll's.
+// outermost across the outline, which runs along the head's up axis. Within
+// 15 degrees of one of the image's axes (a head upright, or on a camera on
+// its side or upside down) that axis, as the fit was tuned with upright:
+// with the head's own axis at every roll, the self-swaps of the real clips
+// moved by -0.8 to +3.9 % (`eval swap --self`: emotions_pexels, whose head
+// rolls up to 27 degrees, 11.11 -> 11.54; address_720p_b 7.51 -> 7.59) and
+// the fit's NME on emotions_pexels rose 0.8 %. At 45 degrees from them the
+// head's axis; the angle scaled in between. So a quarter turn of the camera
+// turns the silhouette's choice with it, exactly.
 Vec2d image_lateral(const Mat3d& model_to_camera);
 
 // For each jaw landmark, the short-list line vertex on the silhouette;
