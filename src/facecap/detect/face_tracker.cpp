@@ -186,7 +186,7 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   const UprightView view(grey, view_degrees_);
   TrackedFace out = follow(view.image(), {});
   if (out.status != TrackStatus::kLost) {
-    keep_upright(grey, view, *previous_);
+    keep_upright(grey.size(), view, *previous_);
     return in_frame(out, view);
   }
   // The other turns on the first frame without a face and every
@@ -202,7 +202,7 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   // turn 45 degrees off: NME 0.11): followed again, this frame, in the turn
   // nearest its roll.
   const Memory found = memory();
-  keep_upright(grey, *found_in, *previous_);
+  keep_upright(grey.size(), *found_in, *previous_);
   if (view_degrees_ == found.view_degrees) return in_frame(out, *found_in);
   const UprightView nearer(grey, view_degrees_);
   TrackedFace again = follow(nearer.image(), {});
@@ -215,7 +215,7 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   again.landmarks_ms += out.landmarks_ms;
   again.faces_seen = std::max(again.faces_seen, out.faces_seen);
   again.detector_ran = again.full_detection = again.fine_search = true;
-  keep_upright(grey, nearer, *previous_);
+  keep_upright(grey.size(), nearer, *previous_);
   return in_frame(again, nearer);
 }
 
@@ -258,11 +258,11 @@ TrackedFace FaceTracker::search_turned(const cv::Mat& grey, TrackedFace lost, st
   return lost;
 }
 
-void FaceTracker::keep_upright(const cv::Mat& grey, const UprightView& view, const Landmarks& lm) {
+void FaceTracker::keep_upright(cv::Size frame_size, const UprightView& view, const Landmarks& lm) {
   const float roll = roll_degrees(lm);
   if (std::abs(roll) <= kTurnAt) return;
   const float degrees = wrapped(view_degrees_ + 45.0f * std::round(roll / 45.0f));
-  const UprightView next(grey.size(), degrees);
+  const UprightView next(frame_size, degrees);
   previous_ = next.to_view(view.to_frame(lm));
   last_seen_ = bounding_box(*previous_);
   view_degrees_ = degrees;

@@ -163,7 +163,7 @@ class FaceTracker {
   TrackedFace search_turned(const cv::Mat& grey, TrackedFace lost, std::optional<UprightView>& found_in);
   // After a frame followed in `view`: a face whose roll there passes 30
   // degrees is followed in the nearest turn from the next frame on.
-  void keep_upright(const cv::Mat& grey, const UprightView& view, const Landmarks& lm);
+  void keep_upright(cv::Size frame_size, const UprightView& view, const Landmarks& lm);
   std::optional<Box> detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const;
   // The face to take up of those a search found (the follow gate, then the pick).
   std::optional<Box> choose_among(std::vector<FaceDetection> faces) const;
