@@ -6,21 +6,26 @@
 namespace facecap::cli {
 
 void register_probe(CLI::App& app, GlobalOptions&) {
-  auto* cmd = app.add_subcommand("probe",
-                                 "Describe an input (video, image, image folder or cam:N) as JSON, with the faces of "
-                                 "its first frame (face_boxes, left to right: a centre is a --face X,Y)");
+  auto* cmd = app.add_subcommand(
+      "probe",
+      "Describe an input (video, image, image folder or cam:N) as JSON, with the faces of "
+      "its first frame (face_boxes, left to right: a centre is a --face X,Y; roll_degrees: a face's roll "
+      "in steps of 45 degrees, for faces found at any roll)");
   auto input = std::make_shared<std::string>();
   cmd->add_option("INPUT", *input, "Video file, image, folder of images, or cam:N")->required();
   cmd->callback([input] {
     const ProbeReport r = probe_input(*input);
     // Where each face is, for track's --face X,Y: its box and centre, rounded to the pixel.
     nlohmann::json boxes = nlohmann::json::array();
-    for (const Box& b : r.face_boxes)
+    for (const ProbeFace& f : r.found) {
+      const Box& b = f.box;
       boxes.push_back({{"x", std::lround(b.x)},
                        {"y", std::lround(b.y)},
                        {"width", std::lround(b.width)},
                        {"height", std::lround(b.height)},
-                       {"centre", {std::lround(b.center().x()), std::lround(b.center().y())}}});
+                       {"centre", {std::lround(b.center().x()), std::lround(b.center().y())}},
+                       {"roll_degrees", std::lround(f.roll_degrees)}});
+    }
     print_json({{"input", r.info.spec},
                 {"kind", to_string(r.info.kind)},
                 {"width", r.info.width},

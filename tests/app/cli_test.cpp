@@ -725,16 +725,39 @@ TEST(Cli, TrackSaysWhichFramesOfAFolderCouldNotBeRead) {
 // Two faces side by side (Obama's portrait, 72 px between the eye corners,
 // and Biden's, 115 px): the larger is tracked, and the summary says there
 // were two.
-TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
-  FACECAP_REQUIRE_MODEL(model);
-  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
-  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+namespace {
+
+// Obama's portrait (72 px between the eye corners) and Biden's (115 px),
+// side by side; `left_width`: where Biden's begins.
+cv::Mat two_portraits(const fs::path& obama, const fs::path& biden, int& left_width) {
   cv::Mat left = facecap::read_image(obama.string()), right = facecap::read_image(biden.string());
-  ASSERT_FALSE(left.empty() || right.empty());
+  if (left.empty() || right.empty()) return {};
   cv::resize(right(cv::Rect(0, 0, right.cols, 800)), right, cv::Size(), 0.7, 0.7, cv::INTER_AREA);
   cv::resize(left, left, cv::Size(left.cols * right.rows / left.rows, right.rows), 0, 0, cv::INTER_AREA);
   cv::Mat both;
   cv::hconcat(left, right, both);
+  left_width = left.cols;
+  return both;
+}
+
+// The first frame's landmark `index` in a track's frames.jsonl.
+Vec2f first_landmark(const fs::path& out, int index) {
+  std::ifstream jsonl(out / "frames.jsonl");
+  std::string line;
+  std::getline(jsonl, line);
+  const nlohmann::json p = nlohmann::json::parse(line)["landmarks"][index];
+  return {p[0].get<float>(), p[1].get<float>()};
+}
+
+}  // namespace
+
+TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+  int left_width = 0;
+  const cv::Mat both = two_portraits(obama, biden, left_width);
+  ASSERT_FALSE(both.empty());
   TempDir dir;
   const auto image = dir.path() / "two.png";
   facecap::write_image(image.string(), both);
@@ -743,37 +766,32 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("up to 2 faces in view; one is tracked per run (--face chooses which"), std::string::npos)
       << r.out;
-  auto nose_x = [&](const fs::path& out) {
-    std::ifstream jsonl(out / "frames.jsonl");
-    std::string line;
-    std::getline(jsonl, line);
-    return nlohmann::json::parse(line)["landmarks"][30][0].get<double>();
-  };
-  EXPECT_GT(nose_x(dir.path() / "out"), left.cols) << "the nose tip of the larger face, on the right";
+  auto nose_x = [&](const fs::path& out) { return first_landmark(out, 30).x(); };
+  EXPECT_GT(nose_x(dir.path() / "out"), left_width) << "the nose tip of the larger face, on the right";
   // --face picks the other one.
   const RunResult l = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                         (dir.path() / "left").string() + " --face left 2>&1 >/dev/null");
   ASSERT_EQ(l.code, 0) << l.out;
-  EXPECT_LT(nose_x(dir.path() / "left"), left.cols) << "the nose tip of the face on the left";
+  EXPECT_LT(nose_x(dir.path() / "left"), left_width) << "the nose tip of the face on the left";
   // probe says where the faces are, left to right; a centre is a --face X,Y.
   const RunResult p = test::run_command(std::string(FACECAP_BINARY) + " -q probe " + image.string());
   ASSERT_EQ(p.code, 0) << p.out;
   const nlohmann::json boxes = nlohmann::json::parse(p.out)["face_boxes"];
   ASSERT_EQ(boxes.size(), 2u) << p.out;
-  EXPECT_LT(boxes[0]["centre"][0].get<int>(), left.cols);
-  EXPECT_GT(boxes[1]["centre"][0].get<int>(), left.cols);
+  EXPECT_LT(boxes[0]["centre"][0].get<int>(), left_width);
+  EXPECT_GT(boxes[1]["centre"][0].get<int>(), left_width);
   const std::string at =
       std::to_string(boxes[0]["centre"][0].get<int>()) + "," + std::to_string(boxes[0]["centre"][1].get<int>());
   const RunResult point = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                             (dir.path() / "point").string() + " --face " + at + " 2>&1 >/dev/null");
   ASSERT_EQ(point.code, 0) << point.out;
-  EXPECT_LT(nose_x(dir.path() / "point"), left.cols) << "the face at " << at;
+  EXPECT_LT(nose_x(dir.path() / "point"), left_width) << "the face at " << at;
   // --all-faces: both, each into its own folder, left to right.
   const RunResult all = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                           (dir.path() / "all").string() + " --all-faces 2>&1 >/dev/null");
   ASSERT_EQ(all.code, 0) << all.out;
-  EXPECT_LT(nose_x(dir.path() / "all" / "face_0"), left.cols);
-  EXPECT_GT(nose_x(dir.path() / "all" / "face_1"), left.cols);
+  EXPECT_LT(nose_x(dir.path() / "all" / "face_0"), left_width);
+  EXPECT_GT(nose_x(dir.path() / "all" / "face_1"), left_width);
   EXPECT_NE(all.out.find("2 face(s) in 1 frames, one decoding pass"), std::string::npos) << all.out;
   // transform --all-faces: the left one smiles and the right one looks sad
   // (--face-to) in the one marked image; a face the photo does not show is
@@ -793,7 +811,7 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   const cv::Mat changed = facecap::read_image(smiles.string());
   ASSERT_EQ(changed.size(), both.size());
   EXPECT_TRUE(fs::exists(smiles.string() + ".json"));
-  const cv::Rect left_part(0, 0, left.cols, left.rows), right_part(left.cols, 0, right.cols, right.rows);
+  const cv::Rect left_part(0, 0, left_width, both.rows), right_part(left_width, 0, both.cols - left_width, both.rows);
   EXPECT_GT(cv::norm(changed(left_part), both(left_part), cv::NORM_INF), 40.0);
   EXPECT_GT(cv::norm(changed(right_part), both(right_part), cv::NORM_INF), 40.0);
   // swap --all-faces: Biden's face on the left one, Obama's (--face-source)
@@ -815,6 +833,53 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   EXPECT_EQ(bad.code, 2) << bad.out;
   EXPECT_NE(bad.out.find("--face: must be largest, left, right or X,Y (pixels), not 'middle'"), std::string::npos)
       << bad.out;
+}
+
+// The same two portraits upside down (a half turn): probe finds both, Biden's
+// now on the left, each rolled 180 degrees; a centre it gives picks that face
+// for track (found in the turned frame, where the pick chooses as the frame
+// shows the faces); --all-faces follows both.
+TEST(Cli, ProbeAndTrackFindUpsideDownFacesWhereTheFrameShowsThem) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+  int left_width = 0;
+  cv::Mat both = two_portraits(obama, biden, left_width);
+  ASSERT_FALSE(both.empty());
+  cv::rotate(both, both, cv::ROTATE_180);
+  const int obama_from = both.cols - left_width;  // Obama's portrait now lies right of this
+  TempDir dir;
+  const auto image = dir.path() / "upside_down.png";
+  facecap::write_image(image.string(), both);
+  const RunResult p = test::run_command(std::string(FACECAP_BINARY) + " -q probe " + image.string());
+  ASSERT_EQ(p.code, 0) << p.out;
+  const nlohmann::json boxes = nlohmann::json::parse(p.out)["face_boxes"];
+  ASSERT_EQ(boxes.size(), 2u) << p.out;
+  EXPECT_LT(boxes[0]["centre"][0].get<int>(), obama_from);
+  EXPECT_GT(boxes[1]["centre"][0].get<int>(), obama_from);
+  for (const auto& box : boxes) EXPECT_EQ(box["roll_degrees"].get<int>(), 180) << p.out;
+  for (int i : {0, 1}) {
+    const std::string at =
+        std::to_string(boxes[i]["centre"][0].get<int>()) + "," + std::to_string(boxes[i]["centre"][1].get<int>());
+    const fs::path out = dir.path() / ("face" + std::to_string(i));
+    const RunResult t = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                          out.string() + " --face " + at + " 2>&1 >/dev/null");
+    ASSERT_EQ(t.code, 0) << t.out;
+    const Vec2f nose = first_landmark(out, 30);
+    if (i == 0) {
+      EXPECT_LT(nose.x(), obama_from) << "Biden's face, at " << at;
+    } else {
+      EXPECT_GT(nose.x(), obama_from) << "Obama's face, at " << at;
+    }
+    // Upside down: the nose tip lies above the eyes' centre in the frame.
+    EXPECT_LT(nose.y(), first_landmark(out, 39).y()) << at;
+  }
+  // --all-faces: both, left to right as the frame shows them.
+  const RunResult all = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
+                                          (dir.path() / "all").string() + " --all-faces 2>&1 >/dev/null");
+  ASSERT_EQ(all.code, 0) << all.out;
+  EXPECT_LT(first_landmark(dir.path() / "all" / "face_0", 30).x(), obama_from);
+  EXPECT_GT(first_landmark(dir.path() / "all" / "face_1", 30).x(), obama_from);
 }
 
 // --stream: each frame's row on stdout as it is done, the same as frames.jsonl's,

@@ -157,13 +157,13 @@ namespace {
 struct Turned {
   cv::Mat image;
   cv::Matx23d map;
+  Vec2f operator()(const Vec2f& p) const {
+    const cv::Vec2d q = map * cv::Vec3d(p.x(), p.y(), 1.0);
+    return {float(q[0]), float(q[1])};
+  }
   Landmarks operator()(const Landmarks& lm) const {
     Landmarks out;
-    for (int i = 0; i < kNumLandmarks; ++i) {
-      const cv::Vec3d p(lm[i].x(), lm[i].y(), 1.0);
-      const cv::Vec2d q = map * p;
-      out[i] = {float(q[0]), float(q[1])};
-    }
+    for (int i = 0; i < kNumLandmarks; ++i) out[i] = (*this)(lm[i]);
     return out;
   }
 };
@@ -252,6 +252,53 @@ TEST(FaceTracker, FollowsAHeadThatRollsOverAndBack) {
   std::sort(errors.begin(), errors.end());
   EXPECT_LT(errors[errors.size() / 2], 0.02f) << "median NME against the upright clip's landmarks";
   EXPECT_LT(errors.back(), 0.06f) << "largest";
+}
+
+// Two portraits side by side (Obama's, the smaller face, on the left;
+// Biden's), the picture turned a half turn and a quarter turn: --face
+// chooses in the frame as it is shown, whatever turn the faces are found in.
+// A half turn puts Biden's face on the left; a point picks the face nearest
+// it. (Before, the search chose in the turned view: "left" took the face on
+// the view's left, and a point was compared with the view's coordinates.)
+TEST(FaceTracker, FacePicksChooseInTheFrameAsShownWhenTheFacesAreTurned) {
+  FACECAP_REQUIRE_DATA(obama, "portrait_obama.jpg");
+  FACECAP_REQUIRE_DATA(biden, "portrait_biden.jpg");
+  cv::Mat left = read_image(obama.string()), right = read_image(biden.string());
+  ASSERT_FALSE(left.empty() || right.empty());
+  cv::resize(right(cv::Rect(0, 0, right.cols, 800)), right, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+  cv::resize(left, left, cv::Size(left.cols * right.rows / left.rows, right.rows), 0, 0, cv::INTER_AREA);
+  cv::Mat both;
+  cv::hconcat(left, right, both);
+  const LandmarkDetector detector;
+  // Each face's nose tip (iBUG 30) upright: Obama's lies in the left image.
+  FaceTrackerOptions pick_left, pick_right;
+  pick_left.pick = parse_face_pick("left");
+  pick_right.pick = parse_face_pick("right");
+  const Vec2f obama_nose = FaceTracker(detector, pick_left).next(both).landmarks[30];
+  const Vec2f biden_nose = FaceTracker(detector, pick_right).next(both).landmarks[30];
+  ASSERT_LT(obama_nose.x(), float(left.cols));
+  ASSERT_GT(biden_nose.x(), float(left.cols));
+  const float apart = (obama_nose - biden_nose).norm();
+  for (const double degrees : {180.0, 90.0}) {
+    const cv::Size canvas = degrees == 180.0 ? both.size() : cv::Size(both.rows, both.cols);
+    const Turned t = turned(both, degrees, canvas);
+    const Vec2f obama_shown = t(obama_nose), biden_shown = t(biden_nose);
+    auto nose_of = [&](const std::string& pick) {
+      FaceTrackerOptions o;
+      o.pick = parse_face_pick(pick);
+      FaceTracker tracker(detector, o);
+      const TrackedFace face = tracker.next(t.image);
+      EXPECT_NE(face.status, TrackStatus::kLost) << degrees << " " << pick;
+      return face.landmarks[30];
+    };
+    auto point = [](const Vec2f& p) { return std::to_string(p.x()) + "," + std::to_string(p.y()); };
+    EXPECT_LT((nose_of(point(obama_shown)) - obama_shown).norm(), 0.2f * apart) << degrees;
+    EXPECT_LT((nose_of(point(biden_shown)) - biden_shown).norm(), 0.2f * apart) << degrees;
+    if (degrees == 180.0) {
+      EXPECT_LT((nose_of("left") - biden_shown).norm(), 0.2f * apart) << "Biden's face is on the left now";
+      EXPECT_LT((nose_of("right") - obama_shown).norm(), 0.2f * apart);
+    }
+  }
 }
 
 // Two people side by side (a two-shot): address_720p_a at 640x360 on the

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+
+#include <opencv2/imgproc.hpp>
 
 #include "app/command.hpp"
 #include "facecap/core/error.hpp"
@@ -38,6 +41,40 @@ class PressedCtrlC : public FrameSource {
   std::unique_ptr<FrameSource> video_;
   InputInfo info_;
   int stop_after_;
+  int reads_ = 0;
+};
+
+// Two people side by side, the picture turned a quarter turn clockwise (a
+// camera on its side): address_720p_a at 640x360 (the larger face) above
+// talking_webcam2 once turned.
+class TurnedTwoShot : public FrameSource {
+ public:
+  TurnedTwoShot(const std::filesystem::path& left, const std::filesystem::path& right, int frames)
+      : left_(open_input(left.string())), right_(open_input(right.string())) {
+    info_.spec = "two-shot turned";
+    info_.kind = InputKind::kVideo;
+    info_.width = 360;
+    info_.height = 1280;
+    info_.fps = 30;
+    info_.frames = frames;
+  }
+  const InputInfo& info() const override { return info_; }
+  bool read(Frame& frame) override {
+    Frame a, b;
+    if (reads_ == info_.frames || !left_->read(a) || !right_->read(b)) return false;
+    cv::Mat canvas(360, 1280, CV_8UC3, cv::Scalar(0, 0, 0)), right_half;
+    cv::resize(a.image, canvas(cv::Rect(0, 0, 640, 360)), cv::Size(640, 360), 0, 0, cv::INTER_AREA);
+    cv::resize(b.image, right_half, cv::Size(480, 360), 0, 0, cv::INTER_LINEAR);
+    right_half.copyTo(canvas(cv::Rect(720, 0, 480, 360)));
+    cv::rotate(canvas, frame.image, cv::ROTATE_90_CLOCKWISE);
+    frame.index = reads_++;
+    frame.time = frame.index / info_.fps;
+    return true;
+  }
+
+ private:
+  std::unique_ptr<FrameSource> left_, right_;
+  InputInfo info_;
   int reads_ = 0;
 };
 
@@ -184,6 +221,48 @@ TEST(CaptureSession, APipelinedCaptureIsTheSameAsOneFrameAfterTheOther) {
       for (size_t p = 0; p < a.fit.observed.size(); ++p) EXPECT_EQ(a.fit.observed[p], b.fit.observed[p]) << k;
     }
     EXPECT_EQ(serial[20].status, TrackStatus::kTracked);
+  }
+}
+
+// track --all-faces on a picture turned a quarter turn: both faces are found
+// on the first frame (the roster's search of the seven turns) and followed
+// in their turn throughout, each on its own half. An upright-only search
+// finds neither.
+TEST(CaptureSession, EveryFaceOfATurnedPictureIsFollowed) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
+  FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
+  for (const bool any_roll : {true, false}) {
+    TurnedTwoShot source(left, right, 30);
+    CaptureOptions options;
+    options.quiet = true;
+    options.tracker.any_roll = any_roll;
+    std::vector<std::vector<CapturedFrame>> frames;
+    const AllFacesSummary s =
+        run_capture_all_faces(*model, source, options, {}, [&](const FoundFace&, const InputInfo&) -> FrameSink {
+          const size_t k = frames.size();
+          frames.emplace_back();
+          return [&frames, k](const CapturedFrame& f) { frames[k].push_back(f); };
+        });
+    if (!any_roll) {
+      EXPECT_TRUE(s.faces.empty());
+      continue;
+    }
+    ASSERT_EQ(s.faces.size(), 2u);
+    std::array<bool, 2> upper{};
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(s.faces[k].first_frame, 0);
+      EXPECT_EQ(s.captures[k].lost, 0) << k;
+      ASSERT_EQ(frames[k].size(), 30u);
+      upper[k] = s.faces[k].box.center().y() < 640.0f;
+      for (const CapturedFrame& f : frames[k]) {
+        ASSERT_TRUE(f.fit.valid) << k << " frame " << f.index;
+        const float y = bounding_box(f.fit.observed).center().y();
+        EXPECT_EQ(y < 640.0f, upper[k]) << "face " << k << " frame " << f.index << " at y " << y;
+        EXPECT_LT(f.fit.landmark_error, 0.04) << k << " frame " << f.index;
+      }
+    }
+    EXPECT_NE(upper[0], upper[1]);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
@@ -114,17 +115,34 @@ std::optional<Box> FaceTracker::detect_face(const FaceDetector& detector, const 
   return choose_among(std::move(faces));
 }
 
-std::optional<Box> FaceTracker::choose_among(std::vector<FaceDetection> faces) const {
+int FaceTracker::choose_shown(const std::vector<FaceDetection>& shown) const {
+  if (shown.empty()) return -1;
   if (last_seen_ && frames_unseen_ < options_.follow_frames) {
     // Lost a moment ago: the face comes back where it was, or not at all.
-    const Vec2f centre = last_seen_->center();
-    const float radius = options_.follow_radius * 0.5f * (last_seen_->width + last_seen_->height);
-    std::erase_if(faces, [&](const FaceDetection& f) { return (f.box.center() - centre).norm() > radius; });
-    if (faces.empty()) return std::nullopt;
-    return choose_face(faces, {FacePick::Rule::kNearest, centre}).box;
+    const Box seen = carried(*last_seen_, UprightView(frame_size_, view_degrees_), UprightView(frame_size_, 0));
+    const float radius = options_.follow_radius * 0.5f * (seen.width + seen.height);
+    int nearest = -1;
+    float best = radius;
+    for (int i = 0; i < int(shown.size()); ++i) {
+      const float d = (shown[i].box.center() - seen.center()).norm();
+      if (d <= best) {
+        best = d;
+        nearest = i;
+      }
+    }
+    return nearest;
   }
-  if (faces.empty()) return std::nullopt;
-  return choose_face(faces, options_.pick).box;
+  return static_cast<int>(&choose_face(shown, options_.pick) - shown.data());
+}
+
+std::optional<Box> FaceTracker::choose_among(std::vector<FaceDetection> faces) const {
+  // The pick's point, and left and right, are the frame's as shown.
+  const UprightView view(frame_size_, view_degrees_), frame(frame_size_, 0);
+  std::vector<FaceDetection> shown = faces;
+  for (FaceDetection& f : shown) f.box = carried(f.box, view, frame);
+  const int chosen = choose_shown(shown);
+  if (chosen < 0) return std::nullopt;
+  return faces[chosen].box;
 }
 
 Box FaceTracker::box_from_landmarks(const Landmarks& lm) const {
@@ -147,9 +165,6 @@ void FaceTracker::learn_box_relation(const Box& det, const Landmarks& lm) {
 
 namespace {
 
-// The turns a lost face is searched for in, nearest upright first: a face
-// rolled up to 135 degrees either way lies within 22.5 of one of them.
-constexpr float kTurns[] = {0, 45, -45, 90, -90, 135, -135, 180};
 // A face's roll in its view past which it is followed in the next turn:
 // within the detector's and the cascade's reach, and far enough from the
 // 22.5 degrees where the next turn would take it back.
@@ -179,33 +194,61 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   } else {
     cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
   }
-  if (frame_faces || !options_.any_roll) {
-    view_degrees_ = 0;
-    return follow(grey, frame_faces);
-  }
+  frame_size_ = grey.size();
+  if (!options_.any_roll) view_degrees_ = 0;
+  // The shared faces, asked for once; those found in the current view are
+  // that view's search.
+  std::optional<std::vector<TurnedFace>> shared;
+  auto shared_faces = [&]() -> const std::vector<TurnedFace>& {
+    if (!shared) shared = frame_faces();
+    return *shared;
+  };
+  auto in_turn = [&](float degrees) -> ViewFaces {
+    if (!frame_faces) return {};
+    return [&, degrees] {
+      std::vector<FaceDetection> faces;
+      for (const TurnedFace& f : shared_faces())
+        if (f.degrees == degrees) faces.push_back(f.in_view);
+      return faces;
+    };
+  };
   const UprightView view(grey, view_degrees_);
-  TrackedFace out = follow(view.image(), {});
+  TrackedFace out = follow(view.image(), in_turn(view_degrees_));
+  if (!options_.any_roll) return out;
   if (out.status != TrackStatus::kLost) {
     keep_upright(grey.size(), view, *previous_);
     return in_frame(out, view);
   }
-  // The other turns on the first frame without a face and every
-  // kTurnedSearchPace-th search at twice the size after it (at 1280x720 the
-  // seven turns take some 150 ms: every 8th frame, a video without a face
-  // went from 46 to 25 fps; every 32nd, 39).
-  if (!out.fine_search || (failed_searches_ - 1) % (kTurnedSearchPace * options_.fine_search_every) != 0) return out;
+  std::vector<TurnedFace> turned;
+  if (frame_faces) {
+    std::copy_if(shared_faces().begin(), shared_faces().end(), std::back_inserter(turned),
+                 [&](const TurnedFace& f) { return f.degrees != view_degrees_; });
+  } else {
+    // The other turns on the first frame without a face and every
+    // kTurnedSearchPace-th search at twice the size after it (at 1280x720
+    // the seven turns take some 150 ms: every 8th frame, a video without a
+    // face went from 46 to 25 fps; every 32nd, 39). Every other turn is
+    // searched, so that the pick chooses among all the faces the frame
+    // shows, however they are turned.
+    if (!out.fine_search || (failed_searches_ - 1) % (kTurnedSearchPace * options_.fine_search_every) != 0) return out;
+    std::vector<float> turns;
+    std::copy_if(kFaceTurns.begin(), kFaceTurns.end(), std::back_inserter(turns),
+                 [&](float degrees) { return degrees != view_degrees_; });
+    turned = find_turned_faces(detector_, grey, turns, options_.detector.max_side, &out.detector_ms);
+  }
   std::optional<UprightView> found_in;
-  out = search_turned(grey, out, found_in);
+  out = take_up(grey, out, std::move(turned), found_in);
   if (!found_in) return out;
   // The detector reaches about 45 degrees from upright, where the cascade's
   // landmarks are rough (the LFPW portrait turned 90 degrees, found in the
   // turn 45 degrees off: NME 0.11): followed again, this frame, in the turn
-  // nearest its roll.
+  // nearest its roll (with shared faces, without a search of its own).
   const Memory found = memory();
   keep_upright(grey.size(), *found_in, *previous_);
   if (view_degrees_ == found.view_degrees) return in_frame(out, *found_in);
   const UprightView nearer(grey, view_degrees_);
-  TrackedFace again = follow(nearer.image(), {});
+  const ViewFaces no_faces = [] { return std::vector<FaceDetection>{}; };
+  TrackedFace again = follow(nearer.image(), frame_faces ? no_faces : ViewFaces{});
   if (again.status == TrackStatus::kLost) {
     restore(found);
     return in_frame(out, *found_in);
@@ -219,41 +262,33 @@ TrackedFace FaceTracker::next(const cv::Mat& image, const FrameFaces& frame_face
   return in_frame(again, nearer);
 }
 
-TrackedFace FaceTracker::search_turned(const cv::Mat& grey, TrackedFace lost, std::optional<UprightView>& found_in) {
-  // Searched at the detector's own size: its longest side at most max_side.
-  const int max_side = options_.detector.max_side;
-  for (const float degrees : kTurns) {
-    if (degrees == view_degrees_) continue;
-    const auto t0 = std::chrono::steady_clock::now();
-    const UprightView turned(grey.size(), degrees);
-    const int side = std::max(turned.size().width, turned.size().height);
-    const float scale = max_side > 0 && side > max_side ? float(max_side) / float(side) : 1.0f;
-    std::vector<FaceDetection> faces = detector_.detect(UprightView(grey, degrees, scale).image());
-    lost.detector_ms += ms_since(t0);
-    if (faces.empty()) continue;
-    for (FaceDetection& f : faces)
-      f.box = {f.box.x / scale, f.box.y / scale, f.box.width / scale, f.box.height / scale};
-    // Taken up as a search in that view takes a face (the follow gate:
-    // where it was last seen, turned into the view).
+TrackedFace FaceTracker::take_up(const cv::Mat& grey, TrackedFace lost, std::vector<TurnedFace> found,
+                                 std::optional<UprightView>& found_in) {
+  const int seen = static_cast<int>(found.size());
+  // Taken up as a search in its view takes a face (the follow gate: where
+  // it was last seen, turned into the view), the pick's choice first.
+  while (!found.empty()) {
+    std::vector<FaceDetection> shown;
+    for (const TurnedFace& f : found) shown.push_back(f.shown);
+    const int chosen = choose_shown(shown);
+    if (chosen < 0) break;
+    const TurnedFace face = found[chosen];
+    found.erase(found.begin() + chosen);
     const Memory before = memory();
-    if (last_seen_) {
-      const UprightView was(grey.size(), view_degrees_);
-      const Vec2f centre = turned.to_view(was.to_frame(last_seen_->center()));
-      last_seen_ = Box{centre.x() - 0.5f * last_seen_->width, centre.y() - 0.5f * last_seen_->height, last_seen_->width,
-                       last_seen_->height};
-    }
-    view_degrees_ = degrees;
-    const UprightView full_size(grey, degrees);
-    TrackedFace found = follow(full_size.image(), [&] { return faces; });
-    if (found.status == TrackStatus::kLost) {
+    const UprightView full_size(grey, face.degrees);
+    if (last_seen_) last_seen_ = carried(*last_seen_, UprightView(grey.size(), view_degrees_), full_size);
+    view_degrees_ = face.degrees;
+    TrackedFace out = follow(full_size.image(), [&] { return std::vector<FaceDetection>{face.in_view}; });
+    if (out.status == TrackStatus::kLost) {
       restore(before);
       continue;
     }
-    found.detector_ms += lost.detector_ms;
-    found.landmarks_ms += lost.landmarks_ms;
-    found.detector_ran = found.full_detection = found.fine_search = true;
+    out.detector_ms += lost.detector_ms;
+    out.landmarks_ms += lost.landmarks_ms;
+    out.faces_seen = std::max(out.faces_seen, seen);
+    out.detector_ran = out.full_detection = out.fine_search = true;
     found_in.emplace(full_size);
-    return found;
+    return out;
   }
   return lost;
 }
@@ -268,7 +303,7 @@ void FaceTracker::keep_upright(cv::Size frame_size, const UprightView& view, con
   view_degrees_ = degrees;
 }
 
-TrackedFace FaceTracker::follow(const cv::Mat& grey, const FrameFaces& frame_faces) {
+TrackedFace FaceTracker::follow(const cv::Mat& grey, const ViewFaces& view_faces) {
   TrackedFace out;
 
   // How much larger the face `lm` is than `reference` (the square root of their areas' ratio).
@@ -371,8 +406,8 @@ TrackedFace FaceTracker::follow(const cv::Mat& grey, const FrameFaces& frame_fac
 
   int faces_seen = 0;
   std::optional<Box> box;
-  if (frame_faces) {
-    std::vector<FaceDetection> faces = frame_faces();
+  if (view_faces) {
+    std::vector<FaceDetection> faces = view_faces();
     faces_seen = static_cast<int>(faces.size());
     box = choose_among(std::move(faces));
   } else {

@@ -13,6 +13,7 @@
 
 #include "facecap/detect/face_detector.hpp"
 #include "facecap/detect/landmark_detector.hpp"
+#include "facecap/detect/turned_faces.hpp"
 #include "facecap/detect/upright_view.hpp"
 
 namespace facecap {
@@ -85,9 +86,9 @@ struct FaceTrackerOptions {
   // where the face's roll in its view passes 30 degrees, and where the frame
   // holds no face the detector sees in its view, the other turns are searched
   // too: on the first frame without a face and every 4 x fine_search_every
-  // frames after (32; never where fine_search_every is 0). Not
-  // where several trackers share the frame's faces (FrameFaces): those stay
-  // upright.
+  // frames after (32; never where fine_search_every is 0). Where several
+  // trackers share the frame's faces (FrameFaces), those say which turn each
+  // face was found in, and the search that finds them paces its turns.
   bool any_roll = true;
 };
 
@@ -107,8 +108,9 @@ class FaceTracker {
  public:
   // Where several trackers share a frame (track --all-faces), the faces its
   // whole-frame search chooses from: found once for all of them, less those
-  // the others follow. Called only where this tracker searches.
-  using FrameFaces = std::function<std::vector<FaceDetection>()>;
+  // the others follow, each with the turn it was found in (0 for a search
+  // of the frame as it is). Called only where this tracker searches.
+  using FrameFaces = std::function<std::vector<TurnedFace>()>;
 
   FaceTracker(const LandmarkDetector& landmarks, FaceTrackerOptions options = {});
 
@@ -154,19 +156,27 @@ class FaceTracker {
   float view_degrees() const { return view_degrees_; }
 
  private:
-  // next() in the view (or frame) `grey`, its coordinates throughout.
-  TrackedFace follow(const cv::Mat& grey, const FrameFaces& frame_faces);
-  // Where `grey` (the frame) holds no face in the current view: the other
-  // turns' searches, each taken up as follow() takes a face. The view the
-  // face was found in goes to `found_in`; `lost`, with the time added,
-  // where none was.
-  TrackedFace search_turned(const cv::Mat& grey, TrackedFace lost, std::optional<UprightView>& found_in);
+  // The faces a search of one view chooses from, in its coordinates.
+  using ViewFaces = std::function<std::vector<FaceDetection>()>;
+  // next() in the view (or frame) `grey`, its coordinates throughout; a
+  // search runs the detector where `view_faces` is empty.
+  TrackedFace follow(const cv::Mat& grey, const ViewFaces& view_faces);
+  // Where `grey` (the frame) holds no face in the current view: faces found
+  // in other turns, each taken up, the pick's choice first, as follow() takes
+  // a face in its turn. The view it was taken up in goes to `found_in`;
+  // `lost`, with the time added, where none was.
+  TrackedFace take_up(const cv::Mat& grey, TrackedFace lost, std::vector<TurnedFace> found,
+                      std::optional<UprightView>& found_in);
   // After a frame followed in `view`: a face whose roll there passes 30
   // degrees is followed in the nearest turn from the next frame on.
   void keep_upright(cv::Size frame_size, const UprightView& view, const Landmarks& lm);
   std::optional<Box> detect_face(const FaceDetector& detector, const cv::Mat& grey, int* faces_seen) const;
-  // The face to take up of those a search found (the follow gate, then the pick).
+  // The face to take up of those a search found in the current view (the
+  // follow gate, then the pick, which chooses among them as the frame shows them).
   std::optional<Box> choose_among(std::vector<FaceDetection> faces) const;
+  // The same for faces in the frame's own coordinates: the index of the face
+  // in `shown` to take up, or -1.
+  int choose_shown(const std::vector<FaceDetection>& shown) const;
   Box box_from_landmarks(const Landmarks& lm) const;
   void learn_box_relation(const Box& detector_box, const Landmarks& lm);
 
@@ -184,6 +194,7 @@ class FaceTracker {
   // size, in units of the landmark box size (learned at each detection).
   Eigen::Vector4f box_relation_{0.0f, 0.06f, 1.0f, 0.95f};
   float view_degrees_ = 0;  // the view previous_, last_seen_ and the box relation are in
+  cv::Size frame_size_;     // of the frames next() is given (the views' mapping)
 };
 
 }  // namespace facecap

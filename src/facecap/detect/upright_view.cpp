@@ -89,4 +89,9 @@ Box UprightView::to_frame(const Box& box) const {
   return turned_box(box, [this](const Vec2f& p) { return to_frame(p); });
 }
 
+Box carried(const Box& box, const UprightView& from, const UprightView& to) {
+  const Vec2f centre = to.to_view(from.to_frame(box.center()));
+  return {centre.x() - 0.5f * box.width, centre.y() - 0.5f * box.height, box.width, box.height};
+}
+
 }  // namespace facecap

@@ -47,4 +47,8 @@ class UprightView {
   Vec2f frame_centre_, view_centre_;
 };
 
+// A box of the same size centred where `box`'s centre in view `from` lies in
+// view `to` (two views of one frame; the frame itself is the view at 0).
+Box carried(const Box& box, const UprightView& from, const UprightView& to);
+
 }  // namespace facecap

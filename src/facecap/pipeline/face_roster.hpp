@@ -3,8 +3,9 @@
 // frame it is first found in, on one decoding pass (`track --all-faces`).
 //
 // The whole frame is searched for faces at the first frame, every
-// AllFacesOptions::search_every frames and at each shot cut; a face that no
-// capture follows there starts a capture of its own. The searches are shared:
+// AllFacesOptions::search_every frames and at each shot cut (also turned by
+// multiples of 45 degrees, for faces at any roll: turned_faces.hpp); a face
+// that no capture follows there starts a capture of its own. The searches are shared:
 // a capture that lost its face chooses among their faces, less those the
 // others follow, and takes up only a face where its own was last seen, so
 // that it is never fitted with another person's identity. A face that comes

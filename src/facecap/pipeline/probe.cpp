@@ -4,6 +4,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/detect/face_detector.hpp"
+#include "facecap/detect/turned_faces.hpp"
 
 namespace facecap {
 
@@ -13,13 +14,20 @@ ProbeReport probe_input(const std::string& spec) {
   report.info = source->info();
   Frame frame;
   if (!source->read(frame) || frame.image.empty()) throw Error("cannot decode the first frame of " + spec);
-  // As the tracker's first search does: at twice the size where none is found.
+  // As the tracker's first search does: at twice the size where none is
+  // found upright, then in the other turns.
   auto faces = FaceDetector().detect(frame.image);
   if (faces.empty()) faces = FaceDetector(twice_the_size({})).detect(frame.image);
-  report.faces = static_cast<int>(faces.size());
-  for (const FaceDetection& f : faces) report.face_boxes.push_back(f.box);
-  std::sort(report.face_boxes.begin(), report.face_boxes.end(),
-            [](const Box& a, const Box& b) { return a.center().x() < b.center().x(); });
+  for (const FaceDetection& f : faces) report.found.push_back({f.box, 0});
+  if (faces.empty()) {
+    const std::span<const float> turned(kFaceTurns.begin() + 1, kFaceTurns.end());
+    const FaceDetector detector;
+    for (const TurnedFace& f : find_turned_faces(detector, frame.image, turned, FaceDetectorOptions{}.max_side))
+      report.found.push_back({UprightView(frame.image.size(), f.degrees).to_frame(f.in_view.box), f.degrees});
+  }
+  report.faces = static_cast<int>(report.found.size());
+  std::sort(report.found.begin(), report.found.end(),
+            [](const ProbeFace& a, const ProbeFace& b) { return a.box.center().x() < b.box.center().x(); });
   return report;
 }
 

@@ -1,6 +1,9 @@
 #pragma once
 // `facecap probe`: what an input is (size, rate, length, audio) and the
-// faces its first frame shows, where they are (for `--face X,Y`).
+// faces its first frame shows, where they are (for `--face X,Y`): as the
+// tracker's first search finds them, upright first, at twice the size where
+// there are none, and in the frame turned by multiples of 45 degrees where
+// there are still none (a camera on its side, someone lying down).
 #include <string>
 #include <vector>
 
@@ -9,10 +12,17 @@
 
 namespace facecap {
 
+struct ProbeFace {
+  Box box;  // in the frame (pixels), around the face however it is turned
+  // The turn (a multiple of 45 degrees, clockwise; 0 upright) of the view
+  // where the detector was surest of the face: its roll to within about 30.
+  float roll_degrees = 0;
+};
+
 struct ProbeReport {
   InputInfo info;
-  int faces = 0;                // faces the detector finds in the first frame
-  std::vector<Box> face_boxes;  // their boxes, left to right (pixels)
+  int faces = 0;                 // faces the detector finds in the first frame
+  std::vector<ProbeFace> found;  // where they are, left to right
 };
 
 // Throws facecap::Error for inputs that cannot be read.

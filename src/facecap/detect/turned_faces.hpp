@@ -1,0 +1,35 @@
+#pragma once
+// Faces at any roll: the frame searched by dlib's detector in views turned
+// by multiples of 45 degrees (UprightView), each face found once, in the view
+// where the detector was surest of it. The tracker's search for a face lost
+// in its own view, and `probe`, use it.
+#include <array>
+#include <span>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "facecap/detect/face_detector.hpp"
+#include "facecap/detect/upright_view.hpp"
+
+namespace facecap {
+
+// The turns searched, nearest upright first: a face rolled up to 180 degrees
+// either way lies within 22.5 of one of them.
+inline constexpr std::array<float, 8> kFaceTurns = {0, 45, -45, 90, -90, 135, -135, 180};
+
+struct TurnedFace {
+  float degrees = 0;      // the view's turn (about the face's roll in the frame)
+  FaceDetection in_view;  // its box in that view, at the frame's scale
+  FaceDetection shown;    // the same box, centred where the frame shows the face
+};
+
+// Each face `detector` finds in `grey` turned by one of `turns`, every view
+// scaled so that its longer side is at most `max_side` (0: full size). A face
+// found in two turns (its centres within a quarter of its box's width plus
+// height) is kept from the view with the higher score. `ms`, where given,
+// gets the time added.
+std::vector<TurnedFace> find_turned_faces(const FaceDetector& detector, const cv::Mat& grey,
+                                          std::span<const float> turns, int max_side, double* ms = nullptr);
+
+}  // namespace facecap
