@@ -2,7 +2,9 @@
 // The iris centre of each eye, found inside the eye's six landmarks (iBUG
 // 36-41 and 42-47): the dark disc of the iris against the white of the eye.
 //
-// The eye is resampled to 48 px wide (the same work at any resolution), its
+// The eye is resampled to 48 px wide along its own axis, corner to corner
+// (the same work at any resolution and roll; an iris seen from the side is
+// narrowed along the eye however the face is rolled), its
 // outline is shrunk away from the lid line and lashes, and every candidate
 // centre and radius is scored by how much of the visible eye's grey-level
 // variance a dark disc there on a brighter surround explains (Otsu's
@@ -68,7 +70,8 @@ std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks&
 // The part of `grey` locate_iris reads for either eye of `landmarks` (with
 // a pixel to spare, within the image), for keeping a frame's eyes without
 // the frame: searched with its top-left as the origin, it finds what the
-// whole image gives.
+// whole image gives (to the last bit for a level eye; a rolled eye's samples
+// may round otherwise).
 cv::Rect eye_crop(const cv::Size& image, const Landmarks& landmarks);
 
 using IrisPair = std::array<std::optional<IrisObservation>, 2>;
