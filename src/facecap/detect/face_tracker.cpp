@@ -121,16 +121,15 @@ int FaceTracker::choose_shown(const std::vector<FaceDetection>& shown) const {
     // Lost a moment ago: the face comes back where it was, or not at all.
     const Box seen = carried(*last_seen_, UprightView(frame_size_, view_degrees_), UprightView(frame_size_, 0));
     const float radius = options_.follow_radius * 0.5f * (seen.width + seen.height);
-    int nearest = -1;
-    float best = radius;
+    std::vector<FaceDetection> near;
+    std::vector<int> index;
     for (int i = 0; i < int(shown.size()); ++i) {
-      const float d = (shown[i].box.center() - seen.center()).norm();
-      if (d <= best) {
-        best = d;
-        nearest = i;
-      }
+      if ((shown[i].box.center() - seen.center()).norm() > radius) continue;
+      near.push_back(shown[i]);
+      index.push_back(i);
     }
-    return nearest;
+    if (near.empty()) return -1;
+    return index[&choose_face(near, {FacePick::Rule::kNearest, seen.center()}) - near.data()];
   }
   return static_cast<int>(&choose_face(shown, options_.pick) - shown.data());
 }
