@@ -740,6 +740,19 @@ cv::Mat two_portraits(const fs::path& obama, const fs::path& biden, int& left_wi
   return both;
 }
 
+// The faces `probe` lists in `image` (its face_boxes; empty where it failed).
+nlohmann::json probed_face_boxes(const fs::path& image) {
+  const RunResult p = test::run_command(std::string(FACECAP_BINARY) + " -q probe " + image.string());
+  EXPECT_EQ(p.code, 0) << p.out;
+  if (p.code != 0) return nlohmann::json::array();
+  return nlohmann::json::parse(p.out)["face_boxes"];
+}
+
+// A face box's centre as --face takes it: "X,Y".
+std::string face_point(const nlohmann::json& box) {
+  return std::to_string(box["centre"][0].get<int>()) + "," + std::to_string(box["centre"][1].get<int>());
+}
+
 // The first frame's landmark `index` in a track's frames.jsonl.
 Vec2f first_landmark(const fs::path& out, int index) {
   std::ifstream jsonl(out / "frames.jsonl");
@@ -774,14 +787,11 @@ TEST(Cli, TrackSaysWhenMoreThanOneFaceIsInView) {
   ASSERT_EQ(l.code, 0) << l.out;
   EXPECT_LT(nose_x(dir.path() / "left"), left_width) << "the nose tip of the face on the left";
   // probe says where the faces are, left to right; a centre is a --face X,Y.
-  const RunResult p = test::run_command(std::string(FACECAP_BINARY) + " -q probe " + image.string());
-  ASSERT_EQ(p.code, 0) << p.out;
-  const nlohmann::json boxes = nlohmann::json::parse(p.out)["face_boxes"];
-  ASSERT_EQ(boxes.size(), 2u) << p.out;
+  const nlohmann::json boxes = probed_face_boxes(image);
+  ASSERT_EQ(boxes.size(), 2u) << boxes;
   EXPECT_LT(boxes[0]["centre"][0].get<int>(), left_width);
   EXPECT_GT(boxes[1]["centre"][0].get<int>(), left_width);
-  const std::string at =
-      std::to_string(boxes[0]["centre"][0].get<int>()) + "," + std::to_string(boxes[0]["centre"][1].get<int>());
+  const std::string at = face_point(boxes[0]);
   const RunResult point = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                             (dir.path() / "point").string() + " --face " + at + " 2>&1 >/dev/null");
   ASSERT_EQ(point.code, 0) << point.out;
@@ -851,16 +861,13 @@ TEST(Cli, ProbeAndTrackFindUpsideDownFacesWhereTheFrameShowsThem) {
   TempDir dir;
   const auto image = dir.path() / "upside_down.png";
   facecap::write_image(image.string(), both);
-  const RunResult p = test::run_command(std::string(FACECAP_BINARY) + " -q probe " + image.string());
-  ASSERT_EQ(p.code, 0) << p.out;
-  const nlohmann::json boxes = nlohmann::json::parse(p.out)["face_boxes"];
-  ASSERT_EQ(boxes.size(), 2u) << p.out;
+  const nlohmann::json boxes = probed_face_boxes(image);
+  ASSERT_EQ(boxes.size(), 2u) << boxes;
   EXPECT_LT(boxes[0]["centre"][0].get<int>(), obama_from);
   EXPECT_GT(boxes[1]["centre"][0].get<int>(), obama_from);
-  for (const auto& box : boxes) EXPECT_EQ(box["roll_degrees"].get<int>(), 180) << p.out;
+  for (const auto& box : boxes) EXPECT_EQ(box["roll_degrees"].get<int>(), 180) << boxes;
   for (int i : {0, 1}) {
-    const std::string at =
-        std::to_string(boxes[i]["centre"][0].get<int>()) + "," + std::to_string(boxes[i]["centre"][1].get<int>());
+    const std::string at = face_point(boxes[i]);
     const fs::path out = dir.path() / ("face" + std::to_string(i));
     const RunResult t = test::run_command(std::string(FACECAP_BINARY) + " track " + image.string() + " -o " +
                                           out.string() + " --face " + at + " 2>&1 >/dev/null");
