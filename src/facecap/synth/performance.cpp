@@ -230,7 +230,15 @@ SynthPerformance make_performance(const FaceModel& model, const SynthOptions& op
     frame.expression = w;
     frame.lighting = base_light;
     frame.lighting[0] += 0.03 * light_drift(t) * motion;
-    if (options.camera_roll_deg != 0) frame.lighting = turned(frame.lighting, camera_roll);
+    // The lighting turns with the scene in the frame it is evaluated in, the
+    // viewer's (y up, z toward the viewer: shading.hpp), where the camera's
+    // clockwise turn is the other way round. (Turned in the camera's frame,
+    // a 180 degree roll came out right and a 90 degree one lit the face from
+    // the opposite side.)
+    if (options.camera_roll_deg != 0) {
+      const Mat3d viewer = Vec3d(1, -1, -1).asDiagonal();
+      frame.lighting = turned(frame.lighting, viewer * camera_roll * viewer);
+    }
     perf.frames.push_back(frame);
   }
   return perf;
