@@ -18,6 +18,13 @@ namespace facecap {
 // either way lies within 22.5 of one of them.
 inline constexpr std::array<float, 8> kFaceTurns = {0, 45, -45, 90, -90, 135, -135, 180};
 
+// Halfway between them: the detector reaches a face about 15 degrees from
+// upright only where it is near frontal; one rolled 60 degrees and turned 30
+// degrees away (a synthetic render) is found in none of kFaceTurns, and 7.5
+// degrees from -67.5. Searched where a shot's first search of kFaceTurns
+// finds nothing.
+inline constexpr std::array<float, 8> kFaceHalfTurns = {22.5, -22.5, 67.5, -67.5, 112.5, -112.5, 157.5, -157.5};
+
 struct TurnedFace {
   float degrees = 0;      // the view's turn (about the face's roll in the frame)
   FaceDetection in_view;  // its box in that view, at the frame's scale
