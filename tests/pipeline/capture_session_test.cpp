@@ -44,6 +44,19 @@ class PressedCtrlC : public FrameSource {
   int reads_ = 0;
 };
 
+// The synthetic sweep `eval track --synthetic 90 --seed S --roll R` renders
+// (1280x720), written to `dir` with its ground truth.
+SynthJobResult render_sweep_720p(const FaceModel& model, uint64_t seed, double roll_deg,
+                                 const std::filesystem::path& dir) {
+  SynthOptions so;
+  so.frames = 90;  // the performance's course depends on its length
+  so.seed = seed;
+  so.width = 1280;
+  so.height = 720;
+  so.camera_roll_deg = roll_deg;
+  return synthesize(model, so, dir, true);
+}
+
 // Two people side by side, the picture turned a quarter turn clockwise (a
 // camera on its side): address_720p_a at 640x360 (the larger face) above
 // talking_webcam2 once turned.
@@ -112,12 +125,7 @@ CaptureSummary capture_pressing_ctrl_c(const FaceModel& model, const std::filesy
 TEST(CaptureSession, ATurnedFaceIsNotTakenForTheDetectorsPartOfIt) {
   FACECAP_REQUIRE_MODEL(model);
   TempDir dir;
-  SynthOptions so;
-  so.frames = 90;  // the performance's course depends on its length
-  so.seed = 3;
-  so.width = 1280;
-  so.height = 720;
-  const SynthJobResult synth = synthesize(*model, so, dir.path(), true);
+  const SynthJobResult synth = render_sweep_720p(*model, 3, 0, dir.path());
   auto source = open_input(synth.video.string());
   CaptureOptions capture;
   capture.quiet = true;
@@ -143,18 +151,12 @@ TEST(CaptureSession, ATurnedFaceIsNotTakenForTheDetectorsPartOfIt) {
 // first frame (the render of seed 2 on a camera rolled -60 degrees) lies 15
 // degrees from the nearest of the eight turns, where dlib's detector finds
 // no face in three-quarter view: before, frames 0-31 were lost, until the
-// next search of the turns. The shot's first search also looks halfway
-// between them, and finds it in the -67.5 degree view.
+// next search of the turns. Where a shot's first search finds no face in
+// the turns, it looks halfway between them, and finds it at -67.5 degrees.
 TEST(CaptureSession, AFaceRolledBetweenTheTurnsIsFoundOnTheFirstFrame) {
   FACECAP_REQUIRE_MODEL(model);
   TempDir dir;
-  SynthOptions so;
-  so.frames = 90;  // the performance's course depends on its length
-  so.seed = 2;
-  so.width = 1280;
-  so.height = 720;
-  so.camera_roll_deg = -60;
-  const SynthJobResult synth = synthesize(*model, so, dir.path(), true);
+  const SynthJobResult synth = render_sweep_720p(*model, 2, -60, dir.path());
   auto source = open_input(synth.video.string());
   CaptureOptions capture;
   capture.quiet = true;
