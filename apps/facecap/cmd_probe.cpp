@@ -10,7 +10,8 @@ void register_probe(CLI::App& app, GlobalOptions&) {
       "probe",
       "Describe an input (video, image, image folder or cam:N) as JSON, with the faces of "
       "its first frame (face_boxes, left to right: a centre is a --face X,Y; roll_degrees: a face's roll "
-      "in steps of 45 degrees, for faces found at any roll)");
+      "to within about 30 degrees, the turn of the view it was found in: steps of 45 degrees, or 22.5 off them "
+      "where only the views between show the face)");
   auto input = std::make_shared<std::string>();
   cmd->add_option("INPUT", *input, "Video file, image, folder of images, or cam:N")->required();
   cmd->callback([input] {
@@ -24,7 +25,7 @@ void register_probe(CLI::App& app, GlobalOptions&) {
                        {"width", std::lround(b.width)},
                        {"height", std::lround(b.height)},
                        {"centre", {std::lround(b.center().x()), std::lround(b.center().y())}},
-                       {"roll_degrees", std::lround(f.roll_degrees)}});
+                       {"roll_degrees", double(f.roll_degrees)}});
     }
     print_json({{"input", r.info.spec},
                 {"kind", to_string(r.info.kind)},

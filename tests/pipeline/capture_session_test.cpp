@@ -16,6 +16,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/pipeline/face_roster.hpp"
+#include "facecap/pipeline/probe.hpp"
 #include "facecap/synth/synthesize.hpp"
 #include "test_support.hpp"
 
@@ -172,6 +173,21 @@ TEST(CaptureSession, AFaceRolledBetweenTheTurnsIsFoundOnTheFirstFrame) {
   });
   EXPECT_EQ(frames, 8);
   EXPECT_EQ(lost, 0);
+
+  // probe and --all-faces search the same views at a shot's first frame.
+  const ProbeReport probe = probe_input(synth.video.string());
+  ASSERT_EQ(probe.faces, 1);
+  EXPECT_NEAR(probe.found[0].roll_degrees, -60.0f, 10.0f);
+  auto again = open_input(synth.video.string());
+  std::vector<CapturedFrame> delivered;
+  const AllFacesSummary all =
+      run_capture_all_faces(*model, *again, capture, {}, [&](const FoundFace&, const InputInfo&) -> FrameSink {
+        return [&](const CapturedFrame& f) { delivered.push_back(f); };
+      });
+  ASSERT_EQ(all.faces.size(), 1u);
+  EXPECT_EQ(all.faces[0].first_frame, 0);
+  EXPECT_EQ(all.captures[0].lost, 0);
+  EXPECT_EQ(delivered.size(), 8u);
 }
 
 TEST(CaptureSession, ACameraStoppedByCtrlCDeliversWhatItCaptured) {

@@ -38,6 +38,13 @@ struct FaceDetection {
   double score = 0.0;
 };
 
+// Whether `box` (a detection) is of the face in `face` (a detection's or a
+// landmark box): its centre within a quarter of the face's width plus height,
+// about half the face's size, of the face's centre.
+inline bool same_face(const Box& box, const Box& face) {
+  return (box.center() - face.center()).norm() < 0.25f * (face.width + face.height);
+}
+
 class FaceDetector {
  public:
   explicit FaceDetector(FaceDetectorOptions options = {});

@@ -19,10 +19,8 @@ std::vector<TurnedFace> find_turned_faces(const FaceDetector& detector, const cv
       f.box = {f.box.x / scale, f.box.y / scale, f.box.width / scale, f.box.height / scale};
       TurnedFace face{degrees, f, f};
       face.shown.box = carried(f.box, turned, frame);
-      const auto same = std::find_if(found.begin(), found.end(), [&](const TurnedFace& g) {
-        const Box& b = g.shown.box;
-        return (b.center() - face.shown.box.center()).norm() < 0.25f * (b.width + b.height);
-      });
+      const auto same = std::find_if(found.begin(), found.end(),
+                                     [&](const TurnedFace& g) { return same_face(face.shown.box, g.shown.box); });
       if (same == found.end()) {
         found.push_back(face);
       } else if (f.score > same->in_view.score) {
@@ -31,6 +29,13 @@ std::vector<TurnedFace> find_turned_faces(const FaceDetector& detector, const cv
     }
   }
   if (ms != nullptr) *ms += ms_since(t0);
+  return found;
+}
+
+std::vector<TurnedFace> find_first_turned_faces(const FaceDetector& detector, const cv::Mat& grey,
+                                                std::span<const float> turns, int max_side, double* ms) {
+  std::vector<TurnedFace> found = find_turned_faces(detector, grey, turns, max_side, ms);
+  if (found.empty()) found = find_turned_faces(detector, grey, kFaceHalfTurns, max_side, ms);
   return found;
 }
 

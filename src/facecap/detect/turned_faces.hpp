@@ -2,7 +2,7 @@
 // Faces at any roll: the frame searched by dlib's detector in views turned
 // by multiples of 45 degrees (UprightView), each face found once, in the view
 // where the detector was surest of it. The tracker's search for a face lost
-// in its own view, and `probe`, use it.
+// in its own view, the roster of --all-faces and `probe` use it.
 #include <array>
 #include <span>
 #include <vector>
@@ -22,7 +22,7 @@ inline constexpr std::array<float, 8> kFaceTurns = {0, 45, -45, 90, -90, 135, -1
 // upright only where it is near frontal; one rolled 60 degrees and turned 30
 // degrees away (a synthetic render) is found in none of kFaceTurns, and 7.5
 // degrees from -67.5. Searched where a shot's first search of kFaceTurns
-// finds nothing.
+// finds nothing (find_first_turned_faces).
 inline constexpr std::array<float, 8> kFaceHalfTurns = {22.5, -22.5, 67.5, -67.5, 112.5, -112.5, 157.5, -157.5};
 
 struct TurnedFace {
@@ -38,5 +38,14 @@ struct TurnedFace {
 // gets the time added.
 std::vector<TurnedFace> find_turned_faces(const FaceDetector& detector, const cv::Mat& grey,
                                           std::span<const float> turns, int max_side, double* ms = nullptr);
+
+// A shot's first search off upright, where upright showed no face: the faces
+// of find_turned_faces in `turns`, or where none of those shows one, in
+// kFaceHalfTurns. (Searched beside the turns instead, the half turns gave the
+// LFPW portrait turned 60 degrees an upside-down detection in the 112.5
+// degree view that scored above the face's own.) The tracker, the roster of
+// --all-faces and `probe` start a shot with it.
+std::vector<TurnedFace> find_first_turned_faces(const FaceDetector& detector, const cv::Mat& grey,
+                                                std::span<const float> turns, int max_side, double* ms = nullptr);
 
 }  // namespace facecap

@@ -68,15 +68,16 @@ std::array<IrisExpectation, 2> expected_irises(const EyeballGeometry& eyes, cons
                                                const PinholeCamera& camera) {
   std::array<IrisExpectation, 2> out;
   const Mat3d rf = pose.model_to_camera_rotation();
+  // Each eye's turn from the camera is taken in the plane of the view
+  // direction and the head's left-right axis as the image shows it (x for an
+  // upright head; locate_iris narrows the ellipse along the eye, which that
+  // axis follows).
+  const Vec2d lateral = image_lateral(rf);
+  const Vec3d across(lateral.x(), lateral.y(), 0.0);
   for (int eye = 0; eye < 2; ++eye) {
     const Vec3d centre = rf * eyes.centre[eye] + pose.translation;
     if (!(centre.z() > 0.0)) continue;
     out[eye].radius_px = camera.focal * kIrisRadiusCm / centre.z();
-    // The eye's turn from the camera in the plane of the view direction and
-    // the head's left-right axis as the image shows it (x for an upright head;
-    // locate_iris narrows the ellipse along the eye, which that axis follows).
-    const Vec2d lateral = image_lateral(rf);
-    const Vec3d across(lateral.x(), lateral.y(), 0.0);
     const Vec3d axis = rf * eyes.rest_axis[eye], to_camera = -centre;
     out[eye].aspect =
         std::abs(std::cos(std::atan2(axis.dot(across), axis.z()) - std::atan2(to_camera.dot(across), to_camera.z())));

@@ -13,14 +13,13 @@
 
 #include "facecap/core/parallel.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/detect/face_detector.hpp"
 #include "facecap/pipeline/face_capture.hpp"
 
 namespace facecap {
 
 bool is_followed(const Box& detection, const std::vector<Box>& followed) {
-  return std::any_of(followed.begin(), followed.end(), [&](const Box& f) {
-    return (detection.center() - f.center()).norm() < 0.25f * (f.width + f.height);
-  });
+  return std::any_of(followed.begin(), followed.end(), [&](const Box& f) { return same_face(detection, f); });
 }
 
 std::vector<int> match_nearest(const std::vector<Vec2f>& points, const std::vector<FaceDetection>& faces) {
@@ -167,16 +166,17 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
 
   const FrameLoopResult loop = run_frame_loop(source, options, [&](const DecodedFrame& d, bool cut) {
     shot += cut;
-    const bool search_frame = d.frame.index == summary.input.first_frame || cut ||
-                              (d.frame.index - summary.input.first_frame) % all.search_every == 0;
+    const bool shot_start = d.frame.index == summary.input.first_frame || cut;
+    const bool search_frame = shot_start || (d.frame.index - summary.input.first_frame) % all.search_every == 0;
     // This frame's faces, found once, where a capture or the roster first
     // asks (on a search frame, the roster always does): upright (at twice
     // the size every fine_every-th search, or where there are none), and
     // with tracker.any_roll in turned views of the frame: the turns the
     // captures follow their faces in, all seven at the first frame and at
-    // cuts, and one more, in turn, every fine_every-th search (each turn
-    // every 7 x 32 frames: all seven each time took 5 ms a frame on average,
-    // at 1280x720, of a video of upright faces, 85 -> 59 fps).
+    // cuts (and where no view shows a face, the half turns between them),
+    // and one more, in turn, every fine_every-th search (each turn every
+    // 7 x 32 frames: all seven each time took 5 ms a frame on average, at
+    // 1280x720, of a video of upright faces, 85 -> 59 fps).
     const bool paced = search_frame && searches++ % all.fine_every == 0;
     std::vector<float> turns;
     auto search_turn = [&turns](float degrees) {
@@ -184,7 +184,7 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
     };
     if (options.tracker.any_roll) {
       for (const auto& s : slots) search_turn(s->capture->face_tracker().view_degrees());
-      if (d.frame.index == summary.input.first_frame || cut) {
+      if (shot_start) {
         for (const float degrees : kFaceTurns) search_turn(degrees);
       } else if (paced) {
         search_turn(kFaceTurns[1 + turn_searches++ % (kFaceTurns.size() - 1)]);
@@ -198,7 +198,10 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
         if (!d.grey.empty()) {
           found = upright(detector.detect(d.grey));
           if (paced || (search_frame && found.empty())) add_new_faces(found, upright(fine_detector.detect(d.grey)));
-          add_new_faces(found, find_turned_faces(detector, d.grey, turns, options.tracker.detector.max_side));
+          // At a shot's start with no face upright, as the tracker's first search.
+          const bool first = options.tracker.any_roll && shot_start && found.empty();
+          const auto search = first ? find_first_turned_faces : find_turned_faces;
+          add_new_faces(found, search(detector, d.grey, turns, options.tracker.detector.max_side, nullptr));
         }
         t.detect_ms += ms_since(t0);
       });
