@@ -130,6 +130,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 "every frame)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
+  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
@@ -328,6 +329,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
+  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_option("-o,--output", a->output, "Keep the transformed video here (default: a temporary file)");
@@ -381,6 +383,7 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--target", a->target, "Target video");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
+  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   add_face_option(*cmd, a->options.capture.tracker.pick);
   cmd->add_option("-o,--output", a->output, "Keep the swapped video here (--source/--target; default: temporary)");

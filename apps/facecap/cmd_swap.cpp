@@ -67,6 +67,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
+  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);

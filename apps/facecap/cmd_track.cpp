@@ -185,6 +185,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
+  CLI::Option* smooth = add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
   CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
@@ -211,11 +212,13 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       ->excludes(stream)
       ->excludes("--livelink-udp")
       ->excludes("--start");
-  cmd->callback([a, &global, meshes, point_cache, mesh_format] {
+  cmd->callback([a, &global, meshes, point_cache, mesh_format, smooth] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
     a->options.mesh_format = a->mesh_format == "ply" ? MeshFormat::kPly : MeshFormat::kObj;
     if (mesh_format->count() > 0 && meshes->count() == 0 && point_cache->count() == 0)
       throw CLI::ValidationError("--mesh-format", "needs --meshes or --point-cache");
+    // Live outputs are not held back for smoothing unless asked to be.
+    if ((a->stream || a->options.livelink_stream) && smooth->count() == 0) a->options.capture.fit.smooth_frames = 0;
     a->options.capture.fit.check();
     a->options.capture.quiet = global.quiet;
     if (a->options.livelink_stream) {

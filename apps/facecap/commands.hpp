@@ -48,6 +48,8 @@ void add_encoding_options(CLI::App& cmd, VideoEncoding& encoding, const std::str
 // --init-frames: the frames the identity and focal length are solved from
 // (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
 void add_init_frames_option(CLI::App& cmd, int& init_frames);
+// --smooth-frames (CoarseFitOptions::smooth_frames).
+CLI::Option* add_smooth_frames_option(CLI::App& cmd, int& smooth_frames);
 // --start SECONDS: where track, transform, swap and bench track start reading
 // a video (CaptureOptions::start_seconds).
 void add_start_option(CLI::App& cmd, double& start_seconds);

@@ -53,6 +53,15 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames) {
       ->capture_default_str();
 }
 
+CLI::Option* add_smooth_frames_option(CLI::App& cmd, int& smooth_frames) {
+  return cmd
+      .add_option("--smooth-frames", smooth_frames,
+                  "Frames fitted forward and then smoothed backward before they come out (each tied to the next "
+                  "frame as well as the previous one: steadier and without lag, this many frames later); 0 fits each "
+                  "frame as it comes, tied to the one before only")
+      ->capture_default_str();
+}
+
 void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts) {
   cmd.add_flag_callback(
       "--no-shot-cuts", [&shot_cuts] { shot_cuts = false; },

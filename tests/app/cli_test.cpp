@@ -889,8 +889,8 @@ TEST(Cli, ProbeAndTrackFindUpsideDownFacesWhereTheFrameShowsThem) {
   EXPECT_GT(first_landmark(dir.path() / "all" / "face_1", 30).x(), obama_from);
 }
 
-// --stream: each frame's row on stdout as it is done, the same as frames.jsonl's,
-// and nothing else there (the closing list of files goes to stderr). A reader
+// --stream: each frame's row on stdout as it is done (not smoothed unless
+// asked), the same as frames.jsonl's, and nothing else there (the closing list of files goes to stderr). A reader
 // that stops early (`| head -1`) ends the stream, not the capture.
 TEST(Cli, TrackStreamsEachFramesRowOnStdout) {
   FACECAP_REQUIRE_MODEL(model);
@@ -914,6 +914,13 @@ TEST(Cli, TrackStreamsEachFramesRowOnStdout) {
   EXPECT_EQ(rows.size(), 36u);
   EXPECT_EQ(rows, file_lines(dir.path() / "a" / "frames.jsonl"));
   for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(nlohmann::json::parse(rows[i])["frame"], int(i));
+  // A stream is not held back for smoothing (--smooth-frames): its rows are
+  // a run's without it, not the default's.
+  const std::string plain = std::string(FACECAP_BINARY) + " -q track " + video.string() + " --max-frames 36 -o ";
+  ASSERT_EQ(test::run_command(plain + (dir.path() / "forward").string() + " --smooth-frames 0 >/dev/null").code, 0);
+  EXPECT_EQ(rows, file_lines(dir.path() / "forward" / "frames.jsonl"));
+  ASSERT_EQ(test::run_command(plain + (dir.path() / "smoothed").string() + " >/dev/null").code, 0);
+  EXPECT_NE(rows, file_lines(dir.path() / "smoothed" / "frames.jsonl"));
 
   const RunResult early = test::run_command("sh -c '" + track + (dir.path() / "b").string() + " 2>" +
                                             (dir.path() / "b.err").string() + " | head -1'");

@@ -60,6 +60,40 @@ TEST(CoarseTracker, RejectsLandmarksNoFaceCanExplainAndRecovers) {
   EXPECT_EQ(tracker.identity().frames_used, 10);
 }
 
+// With smoothing, fits come out in blocks of smooth_frames, each frame once
+// and in order, none held longer than a block and the frame after it, and a
+// frame without a face ends the block before it at once.
+TEST(CoarseTracker, SmoothedFitsComeOutInOrderAtMostABlockLate) {
+  FACECAP_REQUIRE_MODEL(model);
+  const SyntheticTake take(*model, 40);
+  CoarseFitOptions o;
+  o.init_frames = 10;
+  o.smooth_frames = 8;
+  CoarseTracker tracker(*model, o, take.options.width, take.options.height);
+  std::vector<CoarseFit> fits;
+  for (const SynthFrame& f : take.perf.frames) {
+    std::optional<Landmarks> lm = take.renderer.landmarks(f);
+    if (f.index == 23) lm.reset();  // no face
+    for (CoarseFit& fit : tracker.push(f.index, f.time, lm)) fits.push_back(std::move(fit));
+    if (f.index >= o.init_frames - 1) {
+      ASSERT_FALSE(fits.empty()) << f.index;
+      EXPECT_GE(fits.back().index, f.index - o.smooth_frames) << f.index;
+    }
+    if (f.index == 23) {
+      EXPECT_EQ(fits.back().index, 23);  // the frames before it are out
+    }
+  }
+  for (CoarseFit& fit : tracker.finish()) fits.push_back(std::move(fit));
+  ASSERT_EQ(fits.size(), 40u);
+  for (const CoarseFit& fit : fits) {
+    EXPECT_EQ(fit.index, &fit - fits.data());
+    EXPECT_EQ(fit.valid, fit.index != 23) << fit.index;
+    if (fit.valid) {
+      EXPECT_LT(fit.landmark_error, 0.02) << "frame " << fit.index;
+    }
+  }
+}
+
 // The identity solve weighs its landmarks as identity_evidence_frames
 // frames' however many frames it has: a detector's systematic error repeats
 // in every frame, so repeating frames must not move the identity.
@@ -137,6 +171,7 @@ TEST(CoarseTracker, AKnownIdentityIsHeldAndWithAKnownFocalStartsAtOnce) {
   const SyntheticTake take(*model, 32);
   CoarseFitOptions o;
   o.init_frames = 30;
+  o.smooth_frames = 0;  // each fit as soon as it is done
   o.known_identity = take.perf.identity.head(o.identity_modes).cast<double>();
   o.focal_guess = take.perf.camera.focal;
   o.focal_known = true;

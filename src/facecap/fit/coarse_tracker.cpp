@@ -25,12 +25,14 @@ void CoarseTracker::start_shot() {
   pending_.clear();
   pending_faces_ = 0;
   previous_.reset();
+  block_.clear();
+  last_smoothed_.reset();
   reset_identity();
 }
 
 std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::optional<Landmarks>& landmarks,
                                            IrisSearch iris_search) {
-  if (initialized_) return {track({index, time, landmarks, std::move(iris_search), std::nullopt})};
+  if (initialized_) return deliver(track({index, time, landmarks, std::move(iris_search), std::nullopt}));
   pending_.push_back({index, time, landmarks, std::move(iris_search), std::nullopt});
   if (landmarks) ++pending_faces_;
   // A known identity and focal length need no frames to solve them from.
@@ -38,25 +40,70 @@ std::vector<CoarseFit> CoarseTracker::push(int index, double time, const std::op
   const int needed = o.known_identity && o.focal_known ? 1 : o.init_frames;
   const int faceless = int(pending_.size()) - pending_faces_;
   if (pending_faces_ < needed && faceless < o.init_patience) return {};
-  return finish();
+  return release_pending();
 }
 
 std::vector<CoarseFit> CoarseTracker::finish() {
+  std::vector<CoarseFit> out = release_pending();
+  for (CoarseFit& fit : smooth_block(true)) out.push_back(std::move(fit));
+  return out;
+}
+
+std::vector<CoarseFit> CoarseTracker::release_pending() {
   std::vector<CoarseFit> out;
   if (!initialized_ && pending_faces_ > 0) initialize();
   for (const Pending& p : pending_) {
-    if (initialized_) {
-      out.push_back(track(p));
-    } else {
-      CoarseFit lost;
-      lost.index = p.index;
-      lost.time = p.time;
-      out.push_back(lost);
-    }
+    Forward lost;
+    lost.fit.index = p.index;
+    lost.fit.time = p.time;
+    if (!initialized_) last_rejected_ = p.index;
+    for (CoarseFit& fit : deliver(initialized_ ? track(p) : std::move(lost))) out.push_back(std::move(fit));
   }
   pending_.clear();
   pending_faces_ = 0;
   return out;
+}
+
+std::vector<CoarseFit> CoarseTracker::deliver(Forward forward) {
+  const int block = fitter_.options().smooth_frames;
+  if (block <= 0) return {std::move(forward.fit)};
+  if (!forward.fit.valid) {
+    // The chain breaks here: the frames before it have all the next frames
+    // they will have, and this one has nothing to smooth.
+    std::vector<CoarseFit> out = smooth_block(true);
+    out.push_back(std::move(forward.fit));
+    last_smoothed_.reset();
+    return out;
+  }
+  block_.push_back(std::move(forward));
+  return int(block_.size()) > block ? smooth_block(false) : std::vector<CoarseFit>{};
+}
+
+std::vector<CoarseFit> CoarseTracker::smooth_block(bool end) {
+  // The block holds valid fits only: a frame lost ends it (deliver).
+  const int n = static_cast<int>(block_.size());
+  const int out = end ? n : n - 1;
+  // Backward: the next frame's fit is smoothed already, the previous one's
+  // not. The block's last frame is left as it is: where the input goes on,
+  // it starts the next block; at the input's end, with no next frame, its
+  // forward fit is its smoothed one.
+  for (int k = n - 2; k >= 0; --k) {
+    Forward& f = block_[k];
+    const FrameParameters* previous = k > 0 ? &block_[k - 1].params : (last_smoothed_ ? &*last_smoothed_ : nullptr);
+    std::optional<GazeCue> gaze;
+    if (f.gaze_cued) gaze = GazeCue{&eyeballs_, iris_centres(f.fit.irises)};
+    FrameParameters params = f.params;  // starts from the forward fit
+    const FrameFitReport report = fitter_.fit_frame(f.fit.observed, identity_.identity, identity_.focal, previous,
+                                                    params, gaze ? &*gaze : nullptr, &block_[k + 1].params);
+    if (report.landmark_error > fitter_.options().lost_landmark_error) continue;  // keep the forward fit
+    describe(params, report, gaze ? &*gaze : nullptr, f.fit);
+    f.params = std::move(params);
+  }
+  std::vector<CoarseFit> fits;
+  for (int k = 0; k < out; ++k) fits.push_back(std::move(block_[k].fit));
+  if (out > 0) last_smoothed_ = block_[out - 1].params;
+  block_.erase(block_.begin(), block_.begin() + out);
+  return fits;
 }
 
 void CoarseTracker::initialize() {
@@ -139,14 +186,16 @@ void CoarseTracker::initialize() {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() - search_ms;
 }
 
-CoarseFit CoarseTracker::track(const Pending& frame) {
-  CoarseFit fit;
+CoarseTracker::Forward CoarseTracker::track(const Pending& frame) {
+  Forward out;
+  CoarseFit& fit = out.fit;
   fit.index = frame.index;
   fit.time = frame.time;
   fit.focal = identity_.focal;
   if (!frame.landmarks) {
     previous_.reset();  // no temporal link across a gap
-    return fit;
+    last_rejected_ = fit.index;
+    return out;
   }
   FrameParameters params(fitter_.num_expressions());
   if (previous_) {
@@ -179,21 +228,31 @@ CoarseFit CoarseTracker::track(const Pending& frame) {
     }
   }
   fit.observed = *frame.landmarks;
-  fit.landmark_error = report.landmark_error;
-  fit.correspondences = report.correspondences;
-  fit.pose = params.pose();
-  fit.expression = params.expression().cast<float>();
-  fit.fitted_points = fitter_.landmark_points(params, identity_.identity, identity_.focal, *frame.landmarks);
-  fit.fitted = fitter_.project(fit.fitted_points, identity_.focal);
-  fit.valid = report.landmark_error <= fitter_.options().lost_landmark_error;
-  if (!fit.valid) fit.irises = {};
-  if (gaze && fit.valid) fit.gaze = estimate_gaze(eyeballs_, fit.pose, camera, gaze->irises);
+  describe(params, report, cue, fit);
   if (fit.valid) {
     previous_ = params;
   } else {
     previous_.reset();
+    last_rejected_ = fit.index;
   }
-  return fit;
+  out.params = std::move(params);
+  out.gaze_cued = cue != nullptr;
+  return out;
+}
+
+void CoarseTracker::describe(const FrameParameters& params, const FrameFitReport& report, const GazeCue* gaze,
+                             CoarseFit& fit) const {
+  fit.landmark_error = report.landmark_error;
+  fit.correspondences = report.correspondences;
+  fit.pose = params.pose();
+  fit.expression = params.expression().cast<float>();
+  fit.fitted_points = fitter_.landmark_points(params, identity_.identity, identity_.focal, fit.observed);
+  fit.fitted = fitter_.project(fit.fitted_points, identity_.focal);
+  fit.valid = report.landmark_error <= fitter_.options().lost_landmark_error;
+  if (!fit.valid) fit.irises = {};
+  fit.gaze = {};
+  if (gaze != nullptr && fit.valid)
+    fit.gaze = estimate_gaze(eyeballs_, fit.pose, fitter_.camera(identity_.focal), gaze->irises);
 }
 
 }  // namespace facecap

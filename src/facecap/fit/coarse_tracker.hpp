@@ -8,7 +8,15 @@
 // mode to where its posterior mass lies (identity_size.hpp).
 //
 // Frames go in as they arrive; fits come out in frame order once they are
-// final (the first ones after the identity solve, then one per frame).
+// final (the first ones after the identity solve, then one per frame, or with
+// CoarseFitOptions::smooth_frames, that many at a time).
+//
+// Smoothing: a fit tied only to the frame before lags behind the face and
+// passes the landmarks' noise on. With smooth_frames, each block of frames is
+// fitted forward as above, then once more backward, each frame tied to the
+// next one's smoothed fit as well as to the previous one's (one backward
+// sweep of Gauss-Seidel on the whole sequence's energy, eq. 4.3 summed over
+// the frames).
 #include <optional>
 #include <vector>
 
@@ -60,8 +68,11 @@ class CoarseTracker {
   // face, or init_patience without one) the frames wait and come out together.
   std::vector<CoarseFit> push(int index, double time, const std::optional<Landmarks>& landmarks,
                               IrisSearch iris_search = {});
-  // End of input: fits still waiting for the identity solve.
+  // End of input: fits still waiting for the identity solve or smoothing.
   std::vector<CoarseFit> finish();
+  // The index of the last frame fitted as lost (no landmarks, or landmarks
+  // its fit rejected; the fit may come out later, with smoothing), or -1.
+  int last_rejected() const { return last_rejected_; }
   // After finish(), at a shot cut: the frames from here on are another shot
   // (maybe another person, another lens), so their identity and focal length
   // are solved afresh over its first frames, with no temporal link across it.
@@ -79,9 +90,23 @@ class CoarseTracker {
     IrisSearch iris_search;
     std::optional<IrisPair> irises;  // once searched (for the identity solve)
   };
+  // A frame fitted forward, waiting for the smoothing pass.
+  struct Forward {
+    CoarseFit fit;
+    FrameParameters params;
+    bool gaze_cued = false;  // fitted with its irises' gaze
+  };
   void initialize();
   void reset_identity();  // the mean face at the focal length's guess, not yet solved
-  CoarseFit track(const Pending& frame);
+  std::vector<CoarseFit> release_pending();
+  Forward track(const Pending& frame);
+  // The fit's outputs for `params`, as fit_frame reported them.
+  void describe(const FrameParameters& params, const FrameFitReport& report, const GazeCue* gaze, CoarseFit& fit) const;
+  // Fits ready to go out: `forward` at once, or blocks once smoothed.
+  std::vector<CoarseFit> deliver(Forward forward);
+  // Smooths the waiting block and hands it out; all of it at the input's
+  // end, else all but its last frame (the next block's first needs it).
+  std::vector<CoarseFit> smooth_block(bool end);
 
   const FaceModel& model_;
   FaceFitter fitter_;
@@ -91,6 +116,9 @@ class CoarseTracker {
   std::vector<Pending> pending_;
   int pending_faces_ = 0;
   std::optional<FrameParameters> previous_;
+  std::vector<Forward> block_;                    // fitted forward, not yet smoothed
+  std::optional<FrameParameters> last_smoothed_;  // the last frame handed out, where it is valid
+  int last_rejected_ = -1;
 };
 
 }  // namespace facecap

@@ -95,10 +95,10 @@ void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::Vector
 }
 
 FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
-                                     const FrameParameters* previous, FrameParameters& params,
-                                     const GazeCue* gaze) const {
+                                     const FrameParameters* previous, FrameParameters& params, const GazeCue* gaze,
+                                     const FrameParameters* next) const {
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
-  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous);
+  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous, next);
   FrameFitReport report;
   for (int round = 0; round < options_.bcd_iterations; ++round) {
     // Jaw correspondences follow the current pose (landmark marching).

@@ -57,10 +57,12 @@ class FaceFitter {
   void initialize_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
                         FrameParameters& params) const;
 
-  // Fits pose and expression of one frame (params: in = start, out = fit).
+  // Fits pose and expression of one frame (params: in = start, out = fit),
+  // tied by the temporal terms to the previous frame's fit and, where given,
+  // the next one's (a smoothing pass).
   FrameFitReport fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
-                           const FrameParameters* previous, FrameParameters& params,
-                           const GazeCue* gaze = nullptr) const;
+                           const FrameParameters* previous, FrameParameters& params, const GazeCue* gaze = nullptr,
+                           const FrameParameters* next = nullptr) const;
 
   // Fits identity and focal jointly with every frame's pose and expression.
   // With `irises` (one per frame), the gaze they show pulls each frame's

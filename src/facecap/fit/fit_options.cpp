@@ -33,6 +33,7 @@ void CoarseFitOptions::check() const {
   if (identity_modes < 1 || identity_modes > 100) throw Error("--identity-modes must be between 1 and 100");
   if (init_frames < 1) throw Error("--init-frames must be at least 1");
   if (init_patience < 1) throw Error("fit option init_patience must be at least 1");
+  if (smooth_frames < 0) throw Error("--smooth-frames must be 0 (off) or more");
   if (bcd_iterations < 1) throw Error("fit option bcd_iterations must be at least 1");
   if (max_solver_iterations < 1) throw Error("fit option max_solver_iterations must be at least 1");
   if (focal_guess < 0) throw Error("--focal must be positive");

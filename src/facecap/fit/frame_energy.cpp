@@ -35,7 +35,7 @@ void set_landmark_correspondences(const LandmarkBasis& basis, const Corresponden
 
 FrameEnergy::FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, const Landmarks& observed,
                          const Eigen::Vector2d& principal_point, const Eigen::VectorXd& identity, double focal,
-                         const FrameParameters* previous)
+                         const FrameParameters* previous, const FrameParameters* next)
     : basis_(basis),
       weights_(weights),
       identity_(identity),
@@ -51,15 +51,16 @@ FrameEnergy::FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, 
     prior_inv_sigma_.push_back(1.0 / sigma);
   };
   for (int k = 0; k < num_expressions_; ++k) add_prior(frame_block::kExpression + k, 0.0, weights.sigma_expression);
-  if (previous != nullptr) {
+  for (const FrameParameters* neighbour : {previous, next}) {
+    if (neighbour == nullptr) continue;
     for (int k = 0; k < 3; ++k) {
-      add_prior(frame_block::kRotation + k, previous->values[frame_block::kRotation + k],
+      add_prior(frame_block::kRotation + k, neighbour->values[frame_block::kRotation + k],
                 weights.sigma_temporal_rotation_deg * kDegToRad);
-      add_prior(frame_block::kTranslation + k, previous->values[frame_block::kTranslation + k],
+      add_prior(frame_block::kTranslation + k, neighbour->values[frame_block::kTranslation + k],
                 weights.sigma_temporal_translation_cm);
     }
     for (int k = 0; k < num_expressions_; ++k) {
-      add_prior(frame_block::kExpression + k, previous->values[frame_block::kExpression + k],
+      add_prior(frame_block::kExpression + k, neighbour->values[frame_block::kExpression + k],
                 weights.sigma_temporal_expression);
     }
   }

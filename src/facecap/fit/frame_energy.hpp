@@ -2,10 +2,10 @@
 // One frame's coarse-fit energy (eq. 4.3) as stacked residuals: the 68
 // landmark terms (eq. 4.4, Huber-robust), the expression prior (eq. 4.5) and,
 // when a previous frame is given, the temporal terms (eq. 4.6), with identity
-// and focal fixed. linearize() returns the residuals and their Jacobian with
-// respect to the frame block (pose 6 + weights), robust weights applied
-// (iteratively reweighted least squares), for the Gauss-Newton steps of
-// frame_solver.hpp.
+// and focal fixed. Given the next frame too (a smoothing pass,
+// coarse_tracker.hpp), the temporal terms tie the frame to both neighbours. linearize() returns the residuals and their
+// Jacobian with respect to the frame block (pose 6 + weights), robust weights applied (iteratively reweighted least
+// squares), for the Gauss-Newton steps of frame_solver.hpp.
 #include <array>
 #include <memory>
 #include <utility>
@@ -23,7 +23,7 @@ class FrameEnergy {
  public:
   FrameEnergy(const LandmarkBasis& basis, const FitWeights& weights, const Landmarks& observed,
               const Eigen::Vector2d& principal_point, const Eigen::VectorXd& identity, double focal,
-              const FrameParameters* previous);
+              const FrameParameters* previous, const FrameParameters* next = nullptr);
 
   void set_correspondences(const Correspondences& correspondences);
   // Gaussian pulls of expression weights (index, target) with one sigma,

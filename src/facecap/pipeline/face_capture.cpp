@@ -94,7 +94,7 @@ FaceCapture::FitResult FaceCapture::fit(FitJob job) {
   result.fits = timed([&] { return tracker_.push(job.index, job.time, job.landmarks, std::move(job.iris_search)); });
   // A fit that rejects the landmarks means the box tracker followed
   // something that is not the face: detect afresh on the next frame.
-  for (const CoarseFit& fit : result.fits) result.rejected |= !fit.valid && fit.index == job.index;
+  result.rejected = tracker_.last_rejected() == job.index;
   summary_.rejected += result.rejected;
   return result;
 }
