@@ -95,6 +95,7 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
   add_device_option(*track, a->refine_options.device);
   track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)");
   add_start_option(*track, a->capture.start_seconds);
+  add_smooth_frames_option(*track, a->capture.fit.smooth_frames);
   track
       ->add_flag("--refine", a->refine,
                  "Also the shading refinement, on its own thread (lighting, albedo, each level's displacement solve)")
