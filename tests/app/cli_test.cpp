@@ -155,6 +155,10 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
   r = run("track " + video.string() + " -o " + dir.path().string() + " --init-frames 0");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
+  r = run("track " + video.string() + " -o " + dir.path().string() + " --smooth-frames -1");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("--smooth-frames"), std::string::npos) << r.out;
   // An --identity file that is missing, not an identity, or of another
   // model's size is named in one line, and nothing is written.
   std::ofstream(dir.path() / "short.json") << R"({"identity_weights": [0.1, 0.2]})";
@@ -273,6 +277,7 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
         "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
         "transform " + video.string() + " --to happiness --init-frames 0 -o " + out,
+        "transform " + video.string() + " --to happiness --smooth-frames -1 -o " + out,
         "transform " + video.string() + " --to happiness --gltf /proc/facecap-test/a.glb -o " + out,
         "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out,
         "transform " + video.string() + " --all-faces --face-schedule 1=" + (dir.path() / "none.txt").string() +
@@ -386,6 +391,12 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const RunResult negative =
+      run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + " --smooth-frames -1");
+  EXPECT_EQ(negative.code, 1) << negative.out;
+  EXPECT_EQ(lines(negative.out), 1) << negative.out;
+  EXPECT_NE(negative.out.find("--smooth-frames"), std::string::npos) << negative.out;
   EXPECT_FALSE(std::filesystem::exists(out));
   // A glTF path that cannot be written fails before the work, naming it.
   const RunResult no_gltf = run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out +
