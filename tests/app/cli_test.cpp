@@ -386,18 +386,14 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   }
   EXPECT_NE(run("swap --target " + video.string() + " -o " + out).code, 0);  // --source is required
   FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
-  const RunResult r =
-      run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + " --init-frames 0");
-  EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_EQ(lines(r.out), 1) << r.out;
-  EXPECT_NE(r.out.find("--init-frames"), std::string::npos) << r.out;
-  EXPECT_FALSE(std::filesystem::exists(out));
-  const RunResult negative =
-      run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + " --smooth-frames -1");
-  EXPECT_EQ(negative.code, 1) << negative.out;
-  EXPECT_EQ(lines(negative.out), 1) << negative.out;
-  EXPECT_NE(negative.out.find("--smooth-frames"), std::string::npos) << negative.out;
-  EXPECT_FALSE(std::filesystem::exists(out));
+  for (const auto& [option, value] : {std::pair{"--init-frames", " 0"}, std::pair{"--smooth-frames", " -1"}}) {
+    const RunResult r =
+        run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + " " + option + value);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find(option), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
   // A glTF path that cannot be written fails before the work, naming it.
   const RunResult no_gltf = run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out +
                                 " --gltf /proc/facecap-test/a.glb");
