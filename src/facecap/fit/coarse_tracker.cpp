@@ -93,8 +93,8 @@ std::vector<CoarseFit> CoarseTracker::smooth_block(bool end) {
     std::optional<GazeCue> gaze;
     if (f.gaze_cued) gaze = GazeCue{&eyeballs_, iris_centres(f.fit.irises)};
     FrameParameters params = f.params;  // starts from the forward fit
-    const FrameFitReport report = fitter_.fit_frame(f.fit.observed, identity_.identity, identity_.focal, previous,
-                                                    params, gaze ? &*gaze : nullptr, &block_[k + 1].params);
+    const FrameFitReport report = fitter_.refit_frame(f.fit.observed, identity_.identity, identity_.focal, previous,
+                                                      block_[k + 1].params, params, gaze ? &*gaze : nullptr);
     if (report.landmark_error > fitter_.options().lost_landmark_error) continue;  // keep the forward fit
     describe(params, report, gaze ? &*gaze : nullptr, f.fit);
     f.params = std::move(params);

@@ -16,7 +16,8 @@
 // fitted forward as above, then once more backward, each frame tied to the
 // next one's smoothed fit as well as to the previous one's (one backward
 // sweep of Gauss-Seidel on the whole sequence's energy, eq. 4.3 summed over
-// the frames).
+// the frames; each frame one joint solve from its forward fit,
+// FaceFitter::refit_frame).
 #include <optional>
 #include <vector>
 

@@ -81,8 +81,7 @@ void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::Vector
     pose.translation = Vec3d((centre.x() - pp.x()) * depth / focal, (centre.y() - pp.y()) * depth / focal + 1.0, depth);
     trial.set_pose(pose);
     for (int round = 0; round < 2; ++round) {
-      energy.set_correspondences(pose_correspondences(model_, basis_, identity, trial.expression(), trial.pose(),
-                                                      camera(focal), observed, slide_jaw()));
+      match_landmarks(energy, observed, identity, focal, trial);
       solve_pose(energy, trial, 15);
     }
     const double c = energy.cost(trial);
@@ -94,23 +93,43 @@ void FaceFitter::initialize_frame(const Landmarks& observed, const Eigen::Vector
   params = best;
 }
 
+Correspondences FaceFitter::match_landmarks(FrameEnergy& energy, const Landmarks& observed,
+                                            const Eigen::VectorXd& identity, double focal,
+                                            const FrameParameters& params) const {
+  Correspondences c = pose_correspondences(model_, basis_, identity, params.expression(), params.pose(), camera(focal),
+                                           observed, slide_jaw());
+  energy.set_correspondences(c);
+  return c;
+}
+
 FrameFitReport FaceFitter::fit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
-                                     const FrameParameters* previous, FrameParameters& params, const GazeCue* gaze,
-                                     const FrameParameters* next) const {
+                                     const FrameParameters* previous, FrameParameters& params,
+                                     const GazeCue* gaze) const {
   const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
-  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous, next);
+  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous);
   FrameFitReport report;
   for (int round = 0; round < options_.bcd_iterations; ++round) {
     // Jaw correspondences follow the current pose (landmark marching).
-    report.correspondences = pose_correspondences(model_, basis_, identity, params.expression(), params.pose(),
-                                                  camera(focal), observed, slide_jaw());
-    energy.set_correspondences(report.correspondences);
+    report.correspondences = match_landmarks(energy, observed, identity, focal, params);
     solve_pose(energy, params, options_.max_solver_iterations);
     // The gaze depends on the pose (where the eyeballs sit under the irises), not on the weights.
     if (gaze != nullptr) pull_eye_look(energy, *gaze, params.pose(), focal, options_.weights.sigma_eye_look);
     solve_expression(energy, params, 5);
     solve_joint(energy, params, options_.max_solver_iterations);
   }
+  report.landmark_error = landmark_error(observed, params, identity, focal);
+  return report;
+}
+
+FrameFitReport FaceFitter::refit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
+                                       const FrameParameters* previous, const FrameParameters& next,
+                                       FrameParameters& params, const GazeCue* gaze) const {
+  const Eigen::Vector2d pp(0.5 * width_, 0.5 * height_);
+  FrameEnergy energy(basis_, options_.weights, observed, pp, identity, focal, previous, &next);
+  FrameFitReport report;
+  report.correspondences = match_landmarks(energy, observed, identity, focal, params);
+  if (gaze != nullptr) pull_eye_look(energy, *gaze, params.pose(), focal, options_.weights.sigma_eye_look);
+  solve_joint(energy, params, options_.max_solver_iterations);
   report.landmark_error = landmark_error(observed, params, identity, focal);
   return report;
 }
@@ -158,8 +177,7 @@ IdentitySolveReport FaceFitter::fit_identity(const std::vector<Landmarks>& obser
         static_cast<int>(f.size()),
         [&](int b, int e) {
           for (int i = b; i < e; ++i) {
-            energies[i]->set_correspondences(pose_correspondences(model_, basis_, id, f[i].expression(), f[i].pose(),
-                                                                  camera(current_focal), observed[i], slide_jaw()));
+            match_landmarks(*energies[i], observed[i], id, current_focal, f[i]);
             if (eyes) {
               pull_eye_look(*energies[i], {&*eyes, (*irises)[i]}, f[i].pose(), current_focal,
                             options_.weights.sigma_eye_look / std::sqrt(frame_weight));
