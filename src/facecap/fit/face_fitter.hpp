@@ -67,7 +67,7 @@ class FaceFitter {
   // smoothing pass; coarse_tracker.hpp). From so near a start one joint solve
   // does what fit_frame's rounds do: on `eval track --synthetic 90`, seeds
   // 1-16, every error as with two rounds to the third decimal (jitter 0.136
-  // mm, weights 0.0476), at 0.5 instead of 1.9 ms a frame.
+  // mm, weights 0.0476), at 0.7-0.9 instead of 1.7-1.9 ms a frame (720p).
   FrameFitReport refit_frame(const Landmarks& observed, const Eigen::VectorXd& identity, double focal,
                              const FrameParameters* previous, const FrameParameters& next, FrameParameters& params,
                              const GazeCue* gaze = nullptr) const;
@@ -93,11 +93,11 @@ class FaceFitter {
                         double focal) const;
 
  private:
-  // Pulls the eyeLook weights of `energy` toward the gaze the cue's irises show at `pose`.
   // The landmarks' model points at `params`' pose (the jaw's follow the
   // silhouette), set on `energy` and returned.
   Correspondences match_landmarks(FrameEnergy& energy, const Landmarks& observed, const Eigen::VectorXd& identity,
                                   double focal, const FrameParameters& params) const;
+  // Pulls the eyeLook weights of `energy` toward the gaze the cue's irises show at `pose`.
   void pull_eye_look(FrameEnergy& energy, const GazeCue& gaze, const HeadPose& pose, double focal, double sigma) const;
 
   const FaceModel& model_;
