@@ -3,9 +3,10 @@
 // landmark terms (eq. 4.4, Huber-robust), the expression prior (eq. 4.5) and,
 // when a previous frame is given, the temporal terms (eq. 4.6), with identity
 // and focal fixed. Given the next frame too (a smoothing pass,
-// coarse_tracker.hpp), the temporal terms tie the frame to both neighbours. linearize() returns the residuals and their
-// Jacobian with respect to the frame block (pose 6 + weights), robust weights applied (iteratively reweighted least
-// squares), for the Gauss-Newton steps of frame_solver.hpp.
+// coarse_tracker.hpp), the temporal terms tie the frame to both neighbours.
+// linearize() returns the residuals and their Jacobian with respect to the
+// frame block (pose 6 + weights), robust weights applied (iteratively
+// reweighted least squares), for the Gauss-Newton steps of frame_solver.hpp.
 #include <array>
 #include <memory>
 #include <utility>
