@@ -991,6 +991,41 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   for (const char* video_name : {"overlay.mp4", "shaded.mp4", "heatmap.mp4"}) {
     EXPECT_EQ(open_input((dir.path() / video_name).string())->info().frames, 32) << video_name;
   }
+  // What they show: inside the last frame's face (the box of its fitted
+  // landmarks, shrunk to its middle half), shaded.mp4 draws the refined
+  // surface in light grey over the input dimmed to 0.3, and heatmap.mp4 the
+  // error's colours over the input dimmed to 0.4; outside the face, only the
+  // dimmed input.
+  const auto last_row = nlohmann::json::parse(lines(dir.path() / "frames.jsonl").back());
+  ASSERT_EQ(last_row["status"], "tracked");
+  cv::Rect2f box;
+  {
+    std::vector<cv::Point2f> points;
+    for (const auto& p : last_row["fitted_landmarks"]) points.emplace_back(p[0].get<float>(), p[1].get<float>());
+    const cv::Rect2f all = cv::boundingRect(points);
+    box = cv::Rect2f(all.x + all.width / 4, all.y + all.height / 4, all.width / 2, all.height / 2);
+  }
+  auto frame_31 = [](const fs::path& path) {  // the last tracked: the input goes on past it
+    auto source = open_input(path.string());
+    Frame f;
+    cv::Mat last;
+    for (int i = 0; i < 32 && source->read(f); ++i) last = f.image.clone();
+    return last;
+  };
+  const cv::Mat input = frame_31(video), shaded = frame_31(dir.path() / "shaded.mp4"),
+                heat = frame_31(dir.path() / "heatmap.mp4");
+  ASSERT_FALSE(input.empty() || shaded.empty() || heat.empty());
+  const cv::Rect face(box), corner(input.cols - 40, input.rows - 40, 40, 40);  // the caption is top left
+  const auto grey = [](const cv::Mat& image, const cv::Rect& r) {
+    const cv::Scalar m = cv::mean(image(r));
+    return (m[0] + m[1] + m[2]) / 3;
+  };
+  EXPECT_GT(grey(shaded, face), 100.0);  // the grey render (albedo 0.75, lit)
+  EXPECT_GT(grey(shaded, face), 2.0 * 0.3 * grey(input, face));
+  EXPECT_NEAR(grey(shaded, corner), 0.3 * grey(input, corner), 4.0);  // the input dimmed
+  EXPECT_NEAR(grey(heat, corner), 0.4 * grey(input, corner), 4.0);
+  EXPECT_GT(cv::norm(heat(face), cv::Mat(input(face) * 0.4), cv::NORM_L1) / face.area(),
+            50.0);  // coloured (about 250; 5 undrawn)
   // The meshes are the refined finest level (at 400x300 the face is small
   // enough that the hierarchy has a single level: epsilon rule).
   const auto obj = lines(dir.path() / "meshes" / "frame_000031.obj");

@@ -41,6 +41,11 @@ Positions FaceModel::evaluate(const Eigen::VectorXf& identity, const Eigen::Vect
   return evaluate(identity, expression, all);
 }
 
+std::vector<Polygon> FaceModel::region_polygons(const Region& region) const {
+  if (region.num_polygons() == 0) return {};
+  return {polygons.begin() + region.first_polygon, polygons.begin() + region.last_polygon + 1};
+}
+
 TriangleMesh FaceModel::region_mesh(const Region& region) const {
   if (region.num_polygons() == 0) throw Error("region " + std::string(region.name) + " has no polygons");
   std::vector<Polygon> local;

@@ -51,6 +51,9 @@ struct FaceModel {
   Positions with_expression(const Eigen::VectorXf& identity_shape, const Eigen::VectorXf& expression,
                             const Region& region) const;
 
+  // A region's polygons as the model lists them (the model's vertex indices,
+  // which are the region's own for the face, whose vertices come first).
+  std::vector<Polygon> region_polygons(const Region& region) const;
   // Triangle mesh of a region's polygons, re-indexed to region-local vertices.
   TriangleMesh region_mesh(const Region& region) const;
   // Triangle mesh of the whole head (all polygons), in global vertex indices.

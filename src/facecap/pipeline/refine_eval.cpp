@@ -140,8 +140,7 @@ std::vector<bool> face_skin_mask() {
 }
 
 Refiner make_face_refiner(const FaceModel& model, const RefineOptions& options) {
-  const std::vector<Polygon> polygons(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
-  return Refiner(polygons, regions::kFace.num_vertices(), options, face_skin_mask());
+  return Refiner(model.region_polygons(regions::kFace), regions::kFace.num_vertices(), options, face_skin_mask());
 }
 
 std::vector<uint8_t> face_albedo_png(const FaceModel& model, const Refiner& refiner) {

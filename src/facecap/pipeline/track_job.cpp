@@ -13,7 +13,6 @@
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/livelink_csv.hpp"
-#include "facecap/io/video_writer.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/face_animation.hpp"
@@ -24,9 +23,7 @@
 #include "facecap/pipeline/refine_stage.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
 #include "facecap/pipeline/track_meshes.hpp"
-#include "facecap/render/overlay.hpp"
-#include "facecap/render/photometric.hpp"
-#include "facecap/render/shading.hpp"
+#include "facecap/pipeline/track_videos.hpp"
 
 namespace facecap {
 
@@ -34,12 +31,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Files of the output folder that an input could be (a re-tracked overlay).
-constexpr const char* kOverlayVideo = "overlay.mp4";
+// Files of the output folder besides the videos (track_videos.hpp).
 constexpr const char* kLiveLinkCsv = "livelink_face.csv";
 constexpr const char* kLandmarkTable = "landmarks.csv";
-constexpr const char* kShadedVideo = "shaded.mp4";
-constexpr const char* kHeatmapVideo = "heatmap.mp4";
 constexpr const char* kAlbedoImage = "albedo.png";
 constexpr const char* kTextureImage = "texture.png";
 
@@ -81,7 +75,6 @@ class FrameWriter {
         csv_(dir / "frames.csv"),
         jsonl_(dir / "frames.jsonl"),
         meshes_(model, dir, options_) {
-    face_polygons_.assign(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
     std::ofstream& o = csv_.stream();
     o << "frame,time,status,rx,ry,rz,tx,ty,tz,focal,yaw_deg,pitch_deg,roll_deg,landmark_error";
     for (const std::string& name : model.expression_names) o << ',' << name;
@@ -117,17 +110,7 @@ class FrameWriter {
         write_glb(out.write_to, glb);
       });
     }
-    if (options.overlay) {
-      VideoWriterOptions vo = output_like(info, options.capture.max_frames, options.encoding);
-      vo.metadata = {{"comment", "facecap track overlay of " + fs::path(input).filename().string()}};
-      overlay_ = std::make_unique<VideoWriter>(dir / kOverlayVideo, vo);
-      if (options.refine) {
-        vo.metadata["comment"] = "facecap refined geometry (shaded) of " + fs::path(input).filename().string();
-        shaded_ = std::make_unique<VideoWriter>(dir / kShadedVideo, vo);
-        vo.metadata["comment"] = "facecap photometric error heat map of " + fs::path(input).filename().string();
-        heatmap_ = std::make_unique<VideoWriter>(dir / kHeatmapVideo, vo);
-      }
-    }
+    if (options.overlay) videos_.emplace(model, info, input, dir, options);
   }
 
   void write(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& camera) {
@@ -184,7 +167,7 @@ class FrameWriter {
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
                            f.fit.expression, key_gaze(f.fit.gaze));
-    write_videos(f, ref, coarse, camera);
+    if (videos_) videos_->write(f, ref, refiner_, coarse, camera);
   }
 
   // What is written per shot (shot_animations.hpp): its albedo texture
@@ -273,8 +256,7 @@ class FrameWriter {
     jsonl_.commit();
     if (landmarks_) landmarks_->commit();
     if (livelink_) livelink_->commit();
-    for (auto* w : {overlay_.get(), shaded_.get(), heatmap_.get()})
-      if (w) w->finish();
+    if (videos_) videos_->finish();
     meshes_.finish();
   }
 
@@ -359,51 +341,6 @@ class FrameWriter {
     row["gaze"] = gaze;
   }
 
-  void write_videos(const CapturedFrame& f, const Refinement* ref, const Positions& coarse, const PinholeCamera& cam) {
-    if (!overlay_) return;
-    const bool ok = f.status != TrackStatus::kLost;
-    cv::Mat canvas = f.image.clone();
-    if (ok) {
-      draw_wireframe(canvas, coarse, face_polygons_, cam, cv::Scalar(255, 200, 80));
-      draw_landmarks(canvas, f.fit.observed, cv::Scalar(0, 255, 0));
-      draw_landmarks(canvas, f.fit.fitted, cv::Scalar(0, 0, 255), 1);
-      for (int eye = 0; eye < 2; ++eye) {
-        const std::optional<EyeGaze>& g = f.fit.gaze.eyes[eye];
-        if (g)
-          draw_gaze(canvas, f.fit.irises[eye]->centre, f.fit.irises[eye]->radius, g->camera_iris, g->camera_direction,
-                    4.0, cam, cv::Scalar(0, 220, 255));
-      }
-    }
-    draw_caption(canvas, "frame " + std::to_string(f.index) + "  " + to_string(f.status));
-    const double time = output_time(info_, f.index, f.time);
-    overlay_->write(canvas, time);
-    if (!shaded_) return;
-    cv::Mat shaded = f.image * 0.3;
-    cv::Mat heat = f.image * 0.4;
-    if (ok && ref != nullptr && refiner_ != nullptr) {
-      const std::vector<Triangle>& tris = refiner_->hierarchy().level(ref->levels - 1).triangles;
-      RasterBuffers buffers;
-      buffers.resize(f.image.cols, f.image.rows);
-      rasterize(ref->positions, tris, cam, buffers);
-      cv::Mat render(f.image.rows, f.image.cols, CV_32FC3, cv::Scalar::all(0));
-      const Positions grey = Positions::Constant(3, ref->positions.cols(), 0.75f);
-      shade_lambertian(buffers, tris, grey, ref->normals, ref->lighting, render);
-      cv::Mat render8;
-      render.convertTo(render8, CV_8UC3, 255.0);
-      cv::Mat mask(f.image.rows, f.image.cols, CV_8U, cv::Scalar(0));
-      for (int y = 0; y < buffers.height; ++y)
-        for (int x = 0; x < buffers.width; ++x) mask.at<uchar>(y, x) = buffers.covered(x, y) ? 255 : 0;
-      render8.copyTo(shaded, mask);
-      heat = photometric_error(f.image, ref->positions, masked_triangles(tris, ref->data_mask), ref->normals,
-                               ref->albedo, ref->lighting, cam, true)
-                 .heat_map;
-    }
-    draw_caption(shaded, "frame " + std::to_string(f.index) + "  refined geometry");
-    draw_caption(heat, "frame " + std::to_string(f.index) + "  photometric error (red = 40 levels)");
-    shaded_->write(shaded, time);
-    heatmap_->write(heat, time);
-  }
-
   const FaceModel& model_;
   InputInfo info_;
   std::string input_;
@@ -420,9 +357,8 @@ class FrameWriter {
   std::optional<StagedText> livelink_;
   std::optional<LiveLinkCsv> livelink_csv_;
   std::optional<LiveLinkStreamer> livelink_stream_;
-  std::unique_ptr<VideoWriter> overlay_, shaded_, heatmap_;
+  std::optional<TrackVideos> videos_;  // --overlay
   int gaze_frames_ = 0;
-  std::vector<Polygon> face_polygons_;
   const Refiner* refiner_ = nullptr;
   std::optional<ShotAnimations> animations_;
   std::vector<fs::path> animation_files_;
@@ -482,8 +418,8 @@ TrackOutput::TrackOutput(const FaceModel& model, const InputInfo& info, const st
                          const TrackOptions& options) {
   ensure_writable_dir(dir);
   // Re-tracking an earlier run's overlay into its own folder would replace it.
-  for (const char* name : {kOverlayVideo, kShadedVideo, kHeatmapVideo, kAlbedoImage, kTextureImage})
-    ensure_not_an_input(dir / name, {input});
+  for (const std::string& name : TrackVideos::file_names()) ensure_not_an_input(dir / name, {input});
+  for (const char* name : {kAlbedoImage, kTextureImage}) ensure_not_an_input(dir / name, {input});
   impl_ = std::make_unique<Impl>(model, info, input, dir, options);
   output_dir_ = dir;
 }

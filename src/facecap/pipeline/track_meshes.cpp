@@ -37,8 +37,7 @@ Eigen::MatrixXf uv_matrix(const std::vector<Vec2f>& uvs) {
 }  // namespace
 
 TrackMeshes::TrackMeshes(const FaceModel& model, const fs::path& dir, const TrackOptions& options)
-    : model_(model), dir_(dir), options_(options) {
-  face_polygons_.assign(model.polygons.begin(), model.polygons.begin() + regions::kFace.num_polygons());
+    : model_(model), dir_(dir), options_(options), face_polygons_(model.region_polygons(regions::kFace)) {
   face_mesh_ = model.region_mesh(regions::kFace);
   if (options.meshes) fs::create_directories(dir / "meshes");
 }
