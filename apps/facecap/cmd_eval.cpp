@@ -295,6 +295,8 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                 {"levels", r.levels},
                 {"finest_vertices", r.finest_vertices},
                 {"lighting_error_rel", r.lighting_error_rel},
+                {"lighting_error_terms",
+                 std::vector<double>(r.lighting_error_terms.data(), r.lighting_error_terms.data() + 9)},
                 {"shading_error_rel", r.shading_error_rel},
                 {"albedo_corr", r.albedo_corr},
                 {"normal_error_deg", r.normal_error_deg},

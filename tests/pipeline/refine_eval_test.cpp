@@ -35,6 +35,16 @@ TEST(RefineEval, ShadingErrorMeasuresWhatTheImageDetermines) {
   // Scale is free in both.
   EXPECT_NEAR(scaled_lighting_error(2.5 * truth, truth), 0.0, 1e-12);
   EXPECT_NEAR(scaled_shading_error(2.5 * truth, truth, normals, visible), 0.0, 1e-12);
+  // The terms say where the error lies: an n_z term too strong shows there
+  // most, and the scale's correction spreads a little of it over the rest.
+  ShCoeffs strong_front = truth;
+  strong_front[3] += 0.1;
+  const ShCoeffs terms = scaled_lighting_error_terms(strong_front, truth);
+  EXPECT_NEAR(terms.norm(), scaled_lighting_error(strong_front, truth), 1e-12);
+  Eigen::Index largest = -1;
+  terms.cwiseAbs().maxCoeff(&largest);
+  EXPECT_EQ(largest, 3);
+  EXPECT_NEAR(terms[3], 0.0835 / truth.norm(), 0.002);
 
   // The directions of coefficient space these normals see least and most
   // (singular vectors of the SH basis over them, viewer frame).
@@ -75,6 +85,11 @@ TEST(RefineEval, SyntheticAlbedoIsRecoveredAndNothingDiverges) {
   EXPECT_GE(r.levels, 2);
   EXPECT_GE(r.albedo_corr, 0.95);
   EXPECT_TRUE(std::isfinite(r.lighting_error_rel));
+  // Its terms add up to it: the norm of the terms' means is at most the
+  // mean of the norms, and their sum at least it (|e|_2 <= |e|_1).
+  EXPECT_LE(r.lighting_error_terms.norm(), r.lighting_error_rel + 1e-12);
+  EXPECT_GE(r.lighting_error_terms.sum(), r.lighting_error_rel - 1e-12);
+  EXPECT_GT(r.lighting_error_terms.minCoeff(), 0.0);
   // With the rims of the eye and mouth holes among the lighting's samples
   // (their colour is the eye white's, the teeth's) this was 0.39 (12 frames);
   // now 0.21. The bar is 0.10.

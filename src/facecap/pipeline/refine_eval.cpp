@@ -102,9 +102,13 @@ Positions shading_floor_albedo(const cv::Mat& image, const Refinement& ref, cons
 
 }  // namespace
 
-double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
+ShCoeffs scaled_lighting_error_terms(const ShCoeffs& l, const ShCoeffs& truth) {
   const double k = l.squaredNorm() > 0 ? l.dot(truth) / l.squaredNorm() : 1.0;
-  return (k * l - truth).norm() / truth.norm();
+  return (k * l - truth) / truth.norm();
+}
+
+double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth) {
+  return scaled_lighting_error_terms(l, truth).norm();
 }
 
 double scaled_shading_error(const ShCoeffs& l, const ShCoeffs& truth, const Positions& camera_normals,
@@ -202,7 +206,9 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
     known.lighting = f.lighting;
     const Refinement ref = refiner.refine(image, coarse, perf.camera, o.true_shading ? &known : nullptr);
     refine_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    r.lighting_error_rel += scaled_lighting_error(ref.lighting, f.lighting);
+    const ShCoeffs lighting_error = scaled_lighting_error_terms(ref.lighting, f.lighting);
+    r.lighting_error_rel += lighting_error.norm();
+    r.lighting_error_terms += lighting_error.cwiseAbs();
     r.shading_error_rel +=
         scaled_shading_error(ref.lighting, f.lighting, vertex_normals(coarse, face.triangles), ref.visible);
     for (int v = 0; v < face.num_vertices; ++v) seen[v] = seen[v] || ref.visible[v];
@@ -247,6 +253,7 @@ RefineEvalResult evaluate_refine_synthetic(const FaceModel& model, const RefineE
   }
   progress.finish();
   r.lighting_error_rel /= std::max(1, r.frames);
+  r.lighting_error_terms /= std::max(1, r.frames);
   r.shading_error_rel /= std::max(1, r.frames);
   r.refine_ms_per_frame = refine_ms / std::max(1, r.frames);
   if (all.pixels > 0) {

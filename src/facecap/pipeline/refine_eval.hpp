@@ -37,6 +37,11 @@ struct RefineEvalResult {
   int levels = 0;
   int finest_vertices = 0;
   double lighting_error_rel = 0;  // scaled_lighting_error, mean over frames
+  // Where that error lies: each coefficient's |scaled_lighting_error_terms|,
+  // mean over frames, in SH order (1, x, y, z, xy, xz, yz, x^2 - y^2,
+  // 3 z^2 - 1). Most of it is in the n_z term, whose trade with the albedo's
+  // fall-off toward the face's rim a turning head hardly shows (docs/open-bars.md).
+  ShCoeffs lighting_error_terms = ShCoeffs::Zero();
   // The same lighting judged by the shading it gives the face's visible
   // vertices' normals (scaled_shading_error): well conditioned where the
   // coefficients are not.
@@ -78,8 +83,10 @@ RefineOptions lighting_only_refinement();
 // animated glTF. Empty until the refiner has an albedo.
 std::vector<uint8_t> face_albedo_png(const FaceModel& model, const Refiner& refiner);
 
-// ||k l - l_true|| / ||l_true||, k the best scale (albedo times lighting is
-// only determined up to a common factor).
+// (k l - l_true) / ||l_true||, k the best scale (albedo times lighting is
+// only determined up to a common factor): the error of each coefficient.
+ShCoeffs scaled_lighting_error_terms(const ShCoeffs& l, const ShCoeffs& truth);
+// Its norm, ||k l - l_true|| / ||l_true||.
 double scaled_lighting_error(const ShCoeffs& l, const ShCoeffs& truth);
 // The lighting judged by the shading it gives `camera_normals` where
 // `visible`: RMS of k s - s_true (s = l . SH(n), k the best scale) over the
