@@ -93,7 +93,8 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
       track->add_flag("--all-faces", a->all_faces,
                       "Every face, on one decoding pass (as track --all-faces): the shared stages, then each face's");
   add_device_option(*track, a->refine_options.device);
-  track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)");
+  track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)")
+      ->check(whole_number_at_least(0));
   add_start_option(*track, a->capture.start_seconds);
   add_smooth_frames_option(*track, a->capture.fit.smooth_frames);
   track
@@ -223,7 +224,9 @@ void register_bench_swap(CLI::App& bench, GlobalOptions& global) {
       "(every frame held in memory, about 2.8 MB a 720p frame); one face");
   tracked_first->excludes(all_faces);
   cmd->add_option("--target", a->target, "Target video")->required();
-  cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
+  cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")
+      ->check(whole_number_at_least(0))
+      ->capture_default_str();
   cmd->add_flag("--wrinkles", a->swap.wrinkles, "With the wrinkle prediction of §6.1.2 (the target is refined)");
   add_swap_texture_flags(*cmd, a->swap);
   add_encoding_options(*cmd, a->encoding, "the scratch output, as swap's");
@@ -323,7 +326,9 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
   cmd->add_flag("--all-faces", a->all_faces,
                 "Every face, on one decoding pass (as transform --all-faces): the shared capture stages, each "
                 "face's, and the edit's summed over the faces");
-  cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")->capture_default_str();
+  cmd->add_option("--max-frames", a->max_frames, "Stop after this many frames (0: all)")
+      ->check(whole_number_at_least(0))
+      ->capture_default_str();
   add_encoding_options(*cmd, a->encoding, "the scratch output, as transform's");
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to);

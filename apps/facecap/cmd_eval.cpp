@@ -40,7 +40,8 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
   auto a = std::make_shared<Args>();
   cmd->add_option("IMAGE", a->image, "Image file, or a folder of images each beside its .pts annotation");
   cmd->add_option("PTS", a->pts, "iBUG .pts annotation (1-based coordinates)");
-  cmd->add_option("--synthetic", a->synthetic, "Render N synthetic frames instead and score against their truth");
+  cmd->add_option("--synthetic", a->synthetic, "Render N synthetic frames instead and score against their truth")
+      ->check(whole_number_at_least(1));
   cmd->add_option("--seed", a->seed, "Seed of the synthetic performance")->capture_default_str();
   add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
@@ -115,7 +116,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     TrackEvalOptions options;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--synthetic", a->synthetic, "Render and fit N synthetic frames");
+  cmd->add_option("--synthetic", a->synthetic, "Render and fit N synthetic frames")->check(whole_number_at_least(1));
   cmd->add_option("--video", a->video, "Fit real footage");
   cmd->add_option("--seed", a->options.seed, "Seed of the synthetic performance")->capture_default_str();
   cmd->add_option("--landmarks", a->landmarks, "truth (projected truth + noise) or dlib (on the rendered video)")
@@ -128,7 +129,8 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   cmd->add_flag("!--no-gaze", a->options.capture.gaze,
                 "Skip the irises, the gaze and its pull on the eyeLook weights (with truth landmarks it renders "
                 "every frame)");
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video");
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video")
+      ->check(whole_number_at_least(0));
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
@@ -146,7 +148,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                   "--synthetic: instead, fit every K-th frame alone, as a photo (a swap's source) is, and report "
                   "how far each photo's identity lies from the true face (size removed), for calm and expressive "
                   "faces")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number_at_least(1));
   add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
     const FaceModel model = load_model(global);
@@ -240,11 +242,12 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
     std::string face_photo;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--synthetic", a->synthetic, "Render and refine N synthetic frames");
+  cmd->add_option("--synthetic", a->synthetic, "Render and refine N synthetic frames")->check(whole_number_at_least(1));
   cmd->add_option("--video", a->video, "Track and refine real footage");
   cmd->add_option("--seed", a->options.seed, "Seed of the synthetic performance")->capture_default_str();
   cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
-  cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video");
+  cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video")
+      ->check(whole_number_at_least(0));
   cmd->add_option("--albedo-frames", a->options.refine.albedo.frames, "Frames before the albedo is fixed")
       ->capture_default_str();
   add_device_option(*cmd, a->options.refine.device);
@@ -329,7 +332,8 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
       ->check(CLI::IsMember({"cyclegan", "linear"}))
       ->capture_default_str();
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames")
+      ->check(whole_number_at_least(0));
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
@@ -383,7 +387,8 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--source", a->source, "Source portrait photo");
   cmd->add_option("--target", a->target, "Target video");
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames");
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames")
+      ->check(whole_number_at_least(0));
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
   add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);

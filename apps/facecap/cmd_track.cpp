@@ -201,7 +201,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                     "reading the capture live (cam:N; rows start once the identity is solved, after --init-frames "
                     "frames); the closing list of files then goes to stderr");
   stream->excludes("--all-faces");
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)")
+      ->check(whole_number_at_least(0));
   add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->add_flag("--each-image", a->each_image,
                 "INPUT is a folder of portraits, each fitted on its own as a photo is (its own identity and focal "

@@ -59,7 +59,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   add_matte_option(*cmd, a->options.matte, "re-rendered face");
   add_encoding_options(*cmd, a->options.encoding, "the output video (a --matte is lossless)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)");
+  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)")
+      ->check(whole_number_at_least(0));
   add_start_option(*cmd, a->options.capture.start_seconds);
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
   add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);

@@ -50,6 +50,9 @@ void add_encoding_options(CLI::App& cmd, VideoEncoding& encoding, const std::str
 void add_init_frames_option(CLI::App& cmd, int& init_frames);
 // --smooth-frames (CoarseFitOptions::smooth_frames).
 CLI::Option* add_smooth_frames_option(CLI::App& cmd, int& smooth_frames);
+// Refuses a value that is not a whole number of at least `least`, naming it
+// (CLI11's own range checks print the type's whole range).
+CLI::Validator whole_number_at_least(int least);
 // --start SECONDS: where track, transform, swap and bench track start reading
 // a video (CaptureOptions::start_seconds).
 void add_start_option(CLI::App& cmd, double& start_seconds);

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -108,7 +109,7 @@ void add_leave_faces_option(CLI::App& cmd, CLI::Option* all_faces, AllFacesOptio
          "--all-faces: leave these faces as they are (K,K...: each face's index in the order found, as track "
          "--all-faces numbers them in DIR/faces.png)")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber)
+      ->check(whole_number_at_least(0))
       ->needs(all_faces);
 }
 
@@ -199,6 +200,18 @@ CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& 
       "--identity", [&identity](const std::string& path) { identity = read_identity_weights(path); },
       "Hold the face of an earlier capture's identity.json (facecap track) rather than solve it: takes of one "
       "person then share one face; with --focal F --focal-known the output starts at the first frame");
+}
+
+CLI::Validator whole_number_at_least(int least) {
+  return CLI::Validator(
+      [least](std::string& text) {
+        int value = 0;
+        const char* const last = text.data() + text.size();
+        const auto [end, error] = std::from_chars(text.data(), last, value);
+        const bool ok = error == std::errc() && end == last && value >= least;
+        return ok ? std::string() : "must be a whole number of at least " + std::to_string(least) + ", not " + text;
+      },
+      least == 0 ? "NONNEGATIVE" : least == 1 ? "POSITIVE" : ">=" + std::to_string(least));
 }
 
 void add_start_option(CLI::App& cmd, double& start_seconds) {

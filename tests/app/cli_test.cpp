@@ -109,6 +109,44 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_NE(shading.out.find("--true-shading"), std::string::npos) << shading.out;
 }
 
+// Counts of frames and faces are whole numbers from their least value up:
+// anything else is refused before any work, naming the option, the least
+// value and what was given (a negative --max-frames once ran the whole input,
+// and --synthetic -3 was taken for no --synthetic at all).
+TEST(Cli, CountsBelowTheirLeastOrNotWholeAreRefusedByName) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"track in.mp4 -o x --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"track in.mp4 -o x --max-frames 2.5", "--max-frames: must be a whole number of at least 0, not 2.5"},
+      {"transform in.mp4 -o x.mp4 --max-frames -2", "--max-frames: must be a whole number of at least 0, not -2"},
+      {"swap --source a.jpg --target b.mp4 -o x.mp4 --max-frames -3",
+       "--max-frames: must be a whole number of at least 0, not -3"},
+      {"bench track in.mp4 --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"bench swap --source a.jpg --target b.mp4 --max-frames x",
+       "--max-frames: must be a whole number of at least 0, not x"},
+      {"bench transform in.mp4 --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"eval swap --self in.mp4 --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"eval transform --video in.mp4 --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"eval track --video in.mp4 --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"eval refine --video in.mp4 --max-frames -1", "--max-frames: must be a whole number of at least 0, not -1"},
+      {"eval track --synthetic -3", "--synthetic: must be a whole number of at least 1, not -3"},
+      {"eval track --synthetic 0", "--synthetic: must be a whole number of at least 1, not 0"},
+      {"eval refine --synthetic x", "--synthetic: must be a whole number of at least 1, not x"},
+      {"eval landmarks --synthetic -2", "--synthetic: must be a whole number of at least 1, not -2"},
+      {"eval track --synthetic 5 --photos -1", "--photos: must be a whole number of at least 1, not -1"},
+      {"transform in.mp4 -o x.mp4 --all-faces --leave-faces 1,-2",
+       "--leave-faces: must be a whole number of at least 0, not -2"},
+  };
+  for (const auto& [args, message] : cases) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), message) << args;
+    EXPECT_EQ(lines(r.out), 2) << r.out;  // the error, and CLI11's pointer to --help
+  }
+  // The help says which values they take.
+  EXPECT_NE(run("track --help").out.find("--max-frames INT:NONNEGATIVE"), std::string::npos);
+  EXPECT_NE(run("eval track --help").out.find("--synthetic INT:POSITIVE"), std::string::npos);
+}
+
 // --device names what it takes, and asking for CUDA where there is none is a
 // one-line error, not a crash or a silent fall back to the CPU.
 TEST(Cli, DeviceOptionNamesWhatItNeeds) {
