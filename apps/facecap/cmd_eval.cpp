@@ -123,6 +123,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       ->check(CLI::IsMember({"truth", "dlib"}))
       ->capture_default_str();
   cmd->add_option("--noise", a->options.landmark_noise_px, "Landmark noise sigma in pixels (truth landmarks)")
+      ->check(number_between(0, 100))
       ->capture_default_str();
   cmd->add_option("--still-frames", a->options.still_frames, "Still-head frames for the jitter measurement")
       ->capture_default_str();

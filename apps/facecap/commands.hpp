@@ -53,6 +53,9 @@ CLI::Option* add_smooth_frames_option(CLI::App& cmd, int& smooth_frames);
 // Refuses a value that is not a whole number of at least `least`, naming it
 // (CLI11's own range checks print the type's whole range).
 CLI::Validator whole_number_at_least(int least);
+// Refuses a value that is not a number from `least` to `most` (NaN among
+// them, which CLI11's Range lets through).
+CLI::Validator number_between(double least, double most);
 // --start SECONDS: where track, transform, swap and bench track start reading
 // a video (CaptureOptions::start_seconds).
 void add_start_option(CLI::App& cmd, double& start_seconds);

@@ -211,7 +211,27 @@ CLI::Validator whole_number_at_least(int least) {
         const bool ok = error == std::errc() && end == last && value >= least;
         return ok ? std::string() : "must be a whole number of at least " + std::to_string(least) + ", not " + text;
       },
-      least == 0 ? "NONNEGATIVE" : least == 1 ? "POSITIVE" : ">=" + std::to_string(least));
+      least == 0   ? "NONNEGATIVE"
+      : least == 1 ? "POSITIVE"
+                   : ">=" + std::to_string(least));
+}
+
+CLI::Validator number_between(double least, double most) {
+  const auto bound = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return std::string(text);
+  };
+  const std::string range = bound(least) + " to " + bound(most);
+  return CLI::Validator(
+      [least, most, range](std::string& text) {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        // NaN fails both comparisons, so it is refused with the rest.
+        const bool ok = end != text.c_str() && *end == '\0' && value >= least && value <= most;
+        return ok ? std::string() : "must be a number from " + range + ", not " + text;
+      },
+      range);
 }
 
 void add_start_option(CLI::App& cmd, double& start_seconds) {
@@ -260,7 +280,7 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
                  "Width (Gaussian sigma, mm on the face) of the target's shading that its lighting model leaves "
                  "unexplained (light falling off toward the chin, a broad shadow) and the new face follows; smaller "
                  "copies more of the target's own look onto the new face. 0: off")
-      ->check(CLI::Range(0.0f, 100.0f))
+      ->check(number_between(0, 100))
       ->capture_default_str();
   cmd.add_flag_callback(
       "--no-expression-ratio", [&swap] { swap.expression_ratio = false; },
@@ -269,7 +289,7 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
   cmd.add_option("--photo-detail", swap.photo_detail_gain,
                  "Gain on the photo's mid-scale detail (0.4-3 mm), where its texture holds its own folds and shadows "
                  "that land in the wrong place on another expression; 1 keeps the photo's texture as it is")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(number_between(0, 1))
       ->capture_default_str();
   cmd.add_flag_callback(
       "--no-occlusion", [&swap] { swap.keep_occluders = false; },

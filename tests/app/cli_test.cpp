@@ -147,6 +147,31 @@ TEST(Cli, CountsBelowTheirLeastOrNotWholeAreRefusedByName) {
   EXPECT_NE(run("eval track --help").out.find("--synthetic INT:POSITIVE"), std::string::npos);
 }
 
+// Not-a-number and infinity are refused as out of range, where they once
+// passed CLI11's range check (NaN fails every comparison) or a "< 0" test:
+// `--focal inf` lost every frame and wrote an infinite focal length.
+TEST(Cli, NumbersOutOfRangeOrNotNumbersAreRefusedByName) {
+  const std::string swap = "swap --source a.jpg --target b.mp4 -o x.mp4 ";
+  const std::pair<std::string, std::string> usage[] = {
+      {swap + "--residual-shading nan", "--residual-shading: must be a number from 0 to 100, not nan"},
+      {swap + "--residual-shading -5", "--residual-shading: must be a number from 0 to 100, not -5"},
+      {swap + "--photo-detail nan", "--photo-detail: must be a number from 0 to 1, not nan"},
+      {swap + "--photo-detail 1.5", "--photo-detail: must be a number from 0 to 1, not 1.5"},
+      {"eval track --synthetic 3 --noise nan", "--noise: must be a number from 0 to 100, not nan"},
+      {"eval track --synthetic 3 --noise -1", "--noise: must be a number from 0 to 100, not -1"},
+  };
+  for (const auto& [args, message] : usage) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), message) << args;
+  }
+  for (const char* focal : {"nan", "inf", "-3"}) {
+    const RunResult r = run(std::string("track in.mp4 -o x --focal ") + focal);
+    EXPECT_EQ(r.code, 1) << focal << ": " << r.out;
+    EXPECT_EQ(r.out, "facecap: error: --focal must be positive\n") << focal;
+  }
+}
+
 // --device names what it takes, and asking for CUDA where there is none is a
 // one-line error, not a crash or a silent fall back to the CPU.
 TEST(Cli, DeviceOptionNamesWhatItNeeds) {

@@ -1,5 +1,6 @@
 #include "facecap/fit/fit_options.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "facecap/core/error.hpp"
@@ -36,7 +37,7 @@ void CoarseFitOptions::check() const {
   if (smooth_frames < 0) throw Error("--smooth-frames must be 0 (off) or more");
   if (bcd_iterations < 1) throw Error("fit option bcd_iterations must be at least 1");
   if (max_solver_iterations < 1) throw Error("fit option max_solver_iterations must be at least 1");
-  if (focal_guess < 0) throw Error("--focal must be positive");
+  if (!(focal_guess >= 0 && std::isfinite(focal_guess))) throw Error("--focal must be positive");
   if (focal_known && focal_guess <= 0) throw Error("a known focal length needs --focal");
   if (!(lost_landmark_error > 0)) throw Error("fit option lost_landmark_error must be positive");
   if (known_identity && (known_identity->size() != identity_modes || !known_identity->allFinite()))
