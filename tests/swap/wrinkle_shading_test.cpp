@@ -27,6 +27,9 @@ struct WrinkleCase {
   Positions folded;  // the same with a 1 mm bump on the left cheek
   Vec3f bump_centre;
   ShCoeffs lighting;
+  // Expression weights: the source's (none), and a target frame's farther
+  // from it (eq. 6.2's reference stays on the frame nearest the source's).
+  Eigen::VectorXf neutral, moved;
 
   explicit WrinkleCase(const FaceModel& model) {
     HeadPose pose;
@@ -47,6 +50,9 @@ struct WrinkleCase {
       folded.col(v) += 0.1f * std::exp(-0.5f * d2 / (sigma * sigma)) * normals.col(v);
     }
     lighting << 0.7, 0.35, -0.2, 0.45, 0, 0, 0, 0, 0;
+    neutral = Eigen::VectorXf::Zero(model.num_expressions());
+    moved = neutral;
+    moved[0] = 0.6f;
   }
 
   // `render` (grey) shaded by `w` for a target frame with fine mesh `fine`
@@ -81,9 +87,7 @@ Change changed(const cv::Mat& render) {
 TEST(WrinkleShading, ShadesTheTargetsFoldWhereItAppearsSinceTheReference) {
   FACECAP_REQUIRE_MODEL(model);
   const WrinkleCase k(*model);
-  const Eigen::VectorXf neutral = Eigen::VectorXf::Zero(model->num_expressions());
-  Eigen::VectorXf moved = neutral;
-  moved[0] = 0.6f;
+  const Eigen::VectorXf &neutral = k.neutral, &moved = k.moved;
   WrinkleShading w(skin_mesh(*model), neutral);
   // The first frame (the source's own expression) is the reference: no motion.
   const Change first = changed(k.shade(w, k.flat, neutral));
@@ -104,9 +108,7 @@ TEST(WrinkleShading, ShadesTheTargetsFoldWhereItAppearsSinceTheReference) {
 TEST(WrinkleShading, AFoldAlreadyInTheReferenceFrameIsNotDrawnAgain) {
   FACECAP_REQUIRE_MODEL(model);
   const WrinkleCase k(*model);
-  const Eigen::VectorXf neutral = Eigen::VectorXf::Zero(model->num_expressions());
-  Eigen::VectorXf moved = neutral;
-  moved[0] = 0.6f;
+  const Eigen::VectorXf &neutral = k.neutral, &moved = k.moved;
   WrinkleShading w(skin_mesh(*model), neutral);
   EXPECT_EQ(changed(k.shade(w, k.folded, neutral)).pixels, 0);
   EXPECT_EQ(changed(k.shade(w, k.folded, moved)).pixels, 0);
