@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <functional>
 
 #include <opencv2/imgproc.hpp>
 
@@ -114,8 +115,6 @@ CaptureSummary capture_pressing_ctrl_c(const FaceModel& model, const std::filesy
   return s;
 }
 
-// A camera has no end but the user's: Ctrl-C ends the input, and every frame
-// captured until then is delivered, fitted with the identity solved from them.
 // A render that turns 25 degrees away (seed 3, as `eval track --synthetic 90
 // --seed 3 --landmarks dlib` renders it): there the per-frame check finds no
 // face and a search of the whole frame finds only the nose and mouth, a face
@@ -190,6 +189,8 @@ TEST(CaptureSession, AFaceRolledBetweenTheTurnsIsFoundOnTheFirstFrame) {
   EXPECT_EQ(delivered.size(), 8u);
 }
 
+// A camera has no end but the user's: Ctrl-C ends the input, and every frame
+// captured until then is delivered, fitted with the identity solved from them.
 TEST(CaptureSession, ACameraStoppedByCtrlCDeliversWhatItCaptured) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
@@ -216,6 +217,43 @@ TEST(CaptureSession, AVideoStoppedByCtrlCThrows) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   EXPECT_THROW(capture_pressing_ctrl_c(*model, video, InputKind::kVideo, 20, [](const CapturedFrame&) {}), Error);
+}
+
+// Options out of range are refused by name before a frame is read, by both
+// captures: a negative frame count once meant the whole input.
+TEST(CaptureSession, OptionsOutOfRangeAreRefusedBeforeReading) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const auto refusal = [&](const std::function<void(CaptureOptions&)>& set) -> std::string {
+    CaptureOptions options;
+    options.quiet = true;
+    set(options);
+    int delivered = 0;
+    const auto count = [&](const CapturedFrame&) { ++delivered; };
+    std::string message, all_faces_message;
+    try {
+      run_capture(*model, *open_input(video.string()), options, count);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    try {
+      run_capture_all_faces(*model, *open_input(video.string()), options, {},
+                            [&](const FoundFace&, const InputInfo&) -> FrameSink { return count; });
+    } catch (const Error& e) {
+      all_faces_message = e.what();
+    }
+    EXPECT_EQ(message, all_faces_message);
+    EXPECT_EQ(delivered, message.empty() ? 2 * options.max_frames : 0) << message;
+    return message;
+  };
+  EXPECT_EQ(refusal([](CaptureOptions& o) { o.max_frames = -1; }),
+            "--max-frames must be 0 (the whole input) or more, not -1");
+  EXPECT_EQ(refusal([](CaptureOptions& o) { o.start_seconds = std::nan(""); }), "--start must be 0 or more seconds");
+  EXPECT_EQ(refusal([](CaptureOptions& o) { o.start_seconds = -2; }), "--start must be 0 or more seconds");
+  EXPECT_EQ(refusal([](CaptureOptions& o) { o.fit.focal_guess = INFINITY; }), "--focal must be positive");
+  EXPECT_EQ(refusal([](CaptureOptions& o) { o.shot_cut.min_correlation = std::nan(""); }),
+            "capture option shot_cut.min_correlation must be at most 1");
+  EXPECT_EQ(refusal([](CaptureOptions& o) { o.max_frames = 2; }), "");  // in range, both capture
 }
 
 // A pipelined capture (a frame's landmarks found while the frame before is

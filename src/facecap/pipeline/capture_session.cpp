@@ -1,6 +1,9 @@
 #include "facecap/pipeline/capture_session.hpp"
 
 #include <chrono>
+#include <cmath>
+
+#include "facecap/core/error.hpp"
 
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/pipeline/face_capture.hpp"
@@ -14,7 +17,20 @@ std::string unreadable_frames_note(const CaptureSummary& summary, const std::str
          " could not be read and are lost (the first: " + summary.first_error + ")";
 }
 
+void CaptureOptions::check() const {
+  fit.check();
+  // The command line refuses these by name too (apps/facecap/common.cpp);
+  // here they reach library callers, for whom a negative count would
+  // otherwise read the whole input.
+  if (max_frames < 0)
+    throw Error("--max-frames must be 0 (the whole input) or more, not " + std::to_string(max_frames));
+  if (!(std::isfinite(start_seconds) && start_seconds >= 0)) throw Error("--start must be 0 or more seconds");
+  if (!(shot_cut.min_correlation <= 1)) throw Error("capture option shot_cut.min_correlation must be at most 1");
+  if (!(shot_cut.min_contrast >= 0)) throw Error("capture option shot_cut.min_contrast must be 0 or more");
+}
+
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink) {
+  options.check();
   const auto start = std::chrono::steady_clock::now();
   const InputInfo info = source.info();
   if (info.kind == InputKind::kImage) options.fit.set_single_image();

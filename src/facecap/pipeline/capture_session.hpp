@@ -35,6 +35,10 @@ struct CaptureOptions {
   // Find a frame's landmarks while the frame before is fitted, on another
   // thread (face_capture.hpp); the same result either way.
   bool pipelined = true;
+
+  // Throws facecap::Error naming the first option out of range (the fit's
+  // included); run_capture and run_capture_all_faces call it before reading.
+  void check() const;
 };
 
 struct CapturedFrame {

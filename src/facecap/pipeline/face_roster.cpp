@@ -105,6 +105,7 @@ void add_new_faces(std::vector<TurnedFace>& faces, const std::vector<TurnedFace>
 AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& source, CaptureOptions options,
                                       const AllFacesOptions& all, const NewFaceSink& on_new_face,
                                       const FrameFacesHook& on_frame) {
+  options.check();
   const auto start = std::chrono::steady_clock::now();
   AllFacesSummary summary;
   summary.input = source.info();
