@@ -12,6 +12,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 #include "app/command.hpp"
 #include "facecap/core/csv_line.hpp"
@@ -36,19 +37,23 @@ namespace {
 
 std::vector<std::string> lines(const fs::path& p) { return test::read_lines(p); }
 
-// A silent H.264 test clip of `inputs`, each read as 25 fps (frames kept, not
-// resampled), through the ffmpeg filter graph `graph` (its output is [v]).
-test::CommandResult compose_clip(const std::vector<fs::path>& inputs, const std::string& graph, const fs::path& out) {
+// Writes `out`, a silent H.264 test clip of `inputs`, each read as 25 fps
+// (frames kept, not resampled), through the ffmpeg filter graph `graph` (its
+// output is [v]), and returns its path; throws with ffmpeg's words if it fails.
+fs::path compose_clip(const std::vector<fs::path>& inputs, const std::string& graph, const fs::path& out) {
   std::string command = "ffmpeg -nostdin -hide_banner -loglevel error -y";
   for (const fs::path& in : inputs) command += " -r 25 -i " + in.string();
-  return test::run_command(command + " -filter_complex \"" + graph +
-                           "\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " + out.string() + " 2>&1");
+  const test::CommandResult made =
+      test::run_command(command + " -filter_complex \"" + graph +
+                        "\" -map \"[v]\" -an -c:v libx264 -preset ultrafast -crf 16 " + out.string() + " 2>&1");
+  if (made.code != 0) throw std::runtime_error("ffmpeg could not compose " + out.string() + ": " + made.out);
+  return out;
 }
 
 // Two people side by side (1280x360, 56 frames) after 8 black frames (a
 // fade-in): `left` on the left from frame 8, `right` sliding in from the
 // right edge over frames 20-28.
-test::CommandResult two_people_clip(const fs::path& left, const fs::path& right, const fs::path& out) {
+fs::path two_people_clip(const fs::path& left, const fs::path& right, const fs::path& out) {
   return compose_clip(
       {left, right},
       "[0:v]trim=end_frame=48,scale=640:360,pad=1280:360:0:0,setsar=1[a];[1:v]trim=end_frame=48,scale=480:360,pad=640:"
@@ -63,6 +68,13 @@ std::vector<cv::Mat> decoded_frames(const fs::path& video) {
   Frame f;
   while (source->read(f)) frames.push_back(f.image.clone());
   return frames;
+}
+
+// A grey picture with no face in it, written into `dir`.
+fs::path faceless_image(const fs::path& dir) {
+  const fs::path grey = dir / "grey.png";
+  facecap::write_image(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  return grey;
 }
 
 // An --all-faces edit of two_people_clip (`both`, its frames as written)
@@ -107,10 +119,7 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   // 40 frames of each, both read as 25 fps (-r before -i: frames kept, not resampled).
   const std::string scaled = "scale=960:720,pad=1280:720:160:0,setsar=1";
   auto make = [&](const std::string& name, const std::vector<fs::path>& inputs, const std::string& graph) {
-    const fs::path out = dir.path() / name;
-    const test::CommandResult r = compose_clip(inputs, graph, out);
-    EXPECT_EQ(r.code, 0) << r.out;
-    return out;
+    return compose_clip(inputs, graph, dir.path() / name);
   };
   const fs::path joined =
       make("joined.mp4", {first, second},
@@ -280,20 +289,16 @@ TEST(TrackJob, AShotCutToAnotherSpeakerSolvesTheirOwnIdentity) {
   EXPECT_GT(distance(identity_of(dir.path() / "one")["identity_weights"], own), 2.0);
 }
 
-// --all-faces: two people side by side, after 8 black frames (a fade-in),
-// each captured into a folder of their own, left to right; an earlier run's
-// third face's folder goes.
 // --all-faces: two faces side by side after 8 black frames, the right one
 // sliding in 12 frames after the left, each captured into its own folder from
-// the frame it is found in, on one pass.
+// the frame it is found in, left to right, on one pass; an earlier run's
+// third face's folder goes.
 TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
   FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
   TempDir dir;
-  const fs::path two = dir.path() / "two.mp4";
-  const test::CommandResult made = two_people_clip(left, right, two);
-  ASSERT_EQ(made.code, 0) << made.out;
+  const fs::path two = two_people_clip(left, right, dir.path() / "two.mp4");
   const fs::path out = dir.path() / "out";
   fs::create_directories(out / "face_2");
   std::ofstream(out / "face_2" / "frames.csv") << "an earlier run's\n";
@@ -379,8 +384,7 @@ TEST(TrackJob, AllFacesCapturesEachFaceIntoItsOwnFolder) {
   }
 
   // An input with no face is an error, and nothing is written.
-  const fs::path grey = dir.path() / "grey.png";
-  facecap::write_image(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  const fs::path grey = faceless_image(dir.path());
   EXPECT_THROW(run_track_each_face(*model, grey.string(), dir.path() / "none", o), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none"));
 }
@@ -395,9 +399,7 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   FACECAP_REQUIRE_DATA(left, "address_720p_a.mp4");
   FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
   TempDir dir;
-  const fs::path two = dir.path() / "two.mp4";
-  const test::CommandResult made = two_people_clip(left, right, two);
-  ASSERT_EQ(made.code, 0) << made.out;
+  const fs::path two = two_people_clip(left, right, dir.path() / "two.mp4");
   const std::vector<cv::Mat> input = decoded_frames(two);
   ASSERT_EQ(input.size(), 56u);
 
@@ -476,8 +478,7 @@ TEST(TransformJob, AllFacesTransformsEachFaceAsItsOwnRunDoes) {
   EXPECT_THROW(run_transform(*model, two.string(), dir.path() / "left.mp4", sad_right), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "left.mp4"));
   // No face anywhere: an error, and nothing is written.
-  const fs::path grey = dir.path() / "grey.png";
-  facecap::write_image(grey.string(), cv::Mat(200, 300, CV_8UC3, cv::Scalar(128, 128, 128)));
+  const fs::path grey = faceless_image(dir.path());
   o.on_frame = nullptr;
   EXPECT_THROW(run_transform_all_faces(*model, grey.string(), dir.path() / "none.png", o), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "none.png"));
@@ -494,9 +495,7 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
   FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
   FACECAP_REQUIRE_DATA(other, "portrait_obama.jpg");
   TempDir dir;
-  const fs::path two = dir.path() / "two.mp4";
-  const test::CommandResult made = two_people_clip(left, right, two);
-  ASSERT_EQ(made.code, 0) << made.out;
+  const fs::path two = two_people_clip(left, right, dir.path() / "two.mp4");
   const std::vector<cv::Mat> input = decoded_frames(two);
   SwapJobOptions o;
   o.capture.quiet = true;
@@ -598,6 +597,10 @@ TEST(SwapJob, AllFacesSwapsEachFaceAsItsOwnRunDoes) {
   with_gltf.gltf = dir.path() / "swap.glb";
   EXPECT_THROW(run_swap_all_faces(*model, photo.string(), two.string(), dir.path() / "gltf.mp4", with_gltf), Error);
   EXPECT_FALSE(fs::exists(dir.path() / "gltf.mp4"));
+  // No face in the target: an error, and nothing is written.
+  const fs::path grey = faceless_image(dir.path());
+  EXPECT_THROW(run_swap_all_faces(*model, photo.string(), grey.string(), dir.path() / "none.png", o), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "none.png"));
 }
 
 // --all-faces: a face covered for 8 frames comes back into its own folder
@@ -609,14 +612,12 @@ TEST(TrackJob, AllFacesKeepsEachFaceInItsFolderThroughCoverAndCuts) {
   FACECAP_REQUIRE_DATA(right, "talking_webcam2_400x300.mp4");
   FACECAP_REQUIRE_DATA(later, "address_720p_b.mp4");
   TempDir dir;
-  const fs::path video = dir.path() / "cut.mp4";
-  const test::CommandResult made = compose_clip(
+  const fs::path video = compose_clip(
       {left, right, later},
       "[0:v]trim=end_frame=48,scale=640:360,setsar=1,drawbox=x=0:y=0:w=640:h=360:color=black:t=fill:enable='between(n,"
       "24,31)'[l];[1:v]trim=end_frame=48,scale=480:360,pad=640:360:80:0,setsar=1[r];[l][r]hstack[A];[2:v]trim=end_"
       "frame=24,scale=640:360,pad=1280:360:640:0,setsar=1[B];[A][B]concat=n=2:v=1[v]",
-      video);
-  ASSERT_EQ(made.code, 0) << made.out;
+      dir.path() / "cut.mp4");
   TrackOptions o;
   o.capture.quiet = true;
   const EachFaceSummary each = run_track_each_face(*model, video.string(), dir.path() / "out", o);

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "facecap/core/error.hpp"
-
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/pipeline/face_capture.hpp"
 #include "facecap/pipeline/frame_loop.hpp"
