@@ -15,7 +15,7 @@ namespace {
 // The closing notes of one capture: frames that could not be read, the
 // refinement's timing, the Live Link stream.
 void report_notes(const TrackSummary& s, const std::string& input, bool refine, const char* indent) {
-  if (const std::string note = unreadable_frames_note(s.capture, input); !note.empty())
+  if (const std::string note = damaged_input_note(s.capture, input); !note.empty())
     std::fprintf(stderr, "facecap: %s\n", note.c_str());
   if (refine)
     std::fprintf(stderr, "%srefinement: %d frames, %.1f ms per frame on its own thread\n", indent, s.refined_frames,
@@ -82,6 +82,7 @@ void report_all_faces(const AllFacesSummary& all) {
                all.faces.size(), t.frames, t.decode_ms / n, t.detect_ms / n, t.setup_ms, t.fps());
   if (all.cuts > 0) std::fprintf(stderr, "facecap: %d shot cut(s); each face's identity is solved again\n", all.cuts);
   report_uncaptured_faces(all, "not captured");
+  if (all.damaged > 0) std::fprintf(stderr, "facecap: %s\n", damaged_frames_note(all.damaged, "the input").c_str());
 }
 
 // The files a capture wrote, one per line.
@@ -264,7 +265,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     const TrackSummary s = run_track(model, a->input, a->out, a->options);
     if (s.capture.identity.frames_used == 0) {
       // frames.csv is still written (every frame "lost"), but there is nothing else to give.
-      const std::string note = unreadable_frames_note(s.capture, a->input);
+      const std::string note = damaged_input_note(s.capture, a->input);
       throw Error("no face found in " + a->input + ": all " + std::to_string(s.capture.frames) +
                   " frame(s) are lost in " + (std::filesystem::path(a->out) / "frames.csv").string() +
                   (note.empty() ? "" : "; " + note));

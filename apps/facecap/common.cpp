@@ -147,6 +147,7 @@ void report_edited_faces(const AllFacesSummary& all, const AllFacesOptions& opti
     std::fprintf(stderr, "face %d (from frame %d): frames %d, %s %d, lost %d%s\n", k, all.faces[k].first_frame,
                  all.captures[k].frames, verb, edited(k), all.captures[k].lost, note.c_str());
   }
+  if (all.damaged > 0) std::fprintf(stderr, "facecap: %s\n", damaged_frames_note(all.damaged, "the input").c_str());
 }
 
 void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& all, const char* option) {

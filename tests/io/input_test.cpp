@@ -3,13 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/command.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
+#include "io/damaged_clip.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -28,8 +31,7 @@ std::string open_error(const std::string& spec, double start_seconds = 0) {
 }
 
 void write_prefix(const fs::path& from, const fs::path& to, double share) {
-  std::ifstream in(from, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = test::read_file(from);
   std::ofstream(to, std::ios::binary) << bytes.substr(0, size_t(bytes.size() * share));
 }
 
@@ -164,6 +166,32 @@ TEST(Input, TruncatedVideosAreRejectedWhereverTheIndexSits) {
   write_prefix(webcam, dir.path() / "cut_b.mp4", 0.4);
   const std::string b = open_error((dir.path() / "cut_b.mp4").string());
   EXPECT_NE(b.find("truncated"), std::string::npos) << b;
+}
+
+// A stream damaged part-way decodes on, frame by frame, and a frame decoded
+// with its damage concealed says so (Frame::damaged), so that a capture can
+// tell a corrupt video from one where no face shows (damaged_clip.hpp: the
+// first keyframe hit).
+TEST(Input, AFrameDecodedWithDamageIsFlagged) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  const auto read_all = [](const fs::path& video) {
+    std::vector<int> damaged;
+    int frames = 0;
+    auto source = open_input(video.string());
+    for (Frame f; source->read(f); ++frames) {
+      EXPECT_FALSE(f.image.empty()) << f.index;
+      if (f.damaged) damaged.push_back(f.index);
+    }
+    return std::pair{frames, damaged};
+  };
+  const auto [clean_frames, clean_damaged] = read_all(clip.clean);
+  const auto [hit_frames, hit_damaged] = read_all(clip.damaged);
+  EXPECT_EQ(clean_frames, 52);
+  EXPECT_TRUE(clean_damaged.empty());
+  EXPECT_EQ(hit_frames, clean_frames);  // the damaged frame and those predicted from it still come
+  EXPECT_EQ(hit_damaged, std::vector<int>{0});
 }
 
 // Starting part-way gives exactly the frames a read from the start gives

@@ -19,6 +19,7 @@
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/probe.hpp"
 #include "facecap/synth/synthesize.hpp"
+#include "io/damaged_clip.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -217,6 +218,39 @@ TEST(CaptureSession, AVideoStoppedByCtrlCThrows) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   EXPECT_THROW(capture_pressing_ctrl_c(*model, video, InputKind::kVideo, 20, [](const CapturedFrame&) {}), Error);
+}
+
+// A frame decoded with damage (damaged_clip.hpp: the first keyframe hit) is
+// delivered marked, counted in the summary, and said so in the closing note
+// and in the error where no face shows at all.
+TEST(CaptureSession, FramesDecodedWithDamageAreCountedAndSaidSo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  CaptureOptions options;
+  options.quiet = true;
+  std::vector<int> damaged;
+  int tracked = 0;
+  const CaptureSummary s =
+      run_capture(*model, *open_input(clip.damaged.string()), options, [&](const CapturedFrame& f) {
+        if (f.damaged) damaged.push_back(f.index);
+        tracked += f.status != TrackStatus::kLost;
+      });
+  EXPECT_EQ(damaged, std::vector<int>{0});
+  EXPECT_EQ(s.damaged, 1);
+  EXPECT_EQ(tracked, s.frames);  // concealed well enough to track
+  const std::string damage =
+      "1 frame(s) of it were decoded with damage (a corrupt stream: parts of them, and of the frames predicted from "
+      "them, are made up by the decoder)";
+  EXPECT_EQ(damaged_input_note(s, "it"), damage);
+  EXPECT_EQ(no_face_error("x.mp4", 1, "nothing to swap"),
+            "no face found in any frame of x.mp4: nothing to swap; " + damage);
+  EXPECT_EQ(no_face_error("x.mp4", 0, "nothing to swap"), "no face found in any frame of x.mp4: nothing to swap");
+  const CaptureSummary clean = run_capture(*model, *open_input(clip.clean.string()), options,
+                                           [](const CapturedFrame& f) { EXPECT_FALSE(f.damaged) << f.index; });
+  EXPECT_EQ(clean.damaged, 0);
+  EXPECT_EQ(damaged_input_note(clean, "it"), "");
 }
 
 // Options out of range are refused by name before a frame is read, by both

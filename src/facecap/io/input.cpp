@@ -140,6 +140,7 @@ class VideoSource final : public FrameSource {
     if (!decoder_.read(first_) || first_.empty()) {
       throw Error("cannot decode " + info_.spec + ": no frame could be decoded (corrupt or unsupported video)");
     }
+    first_damaged_ = decoder_.damaged();
     first_time_ = frame_time(0, true);
     info_.width = first_.cols;
     info_.height = first_.rows;
@@ -161,6 +162,7 @@ class VideoSource final : public FrameSource {
         (info_.duration > 0 ? "it is " + seconds_text(info_.duration) + " long" : std::string("it ends before then"));
     const int index = decoder_.seek(seconds);
     if (index < 0 || !decoder_.read(first_) || first_.empty()) throw Error(past_end);
+    first_damaged_ = decoder_.damaged();
     index_ = index;
     info_.first_frame = index;
     first_time_ = info_.first_time = frame_time(index, true);
@@ -169,16 +171,19 @@ class VideoSource final : public FrameSource {
   bool read(Frame& frame) override {
     cv::Mat image;
     double time = 0;
+    bool damaged = false;
     if (!first_.empty()) {
       image = first_;
       first_.release();
       time = first_time_;
+      damaged = first_damaged_;
     } else if (!decoder_.read(image) || image.empty()) {
       return false;
     } else {
       time = frame_time(index_, false);
+      damaged = decoder_.damaged();
     }
-    frame = Frame{image, index_, time, {}};
+    frame = Frame{image, index_, time, {}, damaged};
     previous_time_ = time;
     ++index_;
     return true;
@@ -200,6 +205,7 @@ class VideoSource final : public FrameSource {
   VideoDecoder decoder_;
   InputInfo info_;
   cv::Mat first_;
+  bool first_damaged_ = false;
   double first_time_ = 0;
   double previous_time_ = -1;  // the last frame read's time (-1: none yet)
   int index_ = 0;

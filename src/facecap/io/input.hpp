@@ -47,7 +47,8 @@ struct Frame {
   // would drift from it, and edits from their sound); index / fps for a
   // camera; 0 for stills and folders.
   double time = 0.0;
-  std::string error;  // why `image` is empty, for per-frame status
+  std::string error;     // why `image` is empty, for per-frame status
+  bool damaged = false;  // a video's frame decoded with damage concealed (VideoDecoder::damaged)
 };
 
 class FrameSource {
@@ -77,7 +78,7 @@ InputInfo probe_video_file(const std::filesystem::path& path);
 // Silences libav's own log, set before each video or image is opened: a
 // damaged stream would print a line per broken macroblock ("error while
 // decoding MB ...") between facecap's own lines. Such frames still decode
-// (with their damage) and are tracked or lost.
+// (with their damage, which Frame::damaged marks) and are tracked or lost.
 void quiet_ffmpeg_log();
 // FFmpeg's words for one of its error codes (AVERROR(...)).
 std::string av_error_text(int code);

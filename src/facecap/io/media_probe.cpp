@@ -1,10 +1,13 @@
 // Container-level facts about a video file, read with libavformat.
 extern "C" {
+#include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
 #include <libavutil/error.h>
 }
 
 #include <cmath>
+#include <cstring>
+#include <mutex>
 
 #include "facecap/core/error.hpp"
 #include "facecap/io/input.hpp"
@@ -28,9 +31,32 @@ std::unique_ptr<AVFormatContext, FormatCloser> open_container(const std::filesys
   return std::unique_ptr<AVFormatContext, FormatCloser>(raw);
 }
 
+// libav's log callback: prints nothing; an error from a decoder that
+// count_decoding_errors set up is counted, and so is the line with which
+// libavcodec's error resilience says it concealed damage ("concealing %d DC,
+// %d AC, %d MV errors in %c frame", logged as information: a keyframe hit
+// part-way says nothing else).
+void libav_log_sink(void* source, int level, const char* format, va_list) {
+  const bool concealed = format != nullptr && std::strncmp(format, "concealing ", 11) == 0;
+  if (source == nullptr || (level > AV_LOG_ERROR && !concealed)) return;
+  if (*static_cast<const AVClass* const*>(source) != avcodec_get_class()) return;
+  const auto* context = static_cast<const AVCodecContext*>(source);
+  if (context->opaque != nullptr && av_codec_is_decoder(context->codec))
+    static_cast<std::atomic<int>*>(context->opaque)->fetch_add(1, std::memory_order_relaxed);
+}
+
 }  // namespace
 
-void quiet_ffmpeg_log() { av_log_set_level(AV_LOG_QUIET); }
+void quiet_ffmpeg_log() {
+  av_log_set_level(AV_LOG_QUIET);
+  static std::once_flag once;  // the callback is read by libav's threads: set before any decoder runs, once
+  std::call_once(once, [] { av_log_set_callback(libav_log_sink); });
+}
+
+void count_decoding_errors(AVCodecContext& decoder, std::atomic<int>& errors) {
+  quiet_ffmpeg_log();
+  decoder.opaque = &errors;
+}
 
 std::string av_error_text(int code) {
   char text[AV_ERROR_MAX_STRING_SIZE] = {0};

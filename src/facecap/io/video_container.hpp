@@ -2,10 +2,12 @@
 // A video file's container opened with libavformat, and the facts facecap
 // reads from it (InputInfo), shared by probe_video_file and the decoder so
 // that a video opened to be decoded is probed on the same opening.
+#include <atomic>
 #include <filesystem>
 
 #include "facecap/io/input.hpp"
 
+struct AVCodecContext;
 struct AVFormatContext;
 
 namespace facecap {
@@ -20,5 +22,13 @@ AVFormatContext* open_video_container(const std::filesystem::path& path);
 // file where it is truncated past its index, has no video stream or no
 // frame size.
 InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path);
+
+// From now on the error-level lines libavcodec logs while `decoder` decodes
+// (under frame threading, from its threads' copies of it) add to `errors`
+// instead of going nowhere (quiet_ffmpeg_log): the damage it met in the
+// stream and concealed. decode_error_flags says the same of a frame, but
+// under frame threading it comes out on the frame or not by the threads'
+// timing. `errors` must outlive the decoder; the context's `opaque` is taken.
+void count_decoding_errors(AVCodecContext& decoder, std::atomic<int>& errors);
 
 }  // namespace facecap

@@ -11,6 +11,7 @@ extern "C" {
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
@@ -62,8 +63,11 @@ struct VideoDecoder::Impl {
   int rotation = 0;  // clockwise degrees that turn a decoded frame upright
   bool flushing = false;
   double last_time = std::numeric_limits<double>::quiet_NaN();
-  bool holding = false;  // `frame` is the one seek() found, for the next read()
-  InputInfo facts;       // a file's (video_facts)
+  bool last_damaged = false;
+  std::atomic<int> decoding_errors{0};  // count_decoding_errors
+  int decoding_errors_seen = 0;         // by the frame read last
+  bool holding = false;                 // `frame` is the one seek() found, for the next read()
+  InputInfo facts;                      // a file's (video_facts)
 
   ~Impl() {
     sws_freeContext(sws);
@@ -99,6 +103,7 @@ struct VideoDecoder::Impl {
     // One decoding thread a core, as OpenCV's back-end used (libavcodec's own
     // choice, one more than the cores, competed with capture on the 2-core VM).
     codec->thread_count = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+    count_decoding_errors(*codec, decoding_errors);
     code = avcodec_open2(codec, decoder, nullptr);
     if (code < 0) throw Error("cannot decode " + name + ": " + av_error_text(code));
     if (const auto* matrix =
@@ -238,10 +243,19 @@ bool VideoDecoder::read(cv::Mat& bgr) {
   }
   bgr = d.to_bgr();
   d.last_time = d.frame_time();
+  // Errors logged since the frame before: under frame threading they may
+  // belong to a frame the threads decode ahead, so the flag can fall a frame
+  // or two early or late.
+  const int errors = d.decoding_errors.load(std::memory_order_relaxed);
+  d.last_damaged = d.frame->decode_error_flags != 0 || (d.frame->flags & AV_FRAME_FLAG_CORRUPT) != 0 ||
+                   errors != d.decoding_errors_seen;
+  d.decoding_errors_seen = errors;
   return true;
 }
 
 double VideoDecoder::time() const { return impl_->last_time; }
+
+bool VideoDecoder::damaged() const { return impl_->last_damaged; }
 
 const InputInfo& VideoDecoder::facts() const { return impl_->facts; }
 

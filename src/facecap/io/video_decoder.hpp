@@ -34,6 +34,10 @@ class VideoDecoder {
   // The time of the frame read last, in seconds from the stream's start, or
   // NaN where it carries no timestamp.
   double time() const;
+  // Whether the frame read last came with damage concealed: libavcodec
+  // flagged it corrupt or filled in parts it could not decode (a corrupt
+  // stream; frames predicted from it carry the damage on unflagged).
+  bool damaged() const;
   // The frame rate the container gives (average, else nominal), or 0.
   double nominal_fps() const;
   // A file's facts, as probe_video_file gives them, read on the decoder's

@@ -16,6 +16,24 @@ std::string unreadable_frames_note(const CaptureSummary& summary, const std::str
          " could not be read and are lost (the first: " + summary.first_error + ")";
 }
 
+std::string damaged_frames_note(int damaged, const std::string& what) {
+  if (damaged == 0) return "";
+  return std::to_string(damaged) + " frame(s) of " + what +
+         " were decoded with damage (a corrupt stream: parts of them, and of the frames predicted from them, are "
+         "made up by the decoder)";
+}
+
+std::string damaged_input_note(const CaptureSummary& summary, const std::string& what) {
+  const std::string unreadable = unreadable_frames_note(summary, what),
+                    damaged = damaged_frames_note(summary.damaged, what);
+  return unreadable.empty() || damaged.empty() ? unreadable + damaged : unreadable + "; " + damaged;
+}
+
+std::string no_face_error(const std::string& what, int damaged, const std::string& consequence) {
+  return "no face found in any frame of " + what + ": " + consequence +
+         (damaged > 0 ? "; " + damaged_frames_note(damaged, "it") : "");
+}
+
 void CaptureOptions::check() const {
   fit.check();
   // The command line refuses these by name too (apps/facecap/common.cpp);
@@ -40,6 +58,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       run_frame_loop(source, options, [&](const DecodedFrame& d, bool cut) { face.push(d, cut); });
   CaptureSummary summary = face.finish();
   summary.cuts = loop.cuts;
+  summary.damaged = loop.damaged;
   summary.stopped_by_user = loop.stopped_by_user;
   StageTimings& t = summary.timings;
   t.setup_ms = setup_ms;

@@ -51,6 +51,7 @@ struct CapturedFrame {
   int shot = 0;               // which shot of the input (CaptureOptions::shot_cuts), from 0
   cv::Mat image;              // when CaptureOptions::keep_images (black where the input could not give the frame)
   std::string error;          // why the frame could not be read (it is then lost); "" otherwise
+  bool damaged = false;       // decoded with damage concealed (Frame::damaged): the input is corrupt
 };
 
 // Milliseconds spent per stage, summed over frames.
@@ -76,6 +77,7 @@ struct CaptureSummary {
   int most_faces = 0;       // the most faces the detector found in one frame (--face chooses which is tracked)
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons
+  int damaged = 0;          // frames decoded with damage concealed (CapturedFrame::damaged), lost or not
   // The identity and focal length of the first shot with a face (the only
   // shot unless the input cuts), and of every shot with a face.
   IdentityEstimate identity;
@@ -98,6 +100,13 @@ using FrameSink = std::function<void(const CapturedFrame&)>;
 // One line for the user where some frames could not be read ("N frame(s) of
 // WHAT could not be read, ..."), "" where every frame could.
 std::string unreadable_frames_note(const CaptureSummary& summary, const std::string& what);
+// "N frame(s) of WHAT were decoded with damage (...)", "" where `damaged` is 0.
+std::string damaged_frames_note(int damaged, const std::string& what);
+// The two above in one line ("; " between), "" where every frame was read whole.
+std::string damaged_input_note(const CaptureSummary& summary, const std::string& what);
+// "no face found in any frame of WHAT: CONSEQUENCE", and how many frames came
+// with damage where any did (a corrupt video may be why no face shows).
+std::string no_face_error(const std::string& what, int damaged, const std::string& consequence);
 
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink);
 

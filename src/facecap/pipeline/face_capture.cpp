@@ -29,6 +29,7 @@ void FaceCapture::deliver(const std::vector<CoarseFit>& fits) {
     out.faces_seen = it->second.faces_seen;
     out.image = it->second.image;
     out.error = it->second.error;
+    out.damaged = it->second.damaged;
     out.identity = tracker_.identity();
     out.shot = it->second.shot;
     waiting_.erase(it);
@@ -75,7 +76,7 @@ FaceCapture::FitJob FaceCapture::track(const DecodedFrame& d, const FaceTracker:
   if (last_.status != TrackStatus::kLost) job.landmarks = last_.landmarks;
   cv::Mat kept;
   if (options_.keep_images) kept = image_or_black(frame, summary_.input);
-  waiting_[frame.index] = {last_.status, last_.faces_seen, kept, frame.error, shot_};
+  waiting_[frame.index] = {last_.status, last_.faces_seen, kept, frame.error, frame.damaged, shot_};
   if (job.landmarks && options_.gaze) {
     // Timed where the tracker calls it (maybe later, after the identity solve).
     job.iris_search = [search = facecap::iris_search(d.grey, *job.landmarks),

@@ -45,6 +45,7 @@ class FaceCapture {
     int faces_seen;
     cv::Mat image;
     std::string error;
+    bool damaged;
     int shot;
   };
   // One frame's landmarks for the fit (track()'s output).

@@ -68,6 +68,7 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
     result.decode_ms += d->decode_ms;
     const bool cut = find_cuts && cuts.next(d->grey);
     result.cuts += cut;
+    result.damaged += d->frame.damaged;
     on_frame(*d, cut);
     ++result.frames;
     progress.update(result.frames);

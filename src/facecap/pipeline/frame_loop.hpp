@@ -22,6 +22,7 @@ struct FrameLoopResult {
   int frames = 0;
   double decode_ms = 0;  // on the decode thread, summed
   int cuts = 0;
+  int damaged = 0;               // frames decoded with damage concealed (Frame::damaged)
   bool stopped_by_user = false;  // a camera ended by Ctrl-C
 };
 

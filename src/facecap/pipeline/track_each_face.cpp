@@ -64,7 +64,8 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
       });
   summary.faces = summary.capture.faces;
   if (summary.faces.empty())
-    throw Error("no face found in the " + std::to_string(summary.capture.timings.frames) + " frame(s) of " + input);
+    throw Error("no face found in the " + std::to_string(summary.capture.timings.frames) + " frame(s) of " + input +
+                (summary.capture.damaged > 0 ? "; " + damaged_frames_note(summary.capture.damaged, "it") : ""));
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < summary.faces.size(); ++k) {
     const FoundFace& face = summary.faces[k];

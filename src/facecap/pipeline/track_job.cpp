@@ -125,6 +125,7 @@ class FrameWriter {
     o << f.index << ',' << csv_number(f.time) << ',' << to_string(f.status);
     nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}, {"shot", f.shot}};
     if (!f.error.empty()) row["error"] = f.error;
+    if (f.damaged) row["damaged"] = true;
     if (ok) {
       const Vec3d ypr = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
       for (int k = 0; k < 3; ++k) o << ',' << csv_number(f.fit.pose.rotation[k]);

@@ -1,0 +1,44 @@
+#pragma once
+// A video damaged part-way for the tests of corrupt input: two seconds of a
+// clip (its stream copied, the index first), then the same with 32 bytes of
+// 0xFF three quarters into the first video packet, its keyframe.
+// `ffmpeg -f null` reports one corrupt frame in it; every frame still decodes.
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "app/command.hpp"
+#include "test_support.hpp"
+
+namespace facecap::test {
+
+struct DamagedClip {
+  std::filesystem::path clean, damaged;
+};
+
+// Writes both clips into `dir`; throws std::runtime_error where ffmpeg or
+// ffprobe fail.
+inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const std::filesystem::path& dir) {
+  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4"};
+  const CommandResult made = run_command("ffmpeg -hide_banner -loglevel error -y -i " + source.string() +
+                                         " -t 2 -c copy -movflags +faststart " + clip.clean.string() + " 2>&1");
+  if (made.code != 0) throw std::runtime_error("ffmpeg: " + made.out);
+  // Where the first video packet lies in the file: "size=N" and "pos=N" lines.
+  const CommandResult packet = run_command(
+      "ffprobe -v error -select_streams v -read_intervals %+#1 -show_entries packet=size,pos -of default=nw=1 " +
+      clip.clean.string() + " 2>&1");
+  const auto field = [&](const std::string& key) {
+    const size_t at = packet.out.find(key + "=");
+    return at == std::string::npos ? size_t(0) : size_t(std::stoull(packet.out.substr(at + key.size() + 1)));
+  };
+  const size_t size = field("size"), pos = field("pos");
+  std::string bytes = read_file(clip.clean);
+  if (packet.code != 0 || size < 1000 || pos + size > bytes.size())
+    throw std::runtime_error("ffprobe gave no usable first packet: " + packet.out);
+  bytes.replace(pos + size * 3 / 4, 32, 32, '\xff');
+  std::ofstream(clip.damaged, std::ios::binary) << bytes;
+  return clip;
+}
+
+}  // namespace facecap::test
