@@ -23,10 +23,11 @@ AVFormatContext* open_video_container(const std::filesystem::path& path);
 // frame size.
 InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path);
 
-// From now on the error-level lines libavcodec logs while `decoder` decodes
-// (under frame threading, from its threads' copies of it) add to `errors`
-// instead of going nowhere (quiet_ffmpeg_log): the damage it met in the
-// stream and concealed. decode_error_flags says the same of a frame, but
+// From now on the errors libavcodec logs while `decoder` decodes, and the
+// line its error resilience logs where it conceals damage ("concealing ..."),
+// add to `errors` instead of going nowhere (quiet_ffmpeg_log), under frame
+// threading from the threads' copies of the context too: the damage it met
+// in the stream. decode_error_flags says the same of a frame, but
 // under frame threading it comes out on the frame or not by the threads'
 // timing. `errors` must outlive the decoder; the context's `opaque` is taken.
 void count_decoding_errors(AVCodecContext& decoder, std::atomic<int>& errors);
