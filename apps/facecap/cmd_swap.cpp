@@ -128,8 +128,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     report_swap(s.timings, a->output);
     if (const std::string note = unreadable_frames_note(s.target, a->target); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
-    if (const std::string note = damaged_frames_note(s.target.damaged, a->target); !note.empty())
-      std::fprintf(stderr, "facecap: %s\n", note.c_str());
+    report_damaged_frames(s.target.damaged, a->target);
     for (const std::filesystem::path& file : s.animation_files)
       std::fprintf(stderr, "wrote %s and %s.json\n", file.c_str(), file.c_str());
     if (!a->options.matte.empty())

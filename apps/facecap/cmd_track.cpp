@@ -82,7 +82,7 @@ void report_all_faces(const AllFacesSummary& all) {
                all.faces.size(), t.frames, t.decode_ms / n, t.detect_ms / n, t.setup_ms, t.fps());
   if (all.cuts > 0) std::fprintf(stderr, "facecap: %d shot cut(s); each face's identity is solved again\n", all.cuts);
   report_uncaptured_faces(all, "not captured");
-  if (all.damaged > 0) std::fprintf(stderr, "facecap: %s\n", damaged_frames_note(all.damaged, "the input").c_str());
+  report_damaged_frames(all.damaged, "the input");
 }
 
 // The files a capture wrote, one per line.

@@ -141,8 +141,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     report_transform(s.timings, a->output);
     if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
-    if (const std::string note = damaged_frames_note(s.capture.damaged, a->input); !note.empty())
-      std::fprintf(stderr, "facecap: %s\n", note.c_str());
+    report_damaged_frames(s.capture.damaged, a->input);
     for (const std::filesystem::path& file : s.animation_files)
       std::fprintf(stderr, "wrote %s and %s.json\n", file.c_str(), file.c_str());
     if (!o.matte.empty()) std::fprintf(stderr, "wrote %s and %s.json (the matte)\n", o.matte.c_str(), o.matte.c_str());
