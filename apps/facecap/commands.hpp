@@ -94,9 +94,10 @@ void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& 
 // One line on stderr where --all-faces left faces out (--max-faces): "up to
 // N more face(s) at once were <what>".
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what);
-// One line on stderr where frames of `what` were decoded with damage
-// (damaged_frames_note); nothing where `damaged` is 0.
-void report_damaged_frames(int damaged, const std::string& what);
+// A line on stderr where frames of `what` were decoded with damage
+// (damaged_frames_note), and one where it ended early (early_end_note);
+// nothing where neither.
+void report_damaged_input(int damaged, const std::string& early_end, const std::string& what);
 // --matte FILE: the edit's matte (SwapJobOptions / TransformJobOptions::matte);
 // `what`: what the matte shows ("new face").
 void add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what);

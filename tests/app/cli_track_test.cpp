@@ -18,6 +18,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/marked_image.hpp"
+#include "io/damaged_clip.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -230,6 +231,30 @@ TEST(Cli, ADamagedVideoIsTrackedWithoutTheDecodersChatter) {
                        " were decoded with damage"),
             std::string::npos)
       << r.out;
+}
+
+// A video ending short of its index (damaged_clip.hpp: libavformat stops at
+// a damaged entry, as ffmpeg does) is tracked to where it ends, and one line
+// says how many frames went unread, alone and with --all-faces.
+TEST(Cli, AVideoEndingShortOfItsIndexIsTrackedToItsEndAndSaysSo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  const std::string unread =
+      " ends early: the last 32 of the 52 frames its index lists could not be read (the file is cut short or its "
+      "index damaged)\n";
+  const RunResult one = run("track " + clip.damaged_index.string() + " -o " + (dir.path() / "one").string());
+  EXPECT_EQ(one.code, 0) << one.out;
+  EXPECT_NE(one.out.find("facecap: " + clip.damaged_index.string() + unread), std::string::npos) << one.out;
+  EXPECT_EQ(test::read_lines(dir.path() / "one" / "frames.jsonl").size(), size_t(test::DamagedClip::kIndexDamagedAt));
+  const RunResult all =
+      run("track " + clip.damaged_index.string() + " -o " + (dir.path() / "all").string() + " --all-faces");
+  EXPECT_EQ(all.code, 0) << all.out;
+  EXPECT_NE(all.out.find("facecap: the input" + unread), std::string::npos) << all.out;
+  const RunResult clean = run("track " + clip.clean.string() + " -o " + (dir.path() / "clean").string());
+  EXPECT_EQ(clean.code, 0) << clean.out;
+  EXPECT_EQ(clean.out.find("ends early"), std::string::npos) << clean.out;
 }
 
 // A folder of photos of different sizes is not one camera's frames: the

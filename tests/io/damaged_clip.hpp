@@ -1,8 +1,11 @@
 #pragma once
-// A video damaged part-way for the tests of corrupt input: two seconds of a
+// Videos damaged part-way for the tests of corrupt input: two seconds of a
 // clip (its stream copied, the index first), then the same with 32 bytes of
-// 0xFF three quarters into the first video packet, its keyframe.
-// `ffmpeg -f null` reports one corrupt frame in it; every frame still decodes.
+// 0xFF three quarters into the first video packet, its keyframe (`ffmpeg -f
+// null` reports one corrupt frame in it; every frame still decodes), and the
+// same with its index damaged (one sample's size made absurd: libavformat
+// indexes the samples before it and ends the stream there, as ffmpeg does).
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -14,13 +17,15 @@
 namespace facecap::test {
 
 struct DamagedClip {
-  std::filesystem::path clean, damaged;
+  std::filesystem::path clean, damaged, damaged_index;
+  static constexpr int kFrames = 52;          // in `clean`, as its index lists (two seconds at 25 fps)
+  static constexpr int kIndexDamagedAt = 20;  // the frames of `damaged_index` that can be read
 };
 
 // Writes both clips into `dir`; throws std::runtime_error where ffmpeg or
 // ffprobe fail.
 inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const std::filesystem::path& dir) {
-  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4"};
+  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4", dir / "damaged_index.mp4"};
   const CommandResult made = run_command("ffmpeg -hide_banner -loglevel error -y -i " + source.string() +
                                          " -t 2 -c copy -movflags +faststart " + clip.clean.string() + " 2>&1");
   if (made.code != 0) throw std::runtime_error("ffmpeg: " + made.out);
@@ -36,8 +41,21 @@ inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const
   std::string bytes = read_file(clip.clean);
   if (packet.code != 0 || size < 1000 || pos + size > bytes.size())
     throw std::runtime_error("ffprobe gave no usable first packet: " + packet.out);
-  bytes.replace(pos + size * 3 / 4, 32, 32, '\xff');
-  std::ofstream(clip.damaged, std::ios::binary) << bytes;
+  std::string hit = bytes;
+  hit.replace(pos + size * 3 / 4, 32, 32, '\xff');
+  std::ofstream(clip.damaged, std::ios::binary) << hit;
+  // The sample size box (the clip's only track): "stsz", version and flags,
+  // a size for every sample (0: listed), the count, then a size each, big-endian.
+  const size_t stsz = bytes.find("stsz");
+  const auto u32 = [&](size_t at) {
+    return uint32_t(uint8_t(bytes[at])) << 24 | uint32_t(uint8_t(bytes[at + 1])) << 16 |
+           uint32_t(uint8_t(bytes[at + 2])) << 8 | uint32_t(uint8_t(bytes[at + 3]));
+  };
+  if (stsz == std::string::npos || bytes.find("stsz", stsz + 1) != std::string::npos || u32(stsz + 8) != 0 ||
+      u32(stsz + 12) != uint32_t(DamagedClip::kFrames))
+    throw std::runtime_error("the clip's sample size box is not the one expected");
+  bytes.replace(stsz + 16 + 4 * DamagedClip::kIndexDamagedAt, 4, "\x54\0\0\0", 4);  // 1.4 GB
+  std::ofstream(clip.damaged_index, std::ios::binary) << bytes;
   return clip;
 }
 

@@ -188,10 +188,45 @@ TEST(Input, AFrameDecodedWithDamageIsFlagged) {
   };
   const auto [clean_frames, clean_damaged] = read_all(clip.clean);
   const auto [hit_frames, hit_damaged] = read_all(clip.damaged);
-  EXPECT_EQ(clean_frames, 52);
+  EXPECT_EQ(clean_frames, test::DamagedClip::kFrames);
   EXPECT_TRUE(clean_damaged.empty());
   EXPECT_EQ(hit_frames, clean_frames);  // the damaged frame and those predicted from it still come
   EXPECT_EQ(hit_damaged, std::vector<int>{0});
+}
+
+// A video whose index is damaged part-way (damaged_clip.hpp) ends where the
+// demuxer stops, as ffmpeg's does, but not silently: once read() has returned
+// false, early_end() says how many of the frames the index lists were never
+// reached, from the start or after a seek. A whole video says nothing.
+TEST(Input, AVideoEndingShortOfItsIndexSaysHowManyFramesWentUnread) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  const auto read_to_end = [](const fs::path& video, double start) {
+    auto source = open_input(video.string(), start);
+    int frames = 0;
+    for (Frame f; source->read(f); ++frames) EXPECT_FALSE(f.image.empty()) << f.index;
+    return std::pair{frames, source->early_end()};
+  };
+  const int unread = test::DamagedClip::kFrames - test::DamagedClip::kIndexDamagedAt;
+  const std::string expected = "the last " + std::to_string(unread) + " of the " +
+                               std::to_string(test::DamagedClip::kFrames) +
+                               " frames its index lists could not be read (the file is cut short or its index damaged)";
+  const auto [frames, early_end] = read_to_end(clip.damaged_index, 0);
+  EXPECT_EQ(frames, test::DamagedClip::kIndexDamagedAt);
+  EXPECT_EQ(early_end, expected);
+  const auto [later_frames, later_early_end] = read_to_end(clip.damaged_index, 0.4);  // frame 10 on
+  EXPECT_EQ(later_frames, test::DamagedClip::kIndexDamagedAt - 10);
+  EXPECT_EQ(later_early_end, expected);
+  EXPECT_EQ(read_to_end(clip.clean, 0).second, "");
+  EXPECT_EQ(read_to_end(clip.clean, 0.4).second, "");
+  for (const char* name : {"address_720p_a.mp4", "emotions_pexels_640x360.mp4"}) {
+    FACECAP_REQUIRE_DATA(video, name);
+    EXPECT_EQ(read_to_end(video, 0).second, "") << name;
+  }
+  // Not a video: nothing to say.
+  FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
+  EXPECT_EQ(read_to_end(photo, 0).second, "");
 }
 
 // Starting part-way gives exactly the frames a read from the start gives

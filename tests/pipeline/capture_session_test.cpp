@@ -253,6 +253,33 @@ TEST(CaptureSession, FramesDecodedWithDamageAreCountedAndSaidSo) {
   EXPECT_EQ(damaged_input_note(clean, "it"), "");
 }
 
+// A video ending short of its index (damaged_clip.hpp) is captured to where
+// it ends, and the summary and its note say so; a capture stopped earlier by
+// max_frames never met that end and says nothing.
+TEST(CaptureSession, AVideoEndingShortOfItsIndexIsSaidSo) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  CaptureOptions options;
+  options.quiet = true;
+  const auto capture = [&] {
+    return run_capture(*model, *open_input(clip.damaged_index.string()), options, [](const CapturedFrame&) {});
+  };
+  const CaptureSummary s = capture();
+  EXPECT_EQ(s.frames, test::DamagedClip::kIndexDamagedAt);
+  EXPECT_EQ(s.lost, 0);
+  const std::string early_end =
+      "the last 32 of the 52 frames its index lists could not be read (the file is cut short or its index damaged)";
+  EXPECT_EQ(s.early_end, early_end);
+  EXPECT_EQ(damaged_input_note(s, "it"), "it ends early: " + early_end);
+  options.max_frames = 10;
+  const CaptureSummary cut = capture();
+  EXPECT_EQ(cut.frames, 10);
+  EXPECT_EQ(cut.early_end, "");
+  EXPECT_EQ(damaged_input_note(cut, "it"), "");
+}
+
 // Options out of range are refused by name before a frame is read, by both
 // captures: a negative frame count once meant the whole input.
 TEST(CaptureSession, OptionsOutOfRangeAreRefusedBeforeReading) {

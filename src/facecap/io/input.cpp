@@ -189,6 +189,8 @@ class VideoSource final : public FrameSource {
     return true;
   }
 
+  std::string early_end() const override { return decoder_.early_end(); }
+
  private:
   // The time of the frame just decoded, index `index`: a file's timestamp
   // from the stream's start, unless it is missing or, after the first frame

@@ -57,6 +57,10 @@ class FrameSource {
   virtual const InputInfo& info() const = 0;
   // The next frame; false at the end of the input.
   virtual bool read(Frame& frame) = 0;
+  // Once read() has returned false: why a video ended before the end its
+  // container declares, a clause for a message (VideoDecoder::early_end);
+  // "" where it did not, and for anything but a video.
+  virtual std::string early_end() const { return ""; }
   // Before the first read: start at the first frame at or after `seconds`;
   // frames keep their index and time on the input's timeline. Only a video
   // file has a timeline to start into: anything else throws facecap::Error,

@@ -16,6 +16,7 @@ extern "C" {
 #include <limits>
 #include <opencv2/core.hpp>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "facecap/core/error.hpp"
@@ -67,7 +68,13 @@ struct VideoDecoder::Impl {
   std::atomic<int> decoding_errors{0};  // count_decoding_errors
   int decoding_errors_seen = 0;         // by the frame read last
   bool holding = false;                 // `frame` is the one seek() found, for the next read()
-  InputInfo facts;                      // a file's (video_facts)
+  // How reading ended (early_end): the latest decode timestamp of the
+  // stream's packets demuxed, av_read_frame's code at the end, and whether
+  // kMaxFruitlessPackets ended it.
+  int64_t last_dts = AV_NOPTS_VALUE;
+  int end_code = 0;
+  bool gave_up = false;
+  InputInfo facts;  // a file's (video_facts)
 
   ~Impl() {
     sws_freeContext(sws);
@@ -131,21 +138,52 @@ struct VideoDecoder::Impl {
       if (received == 0) return true;
       if (received == AVERROR_EOF || (received == AVERROR(EAGAIN) && flushing)) return false;
       if (received != AVERROR(EAGAIN)) {
-        if (++fruitless > kMaxFruitlessPackets) return false;
+        if (++fruitless > kMaxFruitlessPackets) return give_up();
         continue;
       }
-      if (av_read_frame(format, packet) < 0) {
+      if (const int code = av_read_frame(format, packet); code < 0) {
+        end_code = code;
         flushing = true;
         avcodec_send_packet(codec, nullptr);  // drain the frames the decoder holds
         continue;
       }
       const bool ours = packet->stream_index == stream;
+      if (ours) note_demuxed(*packet);
       const int sent = ours ? avcodec_send_packet(codec, packet) : 0;
       av_packet_unref(packet);
       if (!ours) continue;
-      if (sent < 0 && ++fruitless > kMaxFruitlessPackets) return false;
+      if (sent < 0 && ++fruitless > kMaxFruitlessPackets) return give_up();
       if (sent == 0) fruitless = 0;
     }
+  }
+
+  void note_demuxed(const AVPacket& demuxed) {
+    const int64_t dts = demuxed.dts != AV_NOPTS_VALUE ? demuxed.dts : demuxed.pts;
+    if (dts != AV_NOPTS_VALUE && (last_dts == AV_NOPTS_VALUE || dts > last_dts)) last_dts = dts;
+  }
+
+  bool give_up() {
+    gave_up = true;
+    return false;
+  }
+
+  // Frames the container's sample index lists that reading never reached
+  // (it ended at an error, or where the file is cut short or its index
+  // damaged, at an end-of-file the demuxer reports early); 0 where there is
+  // no such index to count by. MP4 and QuickTime list every sample
+  // (nb_frames, from the sample table) and libavformat indexes each, up to
+  // a damaged entry, where it stops; elsewhere an index that lists every
+  // frame is used as it is. Samples an edit list leaves out stay indexed
+  // (marked discarded), so a trimmed file reads to its index's end.
+  int frames_unread() const {
+    AVStream* const s = video();
+    const int entries = avformat_index_get_entries_count(s);
+    const bool sample_index = std::string_view(format->iformat->name).starts_with("mov,") || entries == s->nb_frames;
+    if (s->nb_frames <= 0 || entries <= 0 || entries > s->nb_frames || !sample_index || last_dts == AV_NOPTS_VALUE)
+      return 0;
+    int reached = 0;  // entries at or before the last packet demuxed
+    for (int k = 0; k < entries; ++k) reached += avformat_index_get_entry(s, k)->timestamp <= last_dts;
+    return int(s->nb_frames) - reached;
   }
 
   // `frame` as 8-bit BGR: converted at the coded size by bicubic libswscale
@@ -202,6 +240,9 @@ struct VideoDecoder::Impl {
     avcodec_flush_buffers(codec);
     flushing = false;
     holding = false;
+    last_dts = AV_NOPTS_VALUE;
+    end_code = 0;
+    gave_up = false;
   }
 
   int64_t first_timestamp() const { return video()->start_time == AV_NOPTS_VALUE ? 0 : video()->start_time; }
@@ -254,6 +295,23 @@ bool VideoDecoder::read(cv::Mat& bgr) {
 }
 
 double VideoDecoder::time() const { return impl_->last_time; }
+
+std::string VideoDecoder::early_end() const {
+  const Impl& d = *impl_;
+  if (d.gave_up) {
+    return "after " + std::to_string(kMaxFruitlessPackets) +
+           " packets in a row that gave no picture, the rest was not read (a corrupt stream)";
+  }
+  const int unread = d.frames_unread();
+  const std::string frames =
+      std::to_string(unread) + " of the " + std::to_string(d.video()->nb_frames) + " frames its index lists";
+  if (d.end_code < 0 && d.end_code != AVERROR_EOF) {
+    return "reading stopped at an error (" + av_error_text(d.end_code) + ")" +
+           (unread > 0 ? ", with the last " + frames + " unread" : "");
+  }
+  if (unread > 0) return "the last " + frames + " could not be read (the file is cut short or its index damaged)";
+  return "";
+}
 
 bool VideoDecoder::damaged() const { return impl_->last_damaged; }
 

@@ -7,6 +7,7 @@
 // every facecap process about 0.2 s of dynamic loading before main().
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -38,6 +39,12 @@ class VideoDecoder {
   // flagged it corrupt or filled in parts it could not decode (a corrupt
   // stream; frames predicted from it carry the damage on unflagged).
   bool damaged() const;
+  // Once read() has returned false: why the stream ended before the end its
+  // container declares (a file cut short, a damaged index, a read error),
+  // as a clause for a message ("the last 13 of the 27 frames its index
+  // lists could not be read (...)"); "" where it read to that end, or where
+  // the container declares none (a Matroska file, a camera).
+  std::string early_end() const;
   // The frame rate the container gives (average, else nominal), or 0.
   double nominal_fps() const;
   // A file's facts, as probe_video_file gives them, read on the decoder's

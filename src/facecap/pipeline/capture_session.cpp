@@ -23,10 +23,17 @@ std::string damaged_frames_note(int damaged, const std::string& what) {
          "made up by the decoder)";
 }
 
+std::string early_end_note(const std::string& early_end, const std::string& what) {
+  return early_end.empty() ? "" : what + " ends early: " + early_end;
+}
+
 std::string damaged_input_note(const CaptureSummary& summary, const std::string& what) {
-  const std::string unreadable = unreadable_frames_note(summary, what),
-                    damaged = damaged_frames_note(summary.damaged, what);
-  return unreadable.empty() || damaged.empty() ? unreadable + damaged : unreadable + "; " + damaged;
+  std::string note;
+  for (const std::string& part : {unreadable_frames_note(summary, what), damaged_frames_note(summary.damaged, what),
+                                  early_end_note(summary.early_end, what)}) {
+    if (!part.empty()) note += (note.empty() ? "" : "; ") + part;
+  }
+  return note;
 }
 
 std::string no_face_error(const std::string& what, int damaged, const std::string& consequence) {
@@ -59,6 +66,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
   CaptureSummary summary = face.finish();
   summary.cuts = loop.cuts;
   summary.damaged = loop.damaged;
+  summary.early_end = loop.early_end;
   summary.stopped_by_user = loop.stopped_by_user;
   StageTimings& t = summary.timings;
   t.setup_ms = setup_ms;

@@ -78,6 +78,7 @@ struct CaptureSummary {
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons
   int damaged = 0;          // frames decoded with damage concealed (CapturedFrame::damaged), lost or not
+  std::string early_end;    // why the input ended short of its declared end (FrameSource::early_end), or ""
   // The identity and focal length of the first shot with a face (the only
   // shot unless the input cuts), and of every shot with a face.
   IdentityEstimate identity;
@@ -102,7 +103,10 @@ using FrameSink = std::function<void(const CapturedFrame&)>;
 std::string unreadable_frames_note(const CaptureSummary& summary, const std::string& what);
 // "N frame(s) of WHAT were decoded with damage (...)", "" where `damaged` is 0.
 std::string damaged_frames_note(int damaged, const std::string& what);
-// The two above in one line ("; " between), "" where every frame was read whole.
+// "WHAT ends early: REASON" (FrameSource::early_end), "" where `early_end` is "".
+std::string early_end_note(const std::string& early_end, const std::string& what);
+// The three above in one line ("; " between), "" where every frame was read
+// whole and the input read to its end.
 std::string damaged_input_note(const CaptureSummary& summary, const std::string& what);
 // "no face found in any frame of WHAT: CONSEQUENCE", and how many frames came
 // with damage where any did (a corrupt video may be why no face shows).

@@ -55,7 +55,8 @@ struct AllFacesSummary {
   // and the run's wall time.
   StageTimings timings;
   int cuts = 0;
-  int damaged = 0;  // frames decoded with damage concealed (Frame::damaged)
+  int damaged = 0;        // frames decoded with damage concealed (Frame::damaged)
+  std::string early_end;  // why the input ended short of its declared end (FrameSource::early_end), or ""
   bool stopped_by_user = false;
   int uncaptured_faces = 0;  // the most faces one search found past AllFacesOptions::max_faces
   InputInfo input;

@@ -29,13 +29,17 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
 
   BoundedQueue<DecodedFrame> decoded(4);
   std::exception_ptr decode_error;
+  std::string early_end;  // the decoder's, read once it is joined
   std::jthread decoder([&] {
     name_this_thread("facecap-decode");
     try {
       for (int n = 0; options.max_frames <= 0 || n < options.max_frames; ++n) {
         DecodedFrame d;
         const auto t0 = std::chrono::steady_clock::now();
-        if (!source.read(d.frame)) break;
+        if (!source.read(d.frame)) {
+          early_end = source.early_end();
+          break;
+        }
         if (!d.frame.image.empty()) cv::cvtColor(d.frame.image, d.grey, cv::COLOR_BGR2GRAY);
         d.decode_ms = ms_since(t0);
         if (!decoded.push(std::move(d))) break;
@@ -75,6 +79,7 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
   }
   decoder.join();
   if (decode_error) std::rethrow_exception(decode_error);
+  result.early_end = early_end;
   progress.finish();
   if (result.stopped_by_user && !options.quiet)
     std::fprintf(stderr, "facecap: the camera was stopped (Ctrl-C) after %d frames; they are written\n", result.frames);

@@ -3,6 +3,7 @@
 // landmarks need) on its own thread a few frames ahead, shot cuts, Ctrl-C
 // (which ends a camera and stops anything else), and the progress bar.
 #include <functional>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -24,6 +25,7 @@ struct FrameLoopResult {
   int cuts = 0;
   int damaged = 0;               // frames decoded with damage concealed (Frame::damaged)
   bool stopped_by_user = false;  // a camera ended by Ctrl-C
+  std::string early_end;         // why the input ended short of its declared end (FrameSource::early_end)
 };
 
 // Calls on_frame(frame, cut) for each frame of `source` in order (up to
