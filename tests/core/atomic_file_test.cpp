@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
@@ -38,6 +39,41 @@ TEST(AtomicFile, AbandonedWriteLeavesTheOldFileAndNoTemporary) {
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
+}
+
+// write_file puts what its filler writes under the final name; where the
+// writing fails (a stream gone bad, as a full disk leaves it) it throws and
+// the file that was there stays, with no temporary beside it.
+TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndSaysSo) {
+  TempDir dir;
+  const auto path = dir.path() / "out.bin";
+  write_file(path, [](std::ostream& out) { out << "good"; });
+  EXPECT_EQ(read_file(path), "good");
+  try {
+    write_file(path, [](std::ostream& out) {
+      out << "half";
+      out.setstate(std::ios::badbit);
+    });
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), write_failure(path));
+  }
+  EXPECT_EQ(read_file(path), "good");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+// The message names a full file system, the usual reason a write fails once
+// its file is open, and only where it is full.
+TEST(AtomicFile, AWriteFailureSaysWhenTheFileSystemIsFull) {
+  EXPECT_EQ(full_disk_note(12 * 1024), "its file system is full (12 KiB free)");
+  EXPECT_EQ(full_disk_note(0), "its file system is full (0 KiB free)");
+  EXPECT_EQ(full_disk_note((1 << 20) - 1), "its file system is full (1023 KiB free)");
+  EXPECT_EQ(full_disk_note(1 << 20), "");
+  TempDir dir;  // a folder with room
+  EXPECT_EQ(full_disk_note(dir.path() / "out.csv"), "");
+  EXPECT_EQ(write_failure(dir.path() / "out.csv"), "cannot write " + (dir.path() / "out.csv").string());
 }
 
 // A second Ctrl-C quits at once, skipping the destructors: its handler

@@ -92,14 +92,38 @@ FoldersMadeHere::~FoldersMadeHere() {
   }
 }
 
-void write_binary_file(const fs::path& path, const void* data, size_t bytes) {
+void write_file(const fs::path& path, const std::function<void(std::ostream& out)>& fill) {
   AtomicFile file(path);
   {
     std::ofstream out(file.temp_path(), std::ios::binary);
-    out.write(static_cast<const char*>(data), std::streamsize(bytes));
-    if (!out.flush()) throw Error("cannot write " + path.string());
+    if (!out) throw Error("cannot write " + path.string());
+    fill(out);
+    if (!out.flush()) throw Error(write_failure(path));
   }
   file.commit();
+}
+
+void write_binary_file(const fs::path& path, const void* data, size_t bytes) {
+  write_file(path, [&](std::ostream& out) { out.write(static_cast<const char*>(data), std::streamsize(bytes)); });
+}
+
+std::string full_disk_note(const fs::path& path) {
+  std::error_code ec;
+  const fs::space_info space = fs::space(path.parent_path().empty() ? fs::path(".") : path.parent_path(), ec);
+  return ec ? "" : full_disk_note(space.available);
+}
+
+std::string full_disk_note(std::uintmax_t bytes_free) {
+  // Below this, what failed is taken to be the want of room: a write that
+  // fails for lack of it leaves at most a few blocks.
+  constexpr std::uintmax_t kFullBelow = 1 << 20;
+  if (bytes_free >= kFullBelow) return "";
+  return "its file system is full (" + std::to_string(bytes_free / 1024) + " KiB free)";
+}
+
+std::string write_failure(const fs::path& path) {
+  const std::string full = full_disk_note(path);
+  return "cannot write " + path.string() + (full.empty() ? "" : ": " + full);
 }
 
 std::optional<std::vector<unsigned char>> read_binary_file(const fs::path& path) {

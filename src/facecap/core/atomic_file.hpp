@@ -5,7 +5,10 @@
 // never destroys a good file that was there). Uncommitted temporaries are
 // removed by the destructor.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -87,9 +90,21 @@ void ensure_writable_file(const std::filesystem::path& path);
 // run reads. Inputs that are no file (cam:0, a missing path) never match.
 void ensure_not_an_input(const std::filesystem::path& output, const std::vector<std::string>& inputs);
 
+// Writes `path` atomically (AtomicFile), its content put on a binary stream
+// by `fill`; throws facecap::Error where writing fails (write_failure).
+void write_file(const std::filesystem::path& path, const std::function<void(std::ostream& out)>& fill);
 // Writes text, or bytes, atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
 void write_binary_file(const std::filesystem::path& path, const void* data, size_t bytes);
+
+// "its file system is full (12 KiB free)" where the file system that holds
+// `path` has under 1 MiB free, the usual reason a write fails once its file
+// is open; "" where it has room. The second form takes the bytes free as given.
+std::string full_disk_note(const std::filesystem::path& path);
+std::string full_disk_note(std::uintmax_t bytes_free);
+// The message for a write to `path` that failed once the file was open:
+// "cannot write PATH", and the note above where it has one.
+std::string write_failure(const std::filesystem::path& path);
 // Its reading twin: the whole of a file's bytes, or nothing where it cannot
 // be opened.
 std::optional<std::vector<unsigned char>> read_binary_file(const std::filesystem::path& path);

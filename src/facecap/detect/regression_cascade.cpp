@@ -169,14 +169,10 @@ void RegressionCascade::save(const fs::path& path, uint64_t source_fingerprint) 
   header.payload_hash = content_hash(std::as_bytes(std::span(payload.data(), payload.size())));
   // Header and payload written one after the other (as the model cache is),
   // not joined first into a second 67 MB string.
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
+  write_file(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(&header), sizeof(header));
     out.write(payload.data(), std::streamsize(payload.size()));
-    if (!out.flush()) throw Error("cannot write " + path.string());
-  }
-  file.commit();
+  });
 }
 
 RegressionCascade RegressionCascade::load(const fs::path& path, uint64_t source_fingerprint) {

@@ -79,9 +79,7 @@ Mlp read_mlp(const std::filesystem::path& path) {
 }
 
 void write_mlp(const std::filesystem::path& path, const Mlp& mlp) {
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
+  write_file(path, [&](std::ostream& out) {
     out.write(kMagic, 4);
     auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), sizeof(v)); };
     u32(kVersion);
@@ -94,9 +92,7 @@ void write_mlp(const std::filesystem::path& path, const Mlp& mlp) {
       out.write(reinterpret_cast<const char*>(w.data()), std::streamsize(sizeof(float) * w.size()));
       out.write(reinterpret_cast<const char*>(layer.bias.data()), std::streamsize(sizeof(float) * layer.bias.size()));
     }
-    if (!out.flush()) throw Error("cannot write " + path.string());
-  }
-  file.commit();
+  });
 }
 
 }  // namespace facecap

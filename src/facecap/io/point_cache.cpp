@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "facecap/core/atomic_file.hpp"
 #include "facecap/core/binary_io.hpp"
 #include "facecap/core/error.hpp"
 
@@ -29,7 +30,7 @@ PointCacheWriter::PointCacheWriter(const std::filesystem::path& path, int points
   header.pod<float>(sampling);
   header.pod<int32_t>(0);  // the samples, filled in by finish()
   if (std::fwrite(header.bytes().data(), 1, header.bytes().size(), file_.get()) != header.bytes().size())
-    throw Error("cannot write " + path.string());
+    throw Error(write_failure(path));
 }
 
 PointCacheWriter::~PointCacheWriter() = default;
@@ -40,7 +41,7 @@ void PointCacheWriter::append(const Positions& points) {
     throw Error("cannot write " + path_.string() + ": a sample is not " + std::to_string(points_) + " finite points");
   // Positions is column-major 3 x N: x y z of each point in turn, as PC2 lays them out.
   const size_t bytes = sizeof(float) * 3 * size_t(points_);
-  if (std::fwrite(points.data(), 1, bytes, file_.get()) != bytes) throw Error("cannot write " + path_.string());
+  if (std::fwrite(points.data(), 1, bytes, file_.get()) != bytes) throw Error(write_failure(path_));
   ++samples_;
 }
 
@@ -49,7 +50,7 @@ void PointCacheWriter::finish() {
   const int32_t samples = samples_;
   if (std::fseek(file_.get(), kSampleCountOffset, SEEK_SET) != 0 ||
       std::fwrite(&samples, sizeof(samples), 1, file_.get()) != 1 || std::fflush(file_.get()) != 0)
-    throw Error("cannot write " + path_.string());
+    throw Error(write_failure(path_));
   file_.reset();
 }
 

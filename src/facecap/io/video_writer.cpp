@@ -116,7 +116,8 @@ std::string VideoWriter::encoder_log() const {
   while (std::getline(in, line)) {
     if (!line.empty()) last = line;
   }
-  return last;
+  // The log sits beside the output: a full disk leaves it empty too.
+  return last.empty() ? full_disk_note(path_) : last;
 }
 
 namespace {

@@ -68,6 +68,7 @@ class VideoWriter {
  private:
   void stop_encoder(bool kill);
   void send(const cv::Mat& yuv);  // one frame (encoder_frame()) down the pipe
+  // ffmpeg's last error line, or where it left none, full_disk_note's.
   std::string encoder_log() const;
 
   std::filesystem::path path_;

@@ -86,14 +86,10 @@ void write_model_cache(const FaceModel& model, uint64_t source_fingerprint, cons
   header.payload_crc32 = static_cast<uint32_t>(
       crc32(0L, reinterpret_cast<const Bytef*>(payload.data()), static_cast<uInt>(payload.size())));
 
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
+  write_file(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(&header), sizeof(header));
     out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
-    if (!out.flush()) throw Error("cannot write model cache " + path.string());
-  }
-  file.commit();
+  });
 }
 
 FaceModel read_model_cache(const fs::path& path, uint64_t expected_fingerprint) {

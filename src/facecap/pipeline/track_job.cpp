@@ -46,7 +46,7 @@ class StagedText {
   std::ofstream& stream() { return out_; }
   void commit() {
     out_.flush();
-    if (!out_) throw Error("cannot write " + file_.final_path().string());
+    if (!out_) throw Error(write_failure(file_.final_path()));
     out_.close();
     file_.commit();
   }

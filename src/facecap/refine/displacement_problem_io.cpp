@@ -85,13 +85,7 @@ void save_displacement_problem(const std::filesystem::path& path, const Displace
   write_matrix(w, p.previous);
   write_mask(w, p.active);
   write_matrix(w, start);
-  AtomicFile out(path);
-  {
-    std::ofstream f(out.temp_path(), std::ios::binary);
-    f.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
-    if (!f) throw Error("cannot write the displacement problem " + path.string());
-  }
-  out.commit();
+  write_binary_file(path, w.bytes().data(), w.bytes().size());
 }
 
 std::unique_ptr<SavedDisplacementProblem> load_displacement_problem(const std::filesystem::path& path) {
