@@ -20,6 +20,11 @@ struct DamagedClip {
   std::filesystem::path clean, damaged, damaged_index;
   static constexpr int kFrames = 52;          // in `clean`, as its index lists (two seconds at 25 fps)
   static constexpr int kIndexDamagedAt = 20;  // the frames of `damaged_index` that can be read
+  // What FrameSource::early_end says of `damaged_index` once it has ended.
+  static std::string damaged_index_early_end() {
+    return "the last " + std::to_string(kFrames - kIndexDamagedAt) + " of the " + std::to_string(kFrames) +
+           " frames its index lists could not be read (the file is cut short or its index damaged)";
+  }
 };
 
 // Writes both clips into `dir`; throws std::runtime_error where ffmpeg or

@@ -208,10 +208,7 @@ TEST(Input, AVideoEndingShortOfItsIndexSaysHowManyFramesWentUnread) {
     for (Frame f; source->read(f); ++frames) EXPECT_FALSE(f.image.empty()) << f.index;
     return std::pair{frames, source->early_end()};
   };
-  const int unread = test::DamagedClip::kFrames - test::DamagedClip::kIndexDamagedAt;
-  const std::string expected = "the last " + std::to_string(unread) + " of the " +
-                               std::to_string(test::DamagedClip::kFrames) +
-                               " frames its index lists could not be read (the file is cut short or its index damaged)";
+  const std::string expected = test::DamagedClip::damaged_index_early_end();
   const auto [frames, early_end] = read_to_end(clip.damaged_index, 0);
   EXPECT_EQ(frames, test::DamagedClip::kIndexDamagedAt);
   EXPECT_EQ(early_end, expected);
