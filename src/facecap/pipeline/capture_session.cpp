@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
@@ -27,18 +28,32 @@ std::string early_end_note(const std::string& early_end, const std::string& what
   return early_end.empty() ? "" : what + " ends early: " + early_end;
 }
 
-std::string damaged_input_note(const CaptureSummary& summary, const std::string& what) {
-  std::string note;
-  for (const std::string& part : {unreadable_frames_note(summary, what), damaged_frames_note(summary.damaged, what),
-                                  early_end_note(summary.early_end, what)}) {
-    if (!part.empty()) note += (note.empty() ? "" : "; ") + part;
+namespace {
+
+// The notes that are not empty, "; " between.
+std::string joined_notes(std::initializer_list<std::string> notes) {
+  std::string line;
+  for (const std::string& note : notes) {
+    if (!note.empty()) line += (line.empty() ? "" : "; ") + note;
   }
-  return note;
+  return line;
 }
 
-std::string no_face_error(const std::string& what, int damaged, const std::string& consequence) {
-  return "no face found in any frame of " + what + ": " + consequence +
-         (damaged > 0 ? "; " + damaged_frames_note(damaged, "it") : "");
+}  // namespace
+
+std::string input_damage_note(int damaged, const std::string& early_end, const std::string& what) {
+  return joined_notes({damaged_frames_note(damaged, what), early_end_note(early_end, what)});
+}
+
+std::string damaged_input_note(const CaptureSummary& summary, const std::string& what) {
+  return joined_notes(
+      {unreadable_frames_note(summary, what), input_damage_note(summary.damaged, summary.early_end, what)});
+}
+
+std::string no_face_error(const std::string& what, int damaged, const std::string& early_end,
+                          const std::string& consequence) {
+  return joined_notes(
+      {"no face found in any frame of " + what + ": " + consequence, input_damage_note(damaged, early_end, "it")});
 }
 
 void CaptureOptions::check() const {

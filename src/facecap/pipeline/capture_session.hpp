@@ -105,12 +105,16 @@ std::string unreadable_frames_note(const CaptureSummary& summary, const std::str
 std::string damaged_frames_note(int damaged, const std::string& what);
 // "WHAT ends early: REASON" (FrameSource::early_end), "" where `early_end` is "".
 std::string early_end_note(const std::string& early_end, const std::string& what);
-// The three above in one line ("; " between), "" where every frame was read
-// whole and the input read to its end.
+// The corrupt input's two notes above in one line ("; " between), "" where
+// no frame came damaged and the input read to its end.
+std::string input_damage_note(int damaged, const std::string& early_end, const std::string& what);
+// The unreadable frames' note and the two above in one line, "" where every
+// frame was read whole and the input read to its end.
 std::string damaged_input_note(const CaptureSummary& summary, const std::string& what);
-// "no face found in any frame of WHAT: CONSEQUENCE", and how many frames came
-// with damage where any did (a corrupt video may be why no face shows).
-std::string no_face_error(const std::string& what, int damaged, const std::string& consequence);
+// "no face found in any frame of WHAT: CONSEQUENCE", and the input's damage
+// where it had any (input_damage_note: a corrupt video may be why no face shows).
+std::string no_face_error(const std::string& what, int damaged, const std::string& early_end,
+                          const std::string& consequence);
 
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink);
 

@@ -63,9 +63,11 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
         return outputs.back()->sink();
       });
   summary.faces = summary.capture.faces;
-  if (summary.faces.empty())
+  if (summary.faces.empty()) {
+    const std::string damage = input_damage_note(summary.capture.damaged, summary.capture.early_end, "it");
     throw Error("no face found in the " + std::to_string(summary.capture.timings.frames) + " frame(s) of " + input +
-                (summary.capture.damaged > 0 ? "; " + damaged_frames_note(summary.capture.damaged, "it") : ""));
+                (damage.empty() ? "" : "; " + damage));
+  }
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < summary.faces.size(); ++k) {
     const FoundFace& face = summary.faces[k];
