@@ -128,7 +128,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     report_swap(s.timings, a->output);
     if (const std::string note = unreadable_frames_note(s.target, a->target); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
-    report_damaged_input(s.target.damaged, s.target.early_end, a->target);
+    report_damaged_input(s.target.damage, a->target);
     for (const std::filesystem::path& file : s.animation_files)
       std::fprintf(stderr, "wrote %s and %s.json\n", file.c_str(), file.c_str());
     if (!a->options.matte.empty())

@@ -82,7 +82,7 @@ void report_all_faces(const AllFacesSummary& all) {
                all.faces.size(), t.frames, t.decode_ms / n, t.detect_ms / n, t.setup_ms, t.fps());
   if (all.cuts > 0) std::fprintf(stderr, "facecap: %d shot cut(s); each face's identity is solved again\n", all.cuts);
   report_uncaptured_faces(all, "not captured");
-  report_damaged_input(all.damaged, all.early_end, "the input");
+  report_damaged_input(all.damage, "the input");
 }
 
 // The files a capture wrote, one per line.

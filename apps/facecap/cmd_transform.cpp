@@ -141,7 +141,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     report_transform(s.timings, a->output);
     if (const std::string note = unreadable_frames_note(s.capture, a->input); !note.empty())
       std::fprintf(stderr, "facecap: %s (black in the output)\n", note.c_str());
-    report_damaged_input(s.capture.damaged, s.capture.early_end, a->input);
+    report_damaged_input(s.capture.damage, a->input);
     for (const std::filesystem::path& file : s.animation_files)
       std::fprintf(stderr, "wrote %s and %s.json\n", file.c_str(), file.c_str());
     if (!o.matte.empty()) std::fprintf(stderr, "wrote %s and %s.json (the matte)\n", o.matte.c_str(), o.matte.c_str());

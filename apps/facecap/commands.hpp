@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "facecap/expr/emotions.hpp"
+#include "facecap/io/input_damage.hpp"
 #include "facecap/io/video_encoding.hpp"
 #include "facecap/model/face_model.hpp"
 #include "facecap/refine/compute_device.hpp"
@@ -94,10 +95,10 @@ void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& 
 // One line on stderr where --all-faces left faces out (--max-faces): "up to
 // N more face(s) at once were <what>".
 void report_uncaptured_faces(const AllFacesSummary& all, const char* what);
-// A line on stderr where frames of `what` were decoded with damage
-// (damaged_frames_note), and one where it ended early (early_end_note);
-// nothing where neither.
-void report_damaged_input(int damaged, const std::string& early_end, const std::string& what);
+// A line on stderr for each kind of damage `what` had (input_damage_notes):
+// frames decoded with damage, packets the decoder refused, an early end;
+// nothing where it had none.
+void report_damaged_input(const InputDamage& damage, const std::string& what);
 // --matte FILE: the edit's matte (SwapJobOptions / TransformJobOptions::matte);
 // `what`: what the matte shows ("new face").
 void add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what);

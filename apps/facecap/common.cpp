@@ -147,7 +147,7 @@ void report_edited_faces(const AllFacesSummary& all, const AllFacesOptions& opti
     std::fprintf(stderr, "face %d (from frame %d): frames %d, %s %d, lost %d%s\n", k, all.faces[k].first_frame,
                  all.captures[k].frames, verb, edited(k), all.captures[k].lost, note.c_str());
   }
-  report_damaged_input(all.damaged, all.early_end, "the input");
+  report_damaged_input(all.damage, "the input");
 }
 
 void report_unfound_faces(const std::vector<int>& named, const AllFacesSummary& all, const char* option) {
@@ -164,10 +164,8 @@ void report_uncaptured_faces(const AllFacesSummary& all, const char* what) {
                  what, int(all.faces.size()));
 }
 
-void report_damaged_input(int damaged, const std::string& early_end, const std::string& what) {
-  for (const std::string& note : {damaged_frames_note(damaged, what), early_end_note(early_end, what)}) {
-    if (!note.empty()) std::fprintf(stderr, "facecap: %s\n", note.c_str());
-  }
+void report_damaged_input(const InputDamage& damage, const std::string& what) {
+  for (const std::string& note : input_damage_notes(damage, what)) std::fprintf(stderr, "facecap: %s\n", note.c_str());
 }
 
 void add_matte_option(CLI::App& cmd, std::filesystem::path& matte, const std::string& what) {

@@ -255,6 +255,29 @@ TEST(Cli, AVideoEndingShortOfItsIndexIsTrackedToItsEndAndSaysSo) {
   EXPECT_EQ(clean.out.find("ends early"), std::string::npos) << clean.out;
 }
 
+// Packets the decoder refuses (damaged_clip.hpp: a misaligned sample) are
+// counted in one line, alone and with --all-faces: their frames are lost
+// with no row of their own, the rows' times keeping the gap.
+TEST(Cli, PacketsTheDecoderRefusesAreCountedInOneLine) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  const int refused = test::DamagedClip::kFrames - test::DamagedClip::kIndexDamagedAt;
+  const std::string note = "the decoder refused " + std::to_string(refused) + " packet(s) of ";
+  const RunResult one = run("track " + clip.misaligned.string() + " -o " + (dir.path() / "one").string());
+  EXPECT_EQ(one.code, 0) << one.out;
+  EXPECT_NE(one.out.find(note + clip.misaligned.string() + " (a corrupt stream: their frames are lost"),
+            std::string::npos)
+      << one.out;
+  EXPECT_EQ(one.out.find("ends early"), std::string::npos) << one.out;
+  EXPECT_EQ(test::read_lines(dir.path() / "one" / "frames.jsonl").size(), size_t(test::DamagedClip::kIndexDamagedAt));
+  const RunResult all =
+      run("track " + clip.misaligned.string() + " -o " + (dir.path() / "all").string() + " --all-faces");
+  EXPECT_EQ(all.code, 0) << all.out;
+  EXPECT_NE(all.out.find(note + "the input"), std::string::npos) << all.out;
+}
+
 // A folder of photos of different sizes is not one camera's frames: the
 // photos unlike the first are lost, each with its reason in frames.jsonl,
 // and the closing summary says so in one line. Output videos keep the frame,

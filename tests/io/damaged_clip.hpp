@@ -2,9 +2,12 @@
 // Videos damaged part-way for the tests of corrupt input: two seconds of a
 // clip (its stream copied, the index first), then the same with 32 bytes of
 // 0xFF three quarters into the first video packet, its keyframe (`ffmpeg -f
-// null` reports one corrupt frame in it; every frame still decodes), and the
+// null` reports one corrupt frame in it; every frame still decodes), the
 // same with its index damaged (one sample's size made absurd: libavformat
-// indexes the samples before it and ends the stream there, as ffmpeg does).
+// indexes the samples before it and ends the stream there, as ffmpeg does),
+// and the same with that sample's size 4 bytes short (every packet is read,
+// but those after it in its chunk start 4 bytes early, and the decoder
+// refuses them: `ffmpeg -f null` reports as many decode errors).
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,9 +20,11 @@
 namespace facecap::test {
 
 struct DamagedClip {
-  std::filesystem::path clean, damaged, damaged_index;
-  static constexpr int kFrames = 52;          // in `clean`, as its index lists (two seconds at 25 fps)
-  static constexpr int kIndexDamagedAt = 20;  // the frames of `damaged_index` that can be read
+  std::filesystem::path clean, damaged, damaged_index, misaligned;
+  static constexpr int kFrames = 52;  // in `clean`, as its index lists (two seconds at 25 fps)
+  // The sample whose size `damaged_index` and `misaligned` change, and so
+  // the frames of `damaged_index` that can be read.
+  static constexpr int kIndexDamagedAt = 20;
   // What FrameSource::early_end says of `damaged_index` once it has ended.
   static std::string damaged_index_early_end() {
     return "the last " + std::to_string(kFrames - kIndexDamagedAt) + " of the " + std::to_string(kFrames) +
@@ -30,7 +35,7 @@ struct DamagedClip {
 // Writes both clips into `dir`; throws std::runtime_error where ffmpeg or
 // ffprobe fail.
 inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const std::filesystem::path& dir) {
-  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4", dir / "damaged_index.mp4"};
+  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4", dir / "damaged_index.mp4", dir / "misaligned.mp4"};
   const CommandResult made = run_command("ffmpeg -hide_banner -loglevel error -y -i " + source.string() +
                                          " -t 2 -c copy -movflags +faststart " + clip.clean.string() + " 2>&1");
   if (made.code != 0) throw std::runtime_error("ffmpeg: " + made.out);
@@ -59,7 +64,12 @@ inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const
   if (stsz == std::string::npos || bytes.find("stsz", stsz + 1) != std::string::npos || u32(stsz + 8) != 0 ||
       u32(stsz + 12) != uint32_t(DamagedClip::kFrames))
     throw std::runtime_error("the clip's sample size box is not the one expected");
-  bytes.replace(stsz + 16 + 4 * DamagedClip::kIndexDamagedAt, 4, "\x54\0\0\0", 4);  // 1.4 GB
+  const size_t entry = stsz + 16 + 4 * DamagedClip::kIndexDamagedAt;
+  std::string misaligned = bytes;
+  const uint32_t shorter = u32(entry) - 4;
+  for (int k = 0; k < 4; ++k) misaligned[entry + k] = char(shorter >> (24 - 8 * k) & 0xff);
+  std::ofstream(clip.misaligned, std::ios::binary) << misaligned;
+  bytes.replace(entry, 4, "\x54\0\0\0", 4);  // 1.4 GB
   std::ofstream(clip.damaged_index, std::ios::binary) << bytes;
   return clip;
 }

@@ -154,18 +154,45 @@ TEST(Input, BadInputsGetOneClearMessage) {
   EXPECT_NE(open_error("").find("no input"), std::string::npos);
 }
 
-TEST(Input, TruncatedVideosAreRejectedWhereverTheIndexSits) {
+// A video cut short: with its index (moov) at the end, the cut file has none
+// and is refused by name; with its index first, as a download that stopped
+// leaves it, it is read to the cut, as `ffprobe -count_frames` reads it, and
+// early_end() says how many of the frames its index lists lie past the end.
+// Cut before its first frame, it is refused saying so.
+TEST(Input, AVideoCutShortIsReadToTheCutWhereItsIndexComesFirst) {
   TempDir dir;
-  // Index (moov) at the end: the cut file has none.
   FACECAP_REQUIRE_DATA(address, "address_720p_a.mp4");
   write_prefix(address, dir.path() / "cut_a.mp4", 0.5);
   const std::string a = open_error((dir.path() / "cut_a.mp4").string());
   EXPECT_NE(a.find("cut_a.mp4"), std::string::npos) << a;
-  // Index at the start: it points past the end of the cut file.
+
   FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
-  write_prefix(webcam, dir.path() / "cut_b.mp4", 0.4);
-  const std::string b = open_error((dir.path() / "cut_b.mp4").string());
-  EXPECT_NE(b.find("truncated"), std::string::npos) << b;
+  const fs::path cut = dir.path() / "cut_b.mp4";
+  write_prefix(webcam, cut, 0.4);
+  const test::CommandResult ffprobe = test::run_command(
+      "ffprobe -v quiet -count_frames -select_streams v -show_entries stream=nb_read_frames -of csv=p=0 " +
+      cut.string());
+  ASSERT_EQ(ffprobe.code, 0) << ffprobe.out;
+  const int ffprobe_frames = std::stoi(ffprobe.out);
+  auto source = open_input(cut.string());
+  const int listed = source->info().frames;
+  EXPECT_EQ(listed, 1337);  // what the index lists, as the whole file's
+  int frames = 0;
+  for (Frame f; source->read(f); ++frames) EXPECT_FALSE(f.image.empty()) << f.index;
+  EXPECT_EQ(frames, ffprobe_frames);
+  EXPECT_GT(frames, listed / 4);
+  EXPECT_LT(frames, listed / 2);
+  // The packet cut part-way is refused or decoded with damage; the rest lie past the end.
+  const int unread = listed - frames - source->refused_packets();
+  EXPECT_EQ(source->early_end(), "the file is cut short: the last " + std::to_string(unread) + " of the " +
+                                     std::to_string(listed) + " frames its index lists lie past its end");
+
+  for (const double share : {0.0129, 0.0135}) {  // just before the first packet, and part-way into it
+    write_prefix(webcam, dir.path() / "cut_c.mp4", share);
+    const std::string c = open_error((dir.path() / "cut_c.mp4").string());
+    EXPECT_NE(c.find("cut_c.mp4: no frame could be decoded (the file is cut short: the last 13"), std::string::npos)
+        << c;
+  }
 }
 
 // A stream damaged part-way decodes on, frame by frame, and a frame decoded
@@ -224,6 +251,45 @@ TEST(Input, AVideoEndingShortOfItsIndexSaysHowManyFramesWentUnread) {
   // Not a video: nothing to say.
   FACECAP_REQUIRE_DATA(photo, "portrait_obama.jpg");
   EXPECT_EQ(read_to_end(photo, 0).second, "");
+}
+
+// Packets the decoder refuses (damaged_clip.hpp: a sample size 4 bytes
+// short, so the packets after it in its chunk are misread) are counted as
+// `ffmpeg` counts its decode errors, from the start or after a seek; the
+// frames before them still come, and the stream reads to its end. A whole
+// video, or one decoded with damage concealed, counts none.
+TEST(Input, PacketsTheDecoderRefusesAreCountedAsFfmpegCountsThem) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  struct Read {
+    int frames = 0;
+    int refused = 0;
+    std::string early_end;
+  };
+  const auto read_to_end = [](const fs::path& video, double start) {
+    auto source = open_input(video.string(), start);
+    Read read;
+    for (Frame f; source->read(f); ++read.frames) EXPECT_FALSE(f.image.empty()) << f.index;
+    read.refused = source->refused_packets();
+    read.early_end = source->early_end();
+    return read;
+  };
+  const test::CommandResult ffmpeg = test::run_command("ffmpeg -hide_banner -nostats -loglevel repeat+error -i " +
+                                                       clip.misaligned.string() + " -f null - 2>&1");
+  ASSERT_EQ(ffmpeg.code, 0) << ffmpeg.out;
+  int ffmpeg_errors = 0;
+  for (size_t at = 0; (at = ffmpeg.out.find("Error while decoding", at)) != std::string::npos; ++at) ++ffmpeg_errors;
+  const Read misaligned = read_to_end(clip.misaligned, 0);
+  EXPECT_GT(misaligned.refused, 20);  // most of the packets after the misaligned one
+  EXPECT_EQ(misaligned.refused, ffmpeg_errors);
+  EXPECT_EQ(misaligned.frames, test::DamagedClip::kIndexDamagedAt);
+  EXPECT_EQ(misaligned.frames + misaligned.refused, test::DamagedClip::kFrames);  // each refused packet a lost frame
+  EXPECT_EQ(misaligned.early_end, "");                                            // every packet was read
+  const Read later = read_to_end(clip.misaligned, 0.4);                           // frame 10 on
+  EXPECT_EQ(later.frames, test::DamagedClip::kIndexDamagedAt - 10);
+  EXPECT_EQ(later.refused, misaligned.refused);
+  for (const fs::path& whole : {clip.clean, clip.damaged}) EXPECT_EQ(read_to_end(whole, 0).refused, 0) << whole;
 }
 
 // Starting part-way gives exactly the frames a read from the start gives

@@ -238,18 +238,19 @@ TEST(CaptureSession, FramesDecodedWithDamageAreCountedAndSaidSo) {
         tracked += f.status != TrackStatus::kLost;
       });
   EXPECT_EQ(damaged, std::vector<int>{0});
-  EXPECT_EQ(s.damaged, 1);
+  EXPECT_EQ(s.damage.damaged, 1);
+  EXPECT_EQ(s.damage.refused, 0);
   EXPECT_EQ(tracked, s.frames);  // concealed well enough to track
   const std::string damage =
       "1 frame(s) of it were decoded with damage (a corrupt stream: parts of them, and of the frames predicted from "
       "them, are made up by the decoder)";
   EXPECT_EQ(damaged_input_note(s, "it"), damage);
-  EXPECT_EQ(no_face_error("x.mp4", 1, "", "nothing to swap"),
+  EXPECT_EQ(no_face_error("x.mp4", s.damage, "nothing to swap"),
             "no face found in any frame of x.mp4: nothing to swap; " + damage);
-  EXPECT_EQ(no_face_error("x.mp4", 0, "", "nothing to swap"), "no face found in any frame of x.mp4: nothing to swap");
+  EXPECT_EQ(no_face_error("x.mp4", {}, "nothing to swap"), "no face found in any frame of x.mp4: nothing to swap");
   const CaptureSummary clean = run_capture(*model, *open_input(clip.clean.string()), options,
                                            [](const CapturedFrame& f) { EXPECT_FALSE(f.damaged) << f.index; });
-  EXPECT_EQ(clean.damaged, 0);
+  EXPECT_FALSE(clean.damage.any());
   EXPECT_EQ(damaged_input_note(clean, "it"), "");
 }
 
@@ -270,14 +271,14 @@ TEST(CaptureSession, AVideoEndingShortOfItsIndexIsSaidSo) {
   EXPECT_EQ(s.frames, test::DamagedClip::kIndexDamagedAt);
   EXPECT_EQ(s.lost, 0);
   const std::string early_end = test::DamagedClip::damaged_index_early_end();
-  EXPECT_EQ(s.early_end, early_end);
+  EXPECT_EQ(s.damage.early_end, early_end);
   EXPECT_EQ(damaged_input_note(s, "it"), "it ends early: " + early_end);
-  EXPECT_EQ(no_face_error("x.mp4", 0, s.early_end, "nothing to swap"),
+  EXPECT_EQ(no_face_error("x.mp4", s.damage, "nothing to swap"),
             "no face found in any frame of x.mp4: nothing to swap; it ends early: " + early_end);
   options.max_frames = 10;
   const CaptureSummary cut = capture();
   EXPECT_EQ(cut.frames, 10);
-  EXPECT_EQ(cut.early_end, "");
+  EXPECT_FALSE(cut.damage.any());
   EXPECT_EQ(damaged_input_note(cut, "it"), "");
 }
 

@@ -138,7 +138,9 @@ class VideoSource final : public FrameSource {
   VideoSource(VideoDecoder decoder, InputInfo info) : decoder_(std::move(decoder)), info_(std::move(info)) {
     // Decode the first frame now: a file that opens but cannot decode fails here, not mid-run.
     if (!decoder_.read(first_) || first_.empty()) {
-      throw Error("cannot decode " + info_.spec + ": no frame could be decoded (corrupt or unsupported video)");
+      const std::string early_end = decoder_.early_end();
+      throw Error("cannot decode " + info_.spec + ": no frame could be decoded (" +
+                  (early_end.empty() ? "corrupt or unsupported video" : early_end) + ")");
     }
     first_damaged_ = decoder_.damaged();
     first_time_ = frame_time(0, true);
@@ -190,6 +192,7 @@ class VideoSource final : public FrameSource {
   }
 
   std::string early_end() const override { return decoder_.early_end(); }
+  int refused_packets() const override { return decoder_.refused_packets(); }
 
  private:
   // The time of the frame just decoded, index `index`: a file's timestamp

@@ -61,6 +61,9 @@ class FrameSource {
   // container declares, a clause for a message (VideoDecoder::early_end);
   // "" where it did not, and for anything but a video.
   virtual std::string early_end() const { return ""; }
+  // Packets of a video the decoder refused so far, their frames lost
+  // (VideoDecoder::refused_packets); 0 for anything but a video.
+  virtual int refused_packets() const { return 0; }
   // Before the first read: start at the first frame at or after `seconds`;
   // frames keep their index and time on the input's timeline. Only a video
   // file has a timeline to start into: anything else throws facecap::Error,

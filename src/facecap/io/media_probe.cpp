@@ -86,23 +86,20 @@ InputInfo probe_video_file(const std::filesystem::path& path) {
   return video_facts(*ctx, path);
 }
 
+bool index_points_past_end(const AVFormatContext& container) {
+  const int64_t file_size = container.pb ? avio_size(container.pb) : -1;
+  if (file_size <= 0) return false;
+  for (unsigned i = 0; i < container.nb_streams; ++i) {
+    AVStream* s = container.streams[i];
+    const int entries = avformat_index_get_entries_count(s);
+    const AVIndexEntry* last = entries > 0 ? avformat_index_get_entry(s, entries - 1) : nullptr;
+    if (last != nullptr && last->pos + last->size > file_size) return true;
+  }
+  return false;
+}
+
 InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path) {
   const AVFormatContext* const ctx = &container;
-  // A file cut short after its index (mp4 with the moov box first) opens
-  // fine but its samples point past the end of the file.
-  const int64_t file_size = ctx->pb ? avio_size(ctx->pb) : -1;
-  if (file_size > 0) {
-    for (unsigned i = 0; i < ctx->nb_streams; ++i) {
-      AVStream* s = ctx->streams[i];
-      const int entries = avformat_index_get_entries_count(s);
-      if (entries <= 0) continue;
-      const AVIndexEntry* last = avformat_index_get_entry(s, entries - 1);
-      if (last != nullptr && last->pos + last->size > file_size) {
-        throw Error("cannot read " + path.string() +
-                    ": the video is truncated (its index points past the end of the file)");
-      }
-    }
-  }
   InputInfo info;
   info.spec = path.string();
   info.kind = InputKind::kVideo;

@@ -19,9 +19,13 @@ AVFormatContext* open_video_container(const std::filesystem::path& path);
 
 // Width, height, frame rate, frame count, audio and duration of the
 // container `open_video_container` gave. Throws facecap::Error naming the
-// file where it is truncated past its index, has no video stream or no
-// frame size.
+// file where it has no video stream or no frame size.
 InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path);
+
+// Whether a stream's index lists samples past the end of the file: an MP4
+// with its index first (faststart), cut short after it, as a download that
+// stopped leaves it. The samples before the cut can still be read.
+bool index_points_past_end(const AVFormatContext& container);
 
 // From now on the errors libavcodec logs while `decoder` decodes, and the
 // line its error resilience logs where it conceals damage ("concealing ..."),

@@ -69,12 +69,15 @@ struct VideoDecoder::Impl {
   int decoding_errors_seen = 0;         // by the frame read last
   bool holding = false;                 // `frame` is the one seek() found, for the next read()
   // How reading ended (early_end): the latest decode timestamp of the
-  // stream's packets demuxed, av_read_frame's code at the end, and whether
-  // kMaxFruitlessPackets ended it.
+  // stream's packets demuxed and how many there were, av_read_frame's code
+  // at the end, and whether kMaxFruitlessPackets ended it.
   int64_t last_dts = AV_NOPTS_VALUE;
+  int demuxed = 0;
   int end_code = 0;
   bool gave_up = false;
-  InputInfo facts;  // a file's (video_facts)
+  bool cut_short = false;  // the file ends before the samples its index lists (index_points_past_end)
+  int refused = 0;         // packets the decoder refused, and frames it failed on (refused_packets)
+  InputInfo facts;         // a file's (video_facts)
 
   ~Impl() {
     sws_freeContext(sws);
@@ -138,13 +141,17 @@ struct VideoDecoder::Impl {
       if (received == 0) return true;
       if (received == AVERROR_EOF || (received == AVERROR(EAGAIN) && flushing)) return false;
       if (received != AVERROR(EAGAIN)) {
+        ++refused;
         if (++fruitless > kMaxFruitlessPackets) return give_up();
         continue;
       }
       if (const int code = av_read_frame(format, packet); code < 0) {
         end_code = code;
         flushing = true;
-        avcodec_send_packet(codec, nullptr);  // drain the frames the decoder holds
+        // Drain the frames the decoder holds; under frame threading the
+        // decoding error of the last packet sent may come back here.
+        const int drained = avcodec_send_packet(codec, nullptr);
+        refused += drained < 0 && drained != AVERROR_EOF;
         continue;
       }
       const bool ours = packet->stream_index == stream;
@@ -152,13 +159,15 @@ struct VideoDecoder::Impl {
       const int sent = ours ? avcodec_send_packet(codec, packet) : 0;
       av_packet_unref(packet);
       if (!ours) continue;
+      refused += sent < 0;
       if (sent < 0 && ++fruitless > kMaxFruitlessPackets) return give_up();
       if (sent == 0) fruitless = 0;
     }
   }
 
-  void note_demuxed(const AVPacket& demuxed) {
-    const int64_t dts = demuxed.dts != AV_NOPTS_VALUE ? demuxed.dts : demuxed.pts;
+  void note_demuxed(const AVPacket& packet) {
+    ++demuxed;
+    const int64_t dts = packet.dts != AV_NOPTS_VALUE ? packet.dts : packet.pts;
     if (dts != AV_NOPTS_VALUE && (last_dts == AV_NOPTS_VALUE || dts > last_dts)) last_dts = dts;
   }
 
@@ -179,10 +188,10 @@ struct VideoDecoder::Impl {
     AVStream* const s = video();
     const int entries = avformat_index_get_entries_count(s);
     const bool sample_index = std::string_view(format->iformat->name).starts_with("mov,") || entries == s->nb_frames;
-    if (s->nb_frames <= 0 || entries <= 0 || entries > s->nb_frames || !sample_index || last_dts == AV_NOPTS_VALUE)
-      return 0;
-    int reached = 0;  // entries at or before the last packet demuxed
-    for (int k = 0; k < entries; ++k) reached += avformat_index_get_entry(s, k)->timestamp <= last_dts;
+    if (s->nb_frames <= 0 || entries <= 0 || entries > s->nb_frames || !sample_index) return 0;
+    if (demuxed > 0 && last_dts == AV_NOPTS_VALUE) return 0;  // packets without times: no telling
+    int reached = 0;                                          // entries at or before the last packet demuxed
+    for (int k = 0; k < entries && demuxed > 0; ++k) reached += avformat_index_get_entry(s, k)->timestamp <= last_dts;
     return int(s->nb_frames) - reached;
   }
 
@@ -241,8 +250,10 @@ struct VideoDecoder::Impl {
     flushing = false;
     holding = false;
     last_dts = AV_NOPTS_VALUE;
+    demuxed = 0;
     end_code = 0;
     gave_up = false;
+    refused = 0;
   }
 
   int64_t first_timestamp() const { return video()->start_time == AV_NOPTS_VALUE ? 0 : video()->start_time; }
@@ -258,6 +269,7 @@ VideoDecoder VideoDecoder::open_file(const fs::path& path) {
   impl->name = path.string();
   impl->format = open_video_container(path);
   impl->facts = video_facts(*impl->format, path);
+  impl->cut_short = index_points_past_end(*impl->format);
   impl->open_decoder();
   return VideoDecoder(std::move(impl));
 }
@@ -305,6 +317,7 @@ std::string VideoDecoder::early_end() const {
   const int unread = d.frames_unread();
   const std::string frames =
       std::to_string(unread) + " of the " + std::to_string(d.video()->nb_frames) + " frames its index lists";
+  if (d.cut_short && unread > 0) return "the file is cut short: the last " + frames + " lie past its end";
   if (d.end_code < 0 && d.end_code != AVERROR_EOF) {
     return "reading stopped at an error (" + av_error_text(d.end_code) + ")" +
            (unread > 0 ? ", with the last " + frames + " unread" : "");
@@ -314,6 +327,8 @@ std::string VideoDecoder::early_end() const {
 }
 
 bool VideoDecoder::damaged() const { return impl_->last_damaged; }
+
+int VideoDecoder::refused_packets() const { return impl_->refused; }
 
 const InputInfo& VideoDecoder::facts() const { return impl_->facts; }
 

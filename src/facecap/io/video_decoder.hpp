@@ -17,8 +17,9 @@ namespace facecap {
 
 class VideoDecoder {
  public:
-  // Throws facecap::Error naming the file when it cannot be opened, is
-  // truncated, or holds no video stream that libavcodec can decode.
+  // Throws facecap::Error naming the file when it cannot be opened (cut
+  // short before its index, say), or holds no video stream that libavcodec
+  // can decode. One cut short after its index opens, and reads to the cut.
   static VideoDecoder open_file(const std::filesystem::path& path);
   // /dev/videoN through libavdevice's video4linux2 input; libavdevice is
   // loaded only here, the first time a camera is opened.
@@ -39,6 +40,11 @@ class VideoDecoder {
   // flagged it corrupt or filled in parts it could not decode (a corrupt
   // stream; frames predicted from it carry the damage on unflagged).
   bool damaged() const;
+  // Packets the decoder refused so far (from the start, or the seek), as
+  // `ffmpeg` counts its decode errors: each one's frame is lost (and frames
+  // predicted from it may be too). A corrupt stream, say one whose index
+  // gives a sample a few bytes too many, so the packets after it are misread.
+  int refused_packets() const;
   // Once read() has returned false: why the stream ended before the end its
   // container declares (a file cut short, a damaged index, a read error),
   // as a clause for a message ("the last 13 of the 27 frames its index

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <initializer_list>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
@@ -17,43 +16,12 @@ std::string unreadable_frames_note(const CaptureSummary& summary, const std::str
          " could not be read and are lost (the first: " + summary.first_error + ")";
 }
 
-std::string damaged_frames_note(int damaged, const std::string& what) {
-  if (damaged == 0) return "";
-  return std::to_string(damaged) + " frame(s) of " + what +
-         " were decoded with damage (a corrupt stream: parts of them, and of the frames predicted from them, are "
-         "made up by the decoder)";
-}
-
-std::string early_end_note(const std::string& early_end, const std::string& what) {
-  return early_end.empty() ? "" : what + " ends early: " + early_end;
-}
-
-namespace {
-
-// The notes that are not empty, "; " between.
-std::string joined_notes(std::initializer_list<std::string> notes) {
-  std::string line;
-  for (const std::string& note : notes) {
-    if (!note.empty()) line += (line.empty() ? "" : "; ") + note;
-  }
-  return line;
-}
-
-}  // namespace
-
-std::string input_damage_note(int damaged, const std::string& early_end, const std::string& what) {
-  return joined_notes({damaged_frames_note(damaged, what), early_end_note(early_end, what)});
-}
-
 std::string damaged_input_note(const CaptureSummary& summary, const std::string& what) {
-  return joined_notes(
-      {unreadable_frames_note(summary, what), input_damage_note(summary.damaged, summary.early_end, what)});
+  return joined_notes({unreadable_frames_note(summary, what), input_damage_note(summary.damage, what)});
 }
 
-std::string no_face_error(const std::string& what, int damaged, const std::string& early_end,
-                          const std::string& consequence) {
-  return joined_notes(
-      {"no face found in any frame of " + what + ": " + consequence, input_damage_note(damaged, early_end, "it")});
+std::string no_face_error(const std::string& what, const InputDamage& damage, const std::string& consequence) {
+  return joined_notes({"no face found in any frame of " + what + ": " + consequence, input_damage_note(damage, "it")});
 }
 
 void CaptureOptions::check() const {
@@ -80,8 +48,7 @@ CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureO
       run_frame_loop(source, options, [&](const DecodedFrame& d, bool cut) { face.push(d, cut); });
   CaptureSummary summary = face.finish();
   summary.cuts = loop.cuts;
-  summary.damaged = loop.damaged;
-  summary.early_end = loop.early_end;
+  summary.damage = loop.damage;
   summary.stopped_by_user = loop.stopped_by_user;
   StageTimings& t = summary.timings;
   t.setup_ms = setup_ms;

@@ -14,6 +14,7 @@
 #include "facecap/fit/coarse_tracker.hpp"
 #include "facecap/fit/gaze.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/io/input_damage.hpp"
 
 namespace facecap {
 
@@ -77,8 +78,7 @@ struct CaptureSummary {
   int most_faces = 0;       // the most faces the detector found in one frame (--face chooses which is tracked)
   int unreadable = 0;       // frames the input could not give (each also lost)
   std::string first_error;  // the first of those frames' reasons
-  int damaged = 0;          // frames decoded with damage concealed (CapturedFrame::damaged), lost or not
-  std::string early_end;    // why the input ended short of its declared end (FrameSource::early_end), or ""
+  InputDamage damage;       // what a corrupt input cost (its damaged frames counted lost or not)
   // The identity and focal length of the first shot with a face (the only
   // shot unless the input cuts), and of every shot with a face.
   IdentityEstimate identity;
@@ -101,20 +101,13 @@ using FrameSink = std::function<void(const CapturedFrame&)>;
 // One line for the user where some frames could not be read ("N frame(s) of
 // WHAT could not be read, ..."), "" where every frame could.
 std::string unreadable_frames_note(const CaptureSummary& summary, const std::string& what);
-// "N frame(s) of WHAT were decoded with damage (...)", "" where `damaged` is 0.
-std::string damaged_frames_note(int damaged, const std::string& what);
-// "WHAT ends early: REASON" (FrameSource::early_end), "" where `early_end` is "".
-std::string early_end_note(const std::string& early_end, const std::string& what);
-// The corrupt input's two notes above in one line ("; " between), "" where
-// no frame came damaged and the input read to its end.
-std::string input_damage_note(int damaged, const std::string& early_end, const std::string& what);
-// The unreadable frames' note and the two above in one line, "" where every
-// frame was read whole and the input read to its end.
+// The unreadable frames' note and the input's damage (input_damage_note)
+// in one line, "" where every frame was read whole and the input read to
+// its end.
 std::string damaged_input_note(const CaptureSummary& summary, const std::string& what);
 // "no face found in any frame of WHAT: CONSEQUENCE", and the input's damage
 // where it had any (input_damage_note: a corrupt video may be why no face shows).
-std::string no_face_error(const std::string& what, int damaged, const std::string& early_end,
-                          const std::string& consequence);
+std::string no_face_error(const std::string& what, const InputDamage& damage, const std::string& consequence);
 
 CaptureSummary run_capture(const FaceModel& model, FrameSource& source, CaptureOptions options, const FrameSink& sink);
 

@@ -269,8 +269,7 @@ AllFacesSummary run_capture_all_faces(const FaceModel& model, FrameSource& sourc
     slot->flush();
   }
   summary.cuts = loop.cuts;
-  summary.damaged = loop.damaged;
-  summary.early_end = loop.early_end;
+  summary.damage = loop.damage;
   summary.stopped_by_user = loop.stopped_by_user;
   t.decode_ms = loop.decode_ms;
   t.frames = loop.frames;

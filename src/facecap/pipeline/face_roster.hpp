@@ -55,8 +55,7 @@ struct AllFacesSummary {
   // and the run's wall time.
   StageTimings timings;
   int cuts = 0;
-  int damaged = 0;        // frames decoded with damage concealed (Frame::damaged)
-  std::string early_end;  // why the input ended short of its declared end (FrameSource::early_end), or ""
+  InputDamage damage;  // what a corrupt input cost
   bool stopped_by_user = false;
   int uncaptured_faces = 0;  // the most faces one search found past AllFacesOptions::max_faces
   InputInfo input;

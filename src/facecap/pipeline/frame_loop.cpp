@@ -29,7 +29,10 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
 
   BoundedQueue<DecodedFrame> decoded(4);
   std::exception_ptr decode_error;
-  std::string early_end;  // the decoder's, read once it is joined
+  // The source's word on how reading went, taken by the decoding thread
+  // once it stops and read here once it is joined.
+  std::string early_end;
+  int refused = 0;
   std::jthread decoder([&] {
     name_this_thread("facecap-decode");
     try {
@@ -44,6 +47,7 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
         d.decode_ms = ms_since(t0);
         if (!decoded.push(std::move(d))) break;
       }
+      refused = source.refused_packets();
     } catch (...) {
       decode_error = std::current_exception();
     }
@@ -72,14 +76,15 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
     result.decode_ms += d->decode_ms;
     const bool cut = find_cuts && cuts.next(d->grey);
     result.cuts += cut;
-    result.damaged += d->frame.damaged;
+    result.damage.damaged += d->frame.damaged;
     on_frame(*d, cut);
     ++result.frames;
     progress.update(result.frames);
   }
   decoder.join();
   if (decode_error) std::rethrow_exception(decode_error);
-  result.early_end = early_end;
+  result.damage.early_end = early_end;
+  result.damage.refused = refused;
   progress.finish();
   if (result.stopped_by_user && !options.quiet)
     std::fprintf(stderr, "facecap: the camera was stopped (Ctrl-C) after %d frames; they are written\n", result.frames);

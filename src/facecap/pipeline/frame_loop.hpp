@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/io/input.hpp"
+#include "facecap/io/input_damage.hpp"
 
 namespace facecap {
 
@@ -23,9 +24,8 @@ struct FrameLoopResult {
   int frames = 0;
   double decode_ms = 0;  // on the decode thread, summed
   int cuts = 0;
-  int damaged = 0;               // frames decoded with damage concealed (Frame::damaged)
+  InputDamage damage;            // what a corrupt input cost the frames read
   bool stopped_by_user = false;  // a camera ended by Ctrl-C
-  std::string early_end;         // why the input ended short of its declared end (FrameSource::early_end)
 };
 
 // Calls on_frame(frame, cut) for each frame of `source` in order (up to

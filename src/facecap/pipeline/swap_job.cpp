@@ -298,8 +298,7 @@ SwapSummary run_swap(const FaceModel& model, const std::string& source_photo, co
   add_stream_timings(summary.timings, stream);
   if (summary.target.frames == 0) throw Error("no frames could be read from " + target);
   // A copy of the input marked as a swap would be neither: nothing is written.
-  if (summary.timings.swapped == 0)
-    throw Error(no_face_error(target, summary.target.damaged, summary.target.early_end, "nothing to swap"));
+  if (summary.timings.swapped == 0) throw Error(no_face_error(target, summary.target.damage, "nothing to swap"));
   writer.finish();
   summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   write_synthetic_sidecar(output, mark);
@@ -378,8 +377,7 @@ AllFacesSwapSummary run_swap_all_faces(const FaceModel& model, const std::string
   // A copy of the input marked as a swap would be neither: nothing is written.
   if (summary.timings.swapped == 0 && streams.empty() && !summary.target.faces.empty())
     throw Error("every face of " + target + " is left as it is (--leave-faces): nothing to swap");
-  if (summary.timings.swapped == 0)
-    throw Error(no_face_error(target, summary.target.damaged, summary.target.early_end, "nothing to swap"));
+  if (summary.timings.swapped == 0) throw Error(no_face_error(target, summary.target.damage, "nothing to swap"));
   writer.finish();
   summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   mark.parameters["faces"] = std::to_string(streams.size());

@@ -64,7 +64,7 @@ EachFaceSummary run_track_each_face(const FaceModel& model, const std::string& i
       });
   summary.faces = summary.capture.faces;
   if (summary.faces.empty()) {
-    const std::string damage = input_damage_note(summary.capture.damaged, summary.capture.early_end, "it");
+    const std::string damage = input_damage_note(summary.capture.damage, "it");
     throw Error("no face found in the " + std::to_string(summary.capture.timings.frames) + " frame(s) of " + input +
                 (damage.empty() ? "" : "; " + damage));
   }

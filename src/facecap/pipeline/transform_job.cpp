@@ -148,7 +148,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   if (summary.frames.empty()) throw Error("no frames could be read from " + input);
   // A copy of the input marked as transformed would be neither: nothing is written.
   if (std::none_of(summary.frames.begin(), summary.frames.end(), [](const TransformedFrame& f) { return f.valid; }))
-    throw Error(no_face_error(input, summary.capture.damaged, summary.capture.early_end, "nothing to transform"));
+    throw Error(no_face_error(input, summary.capture.damage, "nothing to transform"));
   writer.finish();
   summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   write_synthetic_sidecar(output, mark);
@@ -237,8 +237,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
   });
   if (!any && faces.empty() && !summary.capture.faces.empty())
     throw Error("every face of " + input + " is left as it is (--leave-faces): nothing to transform");
-  if (!any)
-    throw Error(no_face_error(input, summary.capture.damaged, summary.capture.early_end, "nothing to transform"));
+  if (!any) throw Error(no_face_error(input, summary.capture.damage, "nothing to transform"));
   writer.finish();
   summary.timings.job_cpu = cpu.taken(writer.encoder_cpu_ms());
   mark.parameters["faces"] = std::to_string(faces.size());
