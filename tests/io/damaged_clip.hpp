@@ -7,7 +7,8 @@
 // indexes the samples before it and ends the stream there, as ffmpeg does),
 // and the same with that sample's size 4 bytes short (every packet is read,
 // but those after it in its chunk start 4 bytes early, and the decoder
-// refuses them: `ffmpeg -f null` reports as many decode errors).
+// refuses them: `ffmpeg -f null` reports as many decode errors), and the same
+// with its one chunk's offset 4 bytes on (every packet misread: none decodes).
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -20,7 +21,7 @@
 namespace facecap::test {
 
 struct DamagedClip {
-  std::filesystem::path clean, damaged, damaged_index, misaligned;
+  std::filesystem::path clean, damaged, damaged_index, misaligned, shifted;
   static constexpr int kFrames = 52;  // in `clean`, as its index lists (two seconds at 25 fps)
   // The sample whose size `damaged_index` and `misaligned` change, and so
   // the frames of `damaged_index` that can be read.
@@ -35,7 +36,8 @@ struct DamagedClip {
 // Writes both clips into `dir`; throws std::runtime_error where ffmpeg or
 // ffprobe fail.
 inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const std::filesystem::path& dir) {
-  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4", dir / "damaged_index.mp4", dir / "misaligned.mp4"};
+  DamagedClip clip{dir / "clean.mp4", dir / "damaged.mp4", dir / "damaged_index.mp4", dir / "misaligned.mp4",
+                   dir / "shifted.mp4"};
   const CommandResult made = run_command("ffmpeg -hide_banner -loglevel error -y -i " + source.string() +
                                          " -t 2 -c copy -movflags +faststart " + clip.clean.string() + " 2>&1");
   if (made.code != 0) throw std::runtime_error("ffmpeg: " + made.out);
@@ -66,10 +68,18 @@ inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const
     throw std::runtime_error("the clip's sample size box is not the one expected");
   const size_t entry = stsz + 16 + 4 * DamagedClip::kIndexDamagedAt;
   std::string misaligned = bytes;
-  const uint32_t shorter = u32(entry) - 4;
-  for (int k = 0; k < 4; ++k) misaligned[entry + k] = char(shorter >> (24 - 8 * k) & 0xff);
+  const auto put_u32 = [](std::string& to, size_t at, uint32_t value) {
+    for (int k = 0; k < 4; ++k) to[at + k] = char(value >> (24 - 8 * k) & 0xff);
+  };
+  put_u32(misaligned, entry, u32(entry) - 4);
   std::ofstream(clip.misaligned, std::ios::binary) << misaligned;
-  bytes.replace(entry, 4, "\x54\0\0\0", 4);  // 1.4 GB
+  // The chunk offset box: "stco", version and flags, the count, an offset each.
+  const size_t stco = bytes.find("stco");
+  if (stco == std::string::npos || u32(stco + 8) != 1) throw std::runtime_error("the clip is not one chunk");
+  std::string shifted = bytes;
+  put_u32(shifted, stco + 12, u32(stco + 12) + 4);
+  std::ofstream(clip.shifted, std::ios::binary) << shifted;
+  put_u32(bytes, entry, 0x54000000);  // 1.4 GB
   std::ofstream(clip.damaged_index, std::ios::binary) << bytes;
   return clip;
 }

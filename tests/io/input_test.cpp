@@ -253,6 +253,26 @@ TEST(Input, AVideoEndingShortOfItsIndexSaysHowManyFramesWentUnread) {
   EXPECT_EQ(read_to_end(photo, 0).second, "");
 }
 
+// A transport stream cut from the middle of another, with no keyframe and
+// so no stream headers after the cut (a recording joined late), has no
+// picture to give: refused in one line that says why, not taken for a video
+// without a face.
+TEST(Input, AStreamCutFromTheMiddleWithoutItsHeadersSaysWhy) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());  // one keyframe, at its start
+  const fs::path whole = dir.path() / "whole.ts";
+  const test::CommandResult made = test::run_command("ffmpeg -hide_banner -loglevel error -y -i " +
+                                                     clip.clean.string() + " -c copy " + whole.string() + " 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  const std::string bytes = test::read_file(whole);
+  constexpr size_t kTsPacket = 188;
+  const size_t kept = bytes.size() / 2 / kTsPacket * kTsPacket;  // the second half, whole packets
+  std::ofstream(dir.path() / "late.ts", std::ios::binary) << bytes.substr(bytes.size() - kept);
+  const std::string e = open_error((dir.path() / "late.ts").string());
+  EXPECT_NE(e.find("late.ts: its video has no frame size (no picture in it could be decoded"), std::string::npos) << e;
+}
+
 // Packets the decoder refuses (damaged_clip.hpp: a sample size 4 bytes
 // short, so the packets after it in its chunk are misread) are counted as
 // `ffmpeg` counts its decode errors, from the start or after a seek; the
@@ -290,6 +310,12 @@ TEST(Input, PacketsTheDecoderRefusesAreCountedAsFfmpegCountsThem) {
   EXPECT_EQ(later.frames, test::DamagedClip::kIndexDamagedAt - 10);
   EXPECT_EQ(later.refused, misaligned.refused);
   for (const fs::path& whole : {clip.clean, clip.damaged}) EXPECT_EQ(read_to_end(whole, 0).refused, 0) << whole;
+  // Every packet refused: no frame to open with, and the error counts them.
+  const std::string none = open_error(clip.shifted.string());
+  EXPECT_NE(none.find("shifted.mp4: no frame could be decoded (the decoder refused " +
+                      std::to_string(test::DamagedClip::kFrames) + " packet(s) of it: a corrupt stream"),
+            std::string::npos)
+      << none;
 }
 
 // Starting part-way gives exactly the frames a read from the start gives

@@ -7,6 +7,7 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/io/image_file.hpp"
+#include "facecap/io/input_damage.hpp"
 #include "facecap/io/video_decoder.hpp"
 
 namespace facecap {
@@ -138,9 +139,13 @@ class VideoSource final : public FrameSource {
   VideoSource(VideoDecoder decoder, InputInfo info) : decoder_(std::move(decoder)), info_(std::move(info)) {
     // Decode the first frame now: a file that opens but cannot decode fails here, not mid-run.
     if (!decoder_.read(first_) || first_.empty()) {
-      const std::string early_end = decoder_.early_end();
+      const int refused = decoder_.refused_packets();
+      const std::string why = joined_notes(
+          {decoder_.early_end(), refused > 0 ? "the decoder refused " + std::to_string(refused) +
+                                                   " packet(s) of it: a corrupt stream, or one it does not support"
+                                             : ""});
       throw Error("cannot decode " + info_.spec + ": no frame could be decoded (" +
-                  (early_end.empty() ? "corrupt or unsupported video" : early_end) + ")");
+                  (why.empty() ? "corrupt or unsupported video" : why) + ")");
     }
     first_damaged_ = decoder_.damaged();
     first_time_ = frame_time(0, true);

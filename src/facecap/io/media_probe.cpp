@@ -119,7 +119,11 @@ InputInfo video_facts(const AVFormatContext& container, const std::filesystem::p
   if (video == nullptr) throw Error("cannot read " + path.string() + ": it has no video stream");
   info.width = video->codecpar->width;
   info.height = video->codecpar->height;
-  if (info.width <= 0 || info.height <= 0) throw Error("cannot read " + path.string() + ": video has no frame size");
+  if (info.width <= 0 || info.height <= 0) {
+    throw Error("cannot read " + path.string() +
+                ": its video has no frame size (no picture in it could be decoded: a corrupt stream, or one cut "
+                "from the middle of another without its headers)");
+  }
   const AVRational rate = video->avg_frame_rate.num > 0 ? video->avg_frame_rate : video->r_frame_rate;
   info.fps = rate.den > 0 ? av_q2d(rate) : 0.0;
   if (video->duration != AV_NOPTS_VALUE && video->duration > 0) {
