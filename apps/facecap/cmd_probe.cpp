@@ -27,16 +27,19 @@ void register_probe(CLI::App& app, GlobalOptions&) {
                        {"centre", {std::lround(b.center().x()), std::lround(b.center().y())}},
                        {"roll_degrees", double(f.roll_degrees)}});
     }
-    print_json({{"input", r.info.spec},
-                {"kind", to_string(r.info.kind)},
-                {"width", r.info.width},
-                {"height", r.info.height},
-                {"fps", r.info.fps},
-                {"frames", r.info.frames},
-                {"duration", r.info.duration},
-                {"audio", r.info.audio},
-                {"faces", r.faces},
-                {"face_boxes", boxes}});
+    nlohmann::json report = {{"input", r.info.spec},
+                             {"kind", to_string(r.info.kind)},
+                             {"width", r.info.width},
+                             {"height", r.info.height},
+                             {"fps", r.info.fps},
+                             {"frames", r.info.frames},
+                             {"duration", r.info.duration},
+                             {"audio", r.info.audio},
+                             {"faces", r.faces},
+                             {"face_boxes", boxes}};
+    // A file cut short: the frames its index lists past the end, which no reading will give.
+    if (r.info.frames_past_end > 0) report["frames_past_end"] = r.info.frames_past_end;
+    print_json(report);
   });
 }
 

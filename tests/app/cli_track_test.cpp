@@ -138,6 +138,27 @@ TEST(Cli, ProbeDescribesAVideoAsJson) {
   EXPECT_NE(r.out.find("\"faces\": 1"), std::string::npos) << r.out;
 }
 
+// A video cut short after its index (damaged_clip.hpp's clean clip, its
+// first 60 %): probe counts the frames its index lists past the end, which
+// with those `ffprobe -count_frames` decodes make up the whole (the packet
+// the cut splits aside); a whole video has no such count.
+TEST(Cli, ProbeCountsTheFramesACutShortVideoListsPastItsEnd) {
+  FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
+  TempDir dir;
+  const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
+  const std::string bytes = test::read_file(clip.clean);
+  const fs::path cut = dir.path() / "cut.mp4";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() * 6 / 10);
+  const nlohmann::json probe = json_from("probe " + cut.string());
+  const int decoded = test::ffprobe_frames_decoded(cut);
+  EXPECT_EQ(probe.value("frames", 0), test::DamagedClip::kFrames);
+  const int past_end = probe.value("frames_past_end", 0);
+  EXPECT_GT(past_end, 0);
+  EXPECT_GE(decoded + past_end, test::DamagedClip::kFrames - 1);
+  EXPECT_LE(decoded + past_end, test::DamagedClip::kFrames);
+  EXPECT_FALSE(json_from("probe " + clip.clean.string()).contains("frames_past_end"));
+}
+
 // dlib's face detector is decoded once (0.3 s) and kept in the cache folder
 // in dlib's plain form (read back in 2-3 ms): later runs find the same faces;
 // a damaged cache file is decoded again and rewritten; a cache folder that

@@ -84,4 +84,15 @@ inline DamagedClip write_damaged_clip(const std::filesystem::path& source, const
   return clip;
 }
 
+// The frames of `video` that `ffprobe -count_frames` decodes: ground truth
+// for how much of a damaged video can be read. Throws std::runtime_error
+// where ffprobe fails.
+inline int ffprobe_frames_decoded(const std::filesystem::path& video) {
+  const CommandResult ffprobe =
+      run_command("ffprobe -v quiet -count_frames -select_streams v -show_entries stream=nb_read_frames -of csv=p=0 " +
+                  video.string());
+  if (ffprobe.code != 0) throw std::runtime_error("ffprobe: " + ffprobe.out);
+  return std::stoi(ffprobe.out);
+}
+
 }  // namespace facecap::test

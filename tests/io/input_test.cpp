@@ -169,11 +169,7 @@ TEST(Input, AVideoCutShortIsReadToTheCutWhereItsIndexComesFirst) {
   FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
   const fs::path cut = dir.path() / "cut_b.mp4";
   write_prefix(webcam, cut, 0.4);
-  const test::CommandResult ffprobe = test::run_command(
-      "ffprobe -v quiet -count_frames -select_streams v -show_entries stream=nb_read_frames -of csv=p=0 " +
-      cut.string());
-  ASSERT_EQ(ffprobe.code, 0) << ffprobe.out;
-  const int ffprobe_frames = std::stoi(ffprobe.out);
+  const int ffprobe_frames = test::ffprobe_frames_decoded(cut);
   auto source = open_input(cut.string());
   const int listed = source->info().frames;
   EXPECT_EQ(listed, 1337);  // what the index lists, as the whole file's
@@ -184,6 +180,7 @@ TEST(Input, AVideoCutShortIsReadToTheCutWhereItsIndexComesFirst) {
   EXPECT_LT(frames, listed / 2);
   // The packet cut part-way is refused or decoded with damage; the rest lie past the end.
   const int unread = listed - frames - source->refused_packets();
+  EXPECT_EQ(source->info().frames_past_end, unread);  // known on opening, from the index
   EXPECT_EQ(source->early_end(), "the file is cut short: the last " + std::to_string(unread) + " of the " +
                                      std::to_string(listed) + " frames its index lists lie past its end");
 

@@ -23,6 +23,7 @@ struct InputInfo {
   int height = 0;
   double fps = 0.0;           // 0 for stills
   int frames = -1;            // -1 when unknown (camera)
+  int frames_past_end = 0;    // of `frames`, those a video cut short lists past its end: they cannot be read
   bool audio = false;         // has an audio stream
   double audio_duration = 0;  // seconds of the first audio stream, 0 when unknown or none
   double duration = 0;        // seconds, 0 when unknown

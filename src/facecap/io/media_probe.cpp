@@ -5,6 +5,7 @@ extern "C" {
 #include <libavutil/error.h>
 }
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -86,17 +87,24 @@ InputInfo probe_video_file(const std::filesystem::path& path) {
   return video_facts(*ctx, path);
 }
 
-bool index_points_past_end(const AVFormatContext& container) {
+namespace {
+
+// The samples of `stream` its index places at or past the end of the file:
+// an MP4 with its index first (faststart), cut short after it, as a download
+// that stopped leaves it. Those before the cut can still be read (the one
+// the cut splits, in part).
+int samples_past_end(const AVFormatContext& container, const AVStream& stream) {
   const int64_t file_size = container.pb ? avio_size(container.pb) : -1;
-  if (file_size <= 0) return false;
-  for (unsigned i = 0; i < container.nb_streams; ++i) {
-    AVStream* s = container.streams[i];
-    const int entries = avformat_index_get_entries_count(s);
-    const AVIndexEntry* last = entries > 0 ? avformat_index_get_entry(s, entries - 1) : nullptr;
-    if (last != nullptr && last->pos + last->size > file_size) return true;
-  }
-  return false;
+  if (file_size <= 0) return 0;
+  AVStream* const indexed = const_cast<AVStream*>(&stream);  // avformat_index_get_entry reads, but is not const
+  int past = 0;
+  for (int k = avformat_index_get_entries_count(indexed) - 1;
+       k >= 0 && avformat_index_get_entry(indexed, k)->pos >= file_size; --k)
+    ++past;
+  return past;
 }
+
+}  // namespace
 
 InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path) {
   const AVFormatContext* const ctx = &container;
@@ -133,6 +141,7 @@ InputInfo video_facts(const AVFormatContext& container, const std::filesystem::p
   }
   if (video->nb_frames > 0) {
     info.frames = static_cast<int>(video->nb_frames);
+    info.frames_past_end = std::min(samples_past_end(*ctx, *video), info.frames);
   } else if (info.duration > 0 && info.fps > 0) {
     info.frames = static_cast<int>(std::lround(info.duration * info.fps));
   }

@@ -17,15 +17,11 @@ namespace facecap {
 // it is not a video file or is corrupt.
 AVFormatContext* open_video_container(const std::filesystem::path& path);
 
-// Width, height, frame rate, frame count, audio and duration of the
-// container `open_video_container` gave. Throws facecap::Error naming the
-// file where it has no video stream or no frame size.
+// Width, height, frame rate, frame count (and those of them that lie past
+// the end of a file cut short), audio and duration of the container
+// `open_video_container` gave. Throws facecap::Error naming the file where
+// it has no video stream or no frame size.
 InputInfo video_facts(const AVFormatContext& container, const std::filesystem::path& path);
-
-// Whether a stream's index lists samples past the end of the file: an MP4
-// with its index first (faststart), cut short after it, as a download that
-// stopped leaves it. The samples before the cut can still be read.
-bool index_points_past_end(const AVFormatContext& container);
 
 // From now on the errors libavcodec logs while `decoder` decodes, and the
 // line its error resilience logs where it conceals damage ("concealing ..."),

@@ -75,9 +75,8 @@ struct VideoDecoder::Impl {
   int demuxed = 0;
   int end_code = 0;
   bool gave_up = false;
-  bool cut_short = false;  // the file ends before the samples its index lists (index_points_past_end)
-  int refused = 0;         // packets the decoder refused, and frames it failed on (refused_packets)
-  InputInfo facts;         // a file's (video_facts)
+  int refused = 0;  // packets the decoder refused, and frames it failed on (refused_packets)
+  InputInfo facts;  // a file's (video_facts)
 
   ~Impl() {
     sws_freeContext(sws);
@@ -269,7 +268,6 @@ VideoDecoder VideoDecoder::open_file(const fs::path& path) {
   impl->name = path.string();
   impl->format = open_video_container(path);
   impl->facts = video_facts(*impl->format, path);
-  impl->cut_short = index_points_past_end(*impl->format);
   impl->open_decoder();
   return VideoDecoder(std::move(impl));
 }
@@ -317,7 +315,8 @@ std::string VideoDecoder::early_end() const {
   const int unread = d.frames_unread();
   const std::string frames =
       std::to_string(unread) + " of the " + std::to_string(d.video()->nb_frames) + " frames its index lists";
-  if (d.cut_short && unread > 0) return "the file is cut short: the last " + frames + " lie past its end";
+  if (d.facts.frames_past_end > 0 && unread > 0)
+    return "the file is cut short: the last " + frames + " lie past its end";
   if (d.end_code < 0 && d.end_code != AVERROR_EOF) {
     return "reading stopped at an error (" + av_error_text(d.end_code) + ")" +
            (unread > 0 ? ", with the last " + frames + " unread" : "");

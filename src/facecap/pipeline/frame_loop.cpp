@@ -20,7 +20,7 @@ FrameLoopResult run_frame_loop(FrameSource& source, const CaptureOptions& option
                                const std::function<void(const DecodedFrame&, bool cut)>& on_frame) {
   const InputInfo& info = source.info();
   FrameLoopResult result;
-  const int remaining = info.frames > 0 ? info.frames - info.first_frame : -1;
+  const int remaining = info.frames > 0 ? info.frames - info.frames_past_end - info.first_frame : -1;
   const int total =
       options.max_frames > 0 && (remaining <= 0 || options.max_frames < remaining) ? options.max_frames : remaining;
   Progress progress("capture", total, options.quiet);
