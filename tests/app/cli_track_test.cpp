@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <sstream>
 #include <string>
@@ -254,6 +255,30 @@ TEST(Cli, ADamagedVideoIsTrackedWithoutTheDecodersChatter) {
       << r.out;
 }
 
+namespace {
+
+// A damaged video's track, alone, with what it printed and the rows it wrote.
+struct DamagedTrack {
+  std::string out;
+  size_t rows = 0;
+};
+
+// Tracks `video` alone and with --all-faces (into DIR/one and DIR/all): both
+// succeed and print `note(what)`, `what` the video alone and "the input"
+// with --all-faces.
+DamagedTrack track_alone_and_all_faces(const fs::path& video, const fs::path& dir,
+                                       const std::function<std::string(const std::string& what)>& note) {
+  const RunResult one = run("track " + video.string() + " -o " + (dir / "one").string());
+  EXPECT_EQ(one.code, 0) << one.out;
+  EXPECT_NE(one.out.find(note(video.string())), std::string::npos) << one.out;
+  const RunResult all = run("track " + video.string() + " -o " + (dir / "all").string() + " --all-faces");
+  EXPECT_EQ(all.code, 0) << all.out;
+  EXPECT_NE(all.out.find(note("the input")), std::string::npos) << all.out;
+  return {one.out, test::read_lines(dir / "one" / "frames.jsonl").size()};
+}
+
+}  // namespace
+
 // A video ending short of its index (damaged_clip.hpp: libavformat stops at
 // a damaged entry, as ffmpeg does) is tracked to where it ends, and one line
 // says how many frames went unread, alone and with --all-faces.
@@ -262,15 +287,10 @@ TEST(Cli, AVideoEndingShortOfItsIndexIsTrackedToItsEndAndSaysSo) {
   FACECAP_REQUIRE_DATA(webcam, "talking_webcam_400x300.mp4");
   TempDir dir;
   const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
-  const std::string unread = " ends early: " + test::DamagedClip::damaged_index_early_end() + "\n";
-  const RunResult one = run("track " + clip.damaged_index.string() + " -o " + (dir.path() / "one").string());
-  EXPECT_EQ(one.code, 0) << one.out;
-  EXPECT_NE(one.out.find("facecap: " + clip.damaged_index.string() + unread), std::string::npos) << one.out;
-  EXPECT_EQ(test::read_lines(dir.path() / "one" / "frames.jsonl").size(), size_t(test::DamagedClip::kIndexDamagedAt));
-  const RunResult all =
-      run("track " + clip.damaged_index.string() + " -o " + (dir.path() / "all").string() + " --all-faces");
-  EXPECT_EQ(all.code, 0) << all.out;
-  EXPECT_NE(all.out.find("facecap: the input" + unread), std::string::npos) << all.out;
+  const DamagedTrack track = track_alone_and_all_faces(clip.damaged_index, dir.path(), [](const std::string& what) {
+    return "facecap: " + what + " ends early: " + test::DamagedClip::damaged_index_early_end() + "\n";
+  });
+  EXPECT_EQ(track.rows, size_t(test::DamagedClip::kIndexDamagedAt));
   const RunResult clean = run("track " + clip.clean.string() + " -o " + (dir.path() / "clean").string());
   EXPECT_EQ(clean.code, 0) << clean.out;
   EXPECT_EQ(clean.out.find("ends early"), std::string::npos) << clean.out;
@@ -285,18 +305,12 @@ TEST(Cli, PacketsTheDecoderRefusesAreCountedInOneLine) {
   TempDir dir;
   const test::DamagedClip clip = test::write_damaged_clip(webcam, dir.path());
   const int refused = test::DamagedClip::kFrames - test::DamagedClip::kIndexDamagedAt;
-  const std::string note = "the decoder refused " + std::to_string(refused) + " packet(s) of ";
-  const RunResult one = run("track " + clip.misaligned.string() + " -o " + (dir.path() / "one").string());
-  EXPECT_EQ(one.code, 0) << one.out;
-  EXPECT_NE(one.out.find(note + clip.misaligned.string() + " (a corrupt stream: their frames are lost"),
-            std::string::npos)
-      << one.out;
-  EXPECT_EQ(one.out.find("ends early"), std::string::npos) << one.out;
-  EXPECT_EQ(test::read_lines(dir.path() / "one" / "frames.jsonl").size(), size_t(test::DamagedClip::kIndexDamagedAt));
-  const RunResult all =
-      run("track " + clip.misaligned.string() + " -o " + (dir.path() / "all").string() + " --all-faces");
-  EXPECT_EQ(all.code, 0) << all.out;
-  EXPECT_NE(all.out.find(note + "the input"), std::string::npos) << all.out;
+  const DamagedTrack track = track_alone_and_all_faces(clip.misaligned, dir.path(), [&](const std::string& what) {
+    return "the decoder refused " + std::to_string(refused) + " packet(s) of " + what +
+           " (a corrupt stream: their frames are lost";
+  });
+  EXPECT_EQ(track.out.find("ends early"), std::string::npos) << track.out;
+  EXPECT_EQ(track.rows, size_t(test::DamagedClip::kIndexDamagedAt));
 }
 
 // A folder of photos of different sizes is not one camera's frames: the
