@@ -188,9 +188,10 @@ struct VideoDecoder::Impl {
     const int entries = avformat_index_get_entries_count(s);
     const bool sample_index = std::string_view(format->iformat->name).starts_with("mov,") || entries == s->nb_frames;
     if (s->nb_frames <= 0 || entries <= 0 || entries > s->nb_frames || !sample_index) return 0;
-    if (demuxed > 0 && last_dts == AV_NOPTS_VALUE) return 0;  // packets without times: no telling
-    int reached = 0;                                          // entries at or before the last packet demuxed
-    for (int k = 0; k < entries && demuxed > 0; ++k) reached += avformat_index_get_entry(s, k)->timestamp <= last_dts;
+    if (demuxed == 0) return int(s->nb_frames);  // not one packet was read
+    if (last_dts == AV_NOPTS_VALUE) return 0;    // packets without times: no telling
+    int reached = 0;                             // entries at or before the last packet demuxed
+    for (int k = 0; k < entries; ++k) reached += avformat_index_get_entry(s, k)->timestamp <= last_dts;
     return int(s->nb_frames) - reached;
   }
 
