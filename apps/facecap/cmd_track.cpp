@@ -89,6 +89,7 @@ void report_all_faces(const AllFacesSummary& all) {
 void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& options) {
   std::fprintf(out, "%s\n", (s.output_dir / "frames.csv").string().c_str());
   if (options.landmarks_csv) std::fprintf(out, "%s\n", (s.output_dir / "landmarks.csv").string().c_str());
+  if (options.action_units) std::fprintf(out, "%s\n", (s.output_dir / "action_units.csv").string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
@@ -155,6 +156,11 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "Write DIR/landmarks.csv: each frame's 68 landmarks in OpenFace's columns: the detector's (x_0 ... "
                 "y_67, pixels), the fitted model's projected (fit_x_0 ... fit_y_67) and the fitted model's in camera "
                 "space (X_0 ... Z_67, millimetres, x right, y down, z forward)");
+  cmd->add_flag("--action-units", a->options.action_units,
+                "Write DIR/action_units.csv: each frame's FACS action units in OpenFace's columns, intensity AU01_r "
+                "... AU45_r (0-5) and presence AU01_c ... AU45_c (0 or 1, from intensity 1), read off the fitted "
+                "expression weights (a weight of 1 is intensity 5); ICT has no shape for AU23 and AU25, which are "
+                "left out");
   cmd->add_flag("--livelink", a->options.livelink,
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "

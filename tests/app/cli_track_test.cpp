@@ -560,19 +560,24 @@ TEST(Cli, TrackStreamsEachFramesRowOnStdout) {
       err.end());
 }
 
-// --landmarks-csv: the table is written and named with the other files, a
-// row a frame as wide as its header (landmark_table.hpp).
-TEST(Cli, TrackWritesTheLandmarkTableAndNamesIt) {
+// --landmarks-csv and --action-units: the tables are written and named with
+// the other files, a row a frame as wide as its header (landmark_table.hpp,
+// action_unit_table.hpp).
+TEST(Cli, TrackWritesTheLandmarkAndActionUnitTablesAndNamesThem) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   TempDir dir;
-  const RunResult r = run("track " + video.string() + " --landmarks-csv --max-frames 4 -o " + dir.path().string());
+  const RunResult r =
+      run("track " + video.string() + " --landmarks-csv --action-units --max-frames 4 -o " + dir.path().string());
   ASSERT_EQ(r.code, 0) << r.out;
-  const fs::path table = dir.path() / "landmarks.csv";
-  EXPECT_NE(r.out.find(table.string()), std::string::npos) << r.out;
-  const std::vector<std::string> rows = test::read_lines(table);
-  ASSERT_EQ(rows.size(), 5u);
-  for (const std::string& row : rows) EXPECT_EQ(split_csv_line(row).size(), 3u + 7u * 68u) << row.substr(0, 40);
+  for (const auto& [name, fields] : {std::pair<const char*, size_t>{"landmarks.csv", 3u + 7u * 68u},
+                                     std::pair<const char*, size_t>{"action_units.csv", 3u + 2u * 19u}}) {
+    const fs::path table = dir.path() / name;
+    EXPECT_NE(r.out.find(table.string()), std::string::npos) << r.out;
+    const std::vector<std::string> rows = test::read_lines(table);
+    ASSERT_EQ(rows.size(), 5u) << name;
+    for (const std::string& row : rows) EXPECT_EQ(split_csv_line(row).size(), fields) << row.substr(0, 40);
+  }
 }
 
 }  // namespace facecap

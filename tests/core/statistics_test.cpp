@@ -22,6 +22,12 @@ TEST(PearsonCorrelation, AConstantOrEmptySampleGivesZero) {
   EXPECT_EQ(pearson_correlation({}, {}), 0.0);
 }
 
+TEST(StandardDeviation, IsTheSamplesSpreadAboutItsMean) {
+  EXPECT_DOUBLE_EQ(standard_deviation({2, 4, 4, 4, 5, 5, 7, 9}), 2.0);  // mean 5, squares summing to 32 over 8
+  EXPECT_DOUBLE_EQ(standard_deviation({3, 3, 3}), 0.0);
+  EXPECT_DOUBLE_EQ(standard_deviation({}), 0.0);
+}
+
 TEST(Median, TakesTheUpperMiddleOfAnEvenCountCopiedOrInPlace) {
   EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
   EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 3.0);

@@ -16,6 +16,7 @@
 #include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/expr/action_units.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/livelink_face.hpp"
@@ -321,6 +322,7 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   o.capture.quiet = true;
   o.gltf = true;
   o.landmarks_csv = true;
+  o.action_units = true;
   const TrackSummary s = run_track(*model, frames.path().string(), out.path(), o);
   const auto csv = lines(out.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
@@ -329,6 +331,28 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   ASSERT_EQ(table.size(), 37u);
   EXPECT_EQ(table[32], csv[32].substr(0, csv[32].find(",lost,") + 5) + std::string(7 * 68, ','));
   EXPECT_EQ(table[34].find(",,"), std::string::npos) << table[34].substr(0, 80);
+  // The action units' too; a tracked row's units are its frames.csv weights,
+  // read as action_units.hpp reads them.
+  const auto units = lines(out.path() / "action_units.csv");
+  ASSERT_EQ(units.size(), 37u);
+  const size_t unit_count = action_units().size();
+  EXPECT_EQ(units[32], table[32].substr(0, table[32].find(",lost,") + 5) + std::string(2 * unit_count, ','));
+  const std::vector<std::string> header = split_csv_line(csv[0]), unit_header = split_csv_line(units[0]);
+  ASSERT_EQ(unit_header.size(), 3 + 2 * unit_count);
+  for (int row : {1, 20, 34}) {
+    const std::vector<std::string> frame = split_csv_line(csv[row]), unit_row = split_csv_line(units[row]);
+    ASSERT_EQ(unit_row.size(), unit_header.size()) << "row " << row;
+    EXPECT_EQ(unit_row[0], frame[0]);
+    for (size_t u = 0; u < unit_count; ++u) {
+      double weight_sum = 0;
+      for (const std::string& shape : action_units()[u].shapes)
+        weight_sum += std::stod(frame[std::find(header.begin(), header.end(), shape) - header.begin()]);
+      const double intensity = std::stod(unit_row[3 + u]);
+      EXPECT_NEAR(intensity, 5.0 * weight_sum / double(action_units()[u].shapes.size()), 1e-4)
+          << unit_header[3 + u] << ", row " << row;
+      EXPECT_EQ(unit_row[3 + unit_count + u], intensity >= 1.0 ? "1" : "0") << unit_header[3 + unit_count + u];
+    }
+  }
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
   // Every field after the status is empty, gaze included; then the shot.
   EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9 + 1, ',') + "0") << csv[32];

@@ -18,6 +18,15 @@ double pearson_correlation(const std::vector<double>& a, const std::vector<doubl
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
 }
 
+double standard_deviation(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const double n = static_cast<double>(values.size());
+  double mean = 0, square = 0;
+  for (double v : values) mean += v / n;
+  for (double v : values) square += (v - mean) * (v - mean) / n;
+  return std::sqrt(square);
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());

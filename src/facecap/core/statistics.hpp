@@ -8,6 +8,10 @@ namespace facecap {
 // (or empty).
 double pearson_correlation(const std::vector<double>& a, const std::vector<double>& b);
 
+// Standard deviation of a sample about its mean (dividing by its size, not
+// size - 1); 0 for an empty sample.
+double standard_deviation(const std::vector<double>& values);
+
 // The middle value (the upper one of an even count); 0 for an empty sample.
 double median(std::vector<double> values);
 

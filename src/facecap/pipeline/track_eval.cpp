@@ -12,6 +12,7 @@
 #include "facecap/core/rigid_alignment.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/expr/action_units.hpp"
 #include "facecap/fit/gaze.hpp"
 #include "facecap/fit/identity_size.hpp"
 #include "facecap/fit/shape_uncertainty.hpp"
@@ -90,6 +91,28 @@ double regression_slope(const std::vector<double>& x, const std::vector<double>&
   return sxy / sxx;
 }
 
+// TrackEvalResult's action-unit correlation and F1 from each unit's fitted
+// and true intensities over the tracked frames.
+void score_action_units(const std::vector<std::vector<double>>& fitted, const std::vector<std::vector<double>>& truth,
+                        TrackEvalResult& r) {
+  long true_positive = 0, false_positive = 0, false_negative = 0;
+  for (size_t u = 0; u < fitted.size(); ++u) {
+    if (standard_deviation(truth[u]) >= kActionUnitMovesFrom) {
+      r.action_units_correlation += pearson_correlation(fitted[u], truth[u]);
+      ++r.action_units_moving;
+    }
+    for (size_t i = 0; i < fitted[u].size(); ++i) {
+      const bool called = fitted[u][i] >= kActionUnitPresentFrom, present = truth[u][i] >= kActionUnitPresentFrom;
+      true_positive += called && present;
+      false_positive += called && !present;
+      false_negative += !called && present;
+    }
+  }
+  if (r.action_units_moving > 0) r.action_units_correlation /= r.action_units_moving;
+  const long scored = 2 * true_positive + false_positive + false_negative;
+  r.action_units_f1 = scored > 0 ? 2.0 * true_positive / double(scored) : 0.0;
+}
+
 Positions fitted_shape(const FaceModel& model, const IdentityEstimate& id, const Eigen::VectorXf& w) {
   return model.evaluate(id.identity.cast<float>(), w, regions::kFace);
 }
@@ -147,6 +170,8 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   std::vector<double> iris_errors;
   int open_eyes = 0, found_open = 0, gaze_frames = 0;
   const std::vector<int> eye_look = EyeLookShapes(model).indices();
+  const ActionUnitReader action_units(model.expression_names);
+  std::vector<std::vector<double>> unit_fitted(action_units.size()), unit_true(action_units.size());
   for (const CoarseFit& fit : frames) {
     ++r.frames;
     if (!fit.valid) {
@@ -165,6 +190,13 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     r.translation_error_cm += (fit.pose.translation - truth.pose.translation).norm();
     r.weights_mae += (fit.expression - truth.expression).cwiseAbs().mean();
     for (int k : eye_look) r.eye_look_mae += std::abs(fit.expression[k] - truth.expression[k]) / eye_look.size();
+    const Eigen::VectorXd units = action_units.intensities(fit.expression);
+    const Eigen::VectorXd true_units = action_units.intensities(truth.expression);
+    r.action_units_mae += (units - true_units).cwiseAbs().mean();
+    for (int u = 0; u < action_units.size(); ++u) {
+      unit_fitted[u].push_back(units[u]);
+      unit_true[u].push_back(true_units[u]);
+    }
     if (!options.capture.gaze) continue;
     const float blink = std::max(truth.expression[model.expression_index("eyeBlink_L")],
                                  truth.expression[model.expression_index("eyeBlink_R")]);
@@ -192,8 +224,10 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     r.translation_error_cm /= valid;
     r.weights_mae /= valid;
     r.eye_look_mae /= valid;
+    r.action_units_mae /= valid;
   }
   r.yaw_gain = regression_slope(true_yaw, fitted_yaw);
+  score_action_units(unit_fitted, unit_true, r);
   r.fit_ms_per_frame = r.frames > 0 ? fit_ms / r.frames : 0.0;
 
   if (options.still_frames > 1) {

@@ -26,6 +26,10 @@ struct TrackEvalOptions {
   CaptureOptions capture;          // capture.gaze: also the irises and gaze (truth landmarks: renders the frames)
 };
 
+// The least standard deviation (0-5 scale) of a unit's true intensity over
+// the frames for TrackEvalResult::action_units_correlation to count it.
+inline constexpr double kActionUnitMovesFrom = 0.25;
+
 // The least spread of true yaw over which TrackEvalResult::yaw_gain is measured.
 inline constexpr double kMinYawSpreadDeg = 10.0;
 
@@ -43,8 +47,19 @@ struct TrackEvalResult {
   double translation_error_cm = 0;
   double focal = 0, focal_true = 0;
   double focal_error_rel = 0;
-  double weights_mae = 0;       // mean |w - w_true| over frames and the 53 weights
-  double eye_look_mae = 0;      // the same over the eight eyeLook weights (eye_look.hpp)
+  double weights_mae = 0;   // mean |w - w_true| over frames and the 53 weights
+  double eye_look_mae = 0;  // the same over the eight eyeLook weights (eye_look.hpp)
+  // The FACS action units read off the weights (action_units.hpp), by the
+  // measures AU benchmarks use: mean |intensity - true intensity| (0-5) over
+  // frames and units; the Pearson correlation of each unit's intensity with
+  // the truth's over the frames, averaged over the units whose true intensity
+  // varies (standard deviation at least kActionUnitMovesFrom; how many in
+  // action_units_moving); and the F1 score of the presence calls over every
+  // (frame, unit), which calling no unit present scores 0.
+  double action_units_mae = 0;
+  double action_units_correlation = 0;
+  int action_units_moving = 0;
+  double action_units_f1 = 0;
   double jitter_mm = 0;         // RMS frame-to-frame motion of the face shape (model space), still head
   double jitter_camera_mm = 0;  // the same in camera space (adds pose jitter, mostly depth)
   double identity_error = 0;    // ||a - a_true|| over the fitted modes

@@ -15,6 +15,7 @@
 #include "facecap/io/livelink_csv.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
+#include "facecap/pipeline/action_unit_table.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/landmark_table.hpp"
 #include "facecap/pipeline/livelink_streamer.hpp"
@@ -34,6 +35,7 @@ namespace {
 // Files of the output folder besides the videos (track_videos.hpp).
 constexpr const char* kLiveLinkCsv = "livelink_face.csv";
 constexpr const char* kLandmarkTable = "landmarks.csv";
+constexpr const char* kActionUnitTable = "action_units.csv";
 constexpr const char* kAlbedoImage = "albedo.png";
 constexpr const char* kTextureImage = "texture.png";
 
@@ -91,6 +93,11 @@ class FrameWriter {
     if (options.landmarks_csv) {
       landmarks_.emplace(dir / kLandmarkTable);
       landmarks_->stream() << landmark_table_header() << '\n';
+    }
+    if (options.action_units) {
+      action_units_.emplace(dir / kActionUnitTable);
+      action_unit_table_.emplace(model.expression_names);
+      action_units_->stream() << action_unit_table_->header() << '\n';
     }
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
@@ -159,6 +166,10 @@ class FrameWriter {
     o << ',' << f.shot << '\n';
     if (landmarks_)
       landmarks_->stream() << landmark_table_row(f.index, f.time, to_string(f.status), ok ? &f.fit : nullptr) << '\n';
+    if (action_units_)
+      action_units_->stream() << action_unit_table_->row(f.index, f.time, to_string(f.status),
+                                                         ok ? &f.fit.expression : nullptr)
+                              << '\n';
     if (livelink_face_) write_livelink(f);
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
@@ -256,6 +267,7 @@ class FrameWriter {
     csv_.commit();
     jsonl_.commit();
     if (landmarks_) landmarks_->commit();
+    if (action_units_) action_units_->commit();
     if (livelink_) livelink_->commit();
     if (videos_) videos_->finish();
     meshes_.finish();
@@ -349,10 +361,12 @@ class FrameWriter {
   const TrackOptions options_;  // a copy: a capture may outlive the options it was given
   StagedText csv_;
   StagedText jsonl_;
+  std::optional<StagedText> landmarks_;     // --landmarks-csv (landmark_table.hpp)
+  std::optional<StagedText> action_units_;  // --action-units (action_unit_table.hpp)
+  std::optional<ActionUnitTable> action_unit_table_;
   // --livelink, --livelink-udp: a row and a datagram per frame; a lost frame
   // holds the last tracked one's values (importers read rows as frames, and
   // a rig keeps its face), the first ones the rest pose.
-  std::optional<StagedText> landmarks_;  // --landmarks-csv (landmark_table.hpp)
   std::optional<LiveLinkFace> livelink_face_;
   LiveLinkFace::Values livelink_values_{};
   std::optional<StagedText> livelink_;

@@ -20,6 +20,9 @@
 //   DIR/landmarks.csv  (--landmarks-csv) each frame's 68 landmarks: the
 //                      detector's, the fit's projected and the fit's in
 //                      camera space (mm), in OpenFace's columns
+//   DIR/action_units.csv (--action-units) each frame's FACS action units,
+//                      read off the weights, in OpenFace's AU columns
+//                      (action_unit_table.hpp)
 //   DIR/livelink_face.csv (--livelink) the weights, head pose and gaze as a
 //                      Live Link Face take, for Unreal (MetaHuman) and
 //                      ARKit rigs (io/livelink_csv.hpp)
@@ -72,6 +75,9 @@ struct TrackOptions {
   // DIR/landmarks.csv: each frame's detected, fitted and 3D landmarks
   // (landmark_table.hpp: OpenFace's columns)
   bool landmarks_csv = false;
+  // DIR/action_units.csv: each frame's FACS action units (action_unit_table.hpp:
+  // OpenFace's AU columns)
+  bool action_units = false;
   bool livelink = false;  // DIR/livelink_face.csv (io/livelink_csv.hpp)
   // Each frame's Live Link Face values also sent as a datagram as the frame
   // is written (io/livelink_packet.hpp: Unreal's Live Link, a MetaHuman).

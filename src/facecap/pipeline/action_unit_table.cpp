@@ -1,0 +1,24 @@
+#include "facecap/pipeline/action_unit_table.hpp"
+
+#include "facecap/core/csv_line.hpp"
+
+namespace facecap {
+
+std::string ActionUnitTable::header() const {
+  std::string h = "frame,time,status";
+  for (char suffix : {'r', 'c'})
+    for (const ActionUnit& unit : action_units()) h += ',' + unit.column(suffix);
+  return h;
+}
+
+std::string ActionUnitTable::row(int frame, double time, const std::string& status,
+                                 const Eigen::VectorXf* weights) const {
+  std::string row = std::to_string(frame) + ',' + csv_number(time) + ',' + status;
+  if (weights == nullptr) return row + std::string(2 * reader_.size(), ',');
+  const Eigen::VectorXd intensity = reader_.intensities(*weights);
+  for (double v : intensity) row += ',' + csv_number(v);
+  for (double v : intensity) row += v >= kActionUnitPresentFrom ? ",1" : ",0";
+  return row;
+}
+
+}  // namespace facecap

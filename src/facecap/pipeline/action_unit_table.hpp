@@ -1,0 +1,30 @@
+#pragma once
+// `track --action-units`: DIR/action_units.csv, each frame's FACS action
+// units (expr/action_units.hpp) in OpenFace's columns, so that scripts
+// written for OpenFace's AU output read ours:
+//   frame, time, status,
+//   AU01_r ... AU45_r   intensity, 0-5
+//   AU01_c ... AU45_c   presence, 0 or 1
+// A frame without a face has its fields empty.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "facecap/expr/action_units.hpp"
+
+namespace facecap {
+
+class ActionUnitTable {
+ public:
+  explicit ActionUnitTable(const std::vector<std::string>& expression_names) : reader_(expression_names) {}
+
+  std::string header() const;
+  // A frame's row, without its newline; `weights` null for a frame without a face.
+  std::string row(int frame, double time, const std::string& status, const Eigen::VectorXf* weights) const;
+
+ private:
+  ActionUnitReader reader_;
+};
+
+}  // namespace facecap
