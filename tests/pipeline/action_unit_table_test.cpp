@@ -57,6 +57,13 @@ TEST(ActionUnitTable, GivesIntensitiesThenPresenceUnderOpenFacesColumns) {
   EXPECT_EQ(row[4], "0");  // AU2 not moved
   EXPECT_EQ(row[4 + units], "0");
 
+  // The same for frames.jsonl, keyed by the unit.
+  const nlohmann::json json = table.intensities_json(w);
+  EXPECT_EQ(json.size(), units);
+  EXPECT_NEAR(double(json["AU01"]), 1.05, 1e-6);
+  EXPECT_NEAR(double(json["AU45"]), 1.5, 1e-6);
+  EXPECT_EQ(double(json["AU12"]), 0.0);
+
   // A frame without a face: its fields empty, never made-up numbers.
   EXPECT_EQ(table.row(13, 0.54, "lost", nullptr), "13,0.54,lost" + std::string(2 * units, ','));
 }

@@ -334,6 +334,8 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   // The action units' too; a tracked row's units are its frames.csv weights,
   // read as action_units.hpp reads them.
   const auto units = lines(out.path() / "action_units.csv");
+  const auto jsonl = lines(out.path() / "frames.jsonl");  // no header
+  ASSERT_EQ(jsonl.size(), 36u);
   ASSERT_EQ(units.size(), 37u);
   const size_t unit_count = action_units().size();
   EXPECT_EQ(units[32], table[32].substr(0, table[32].find(",lost,") + 5) + std::string(2 * unit_count, ','));
@@ -352,7 +354,13 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
           << unit_header[3 + u] << ", row " << row;
       EXPECT_EQ(unit_row[3 + unit_count + u], intensity >= 1.0 ? "1" : "0") << unit_header[3 + unit_count + u];
     }
+    // frames.jsonl (and so --stream) has the same intensities.
+    const nlohmann::json json_row = nlohmann::json::parse(jsonl[row - 1]);
+    ASSERT_EQ(json_row["action_units"].size(), unit_count);
+    for (size_t u = 0; u < unit_count; ++u)
+      EXPECT_NEAR(double(json_row["action_units"][action_units()[u].label()]), std::stod(unit_row[3 + u]), 1e-4);
   }
+  EXPECT_FALSE(nlohmann::json::parse(jsonl[31]).contains("action_units"));  // the lost frame
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
   // Every field after the status is empty, gaze included; then the shot.
   EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9 + 1, ',') + "0") << csv[32];

@@ -16,11 +16,13 @@ ActionUnit both_sides(int number, const char* name, const std::string& shape) {
 
 }  // namespace
 
-std::string ActionUnit::column(char suffix) const {
+std::string ActionUnit::label() const {
   char text[16];
-  std::snprintf(text, sizeof text, "AU%02d_%c", number, suffix);
+  std::snprintf(text, sizeof text, "AU%02d", number);
   return text;
 }
+
+std::string ActionUnit::column(char suffix) const { return label() + '_' + suffix; }
 
 const std::vector<ActionUnit>& action_units() {
   static const std::vector<ActionUnit> units = {

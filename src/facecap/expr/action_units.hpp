@@ -33,6 +33,7 @@ struct ActionUnit {
   int number = 0;                         // FACS number: 1 for AU1
   std::string name;                       // FACS name: "inner brow raiser"
   std::vector<std::string> shapes;        // ICT shapes whose mean weight it is
+  std::string label() const;              // "AU01", as OpenFace numbers them
   std::string column(char suffix) const;  // OpenFace's column: "AU01_r" for 'r'
 };
 

@@ -21,4 +21,11 @@ std::string ActionUnitTable::row(int frame, double time, const std::string& stat
   return row;
 }
 
+nlohmann::json ActionUnitTable::intensities_json(const Eigen::VectorXf& weights) const {
+  const Eigen::VectorXd intensity = reader_.intensities(weights);
+  nlohmann::json units = nlohmann::json::object();
+  for (Eigen::Index u = 0; u < intensity.size(); ++u) units[action_units()[u].label()] = intensity[u];
+  return units;
+}
+
 }  // namespace facecap

@@ -5,11 +5,13 @@
 //   frame, time, status,
 //   AU01_r ... AU45_r   intensity, 0-5
 //   AU01_c ... AU45_c   presence, 0 or 1
-// A frame without a face has its fields empty.
+// A frame without a face has its fields empty. frames.jsonl (and so
+// `--stream`) gives a tracked frame's intensities as "action_units".
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "facecap/expr/action_units.hpp"
 
@@ -22,6 +24,8 @@ class ActionUnitTable {
   std::string header() const;
   // A frame's row, without its newline; `weights` null for a frame without a face.
   std::string row(int frame, double time, const std::string& status, const Eigen::VectorXf* weights) const;
+  // The same units as JSON for frames.jsonl: {"AU01": intensity, ...}.
+  nlohmann::json intensities_json(const Eigen::VectorXf& weights) const;
 
  private:
   ActionUnitReader reader_;

@@ -152,6 +152,7 @@ class FrameWriter {
       row["weights"] = weights;
       row["landmarks"] = landmarks_json(f.fit.observed);
       row["fitted_landmarks"] = landmarks_json(f.fit.fitted);
+      if (action_unit_table_) row["action_units"] = action_unit_table_->intensities_json(f.fit.expression);
       if (ref != nullptr) {
         for (int k = 0; k < 9; ++k) o << ',' << csv_number(ref->lighting[k]);
         row["lighting"] = std::vector<double>(ref->lighting.data(), ref->lighting.data() + 9);
