@@ -53,6 +53,7 @@ TEST(TrackEachImage, EachImageIsFittedAsItsOwnRunAndTabled) {
 
   TrackOptions o;
   o.capture.quiet = true;
+  o.action_units = true;
   const fs::path out = dir.path() / "out";
   const EachImageSummary s = run_track_each_image(*model, folder, out, o);
   EXPECT_EQ(s.images, 6);
@@ -63,10 +64,13 @@ TEST(TrackEachImage, EachImageIsFittedAsItsOwnRunAndTabled) {
   const std::vector<std::string> csv = read_lines(out / "images.csv");
   ASSERT_EQ(csv.size(), 7u);
   const std::vector<std::string> header = split_csv_line(csv[0]);
-  ASSERT_EQ(header.size(), 1 + 12 + 53 + 9 + 50u);  // image, status ... landmark_error, weights, gaze, identity
+  // image, status ... landmark_error, weights, gaze, identity, action units
+  ASSERT_EQ(header.size(), 1 + 12 + 53 + 9 + 50 + 2 * 19u);
   EXPECT_EQ(header[0], "image");
   EXPECT_EQ(header[1], "status");
-  EXPECT_EQ(header.back(), "id_49");
+  EXPECT_EQ(header[1 + 12 + 53 + 9 + 49], "id_49");
+  EXPECT_EQ(header[1 + 12 + 53 + 9 + 50], "AU01_r");
+  EXPECT_EQ(header.back(), "AU45_c");
   const std::vector<std::string> jsonl = read_lines(out / "images.jsonl");
   ASSERT_EQ(jsonl.size(), 6u);
   const std::vector<std::string> names = {"a_biden.jpg", "a_biden.png", "b_obama.jpg",
@@ -97,6 +101,11 @@ TEST(TrackEachImage, EachImageIsFittedAsItsOwnRunAndTabled) {
   for (int k = 0; k < 50; ++k)
     EXPECT_DOUBLE_EQ(obama_row["identity_weights"][k].get<double>(), single.capture.identity.identity[k]) << k;
   EXPECT_EQ(obama_row["size"], nlohmann::json::parse("[910, 1137]"));
+  // ...and the same action units, last in the table's row.
+  const std::vector<std::string> single_units = split_csv_line(read_lines(alone / "action_units.csv")[1]);
+  ASSERT_EQ(single_units.size(), 3 + 2 * 19u);
+  for (size_t k = 3; k < single_units.size(); ++k)
+    EXPECT_EQ(table_row[table_row.size() - single_units.size() + k], single_units[k]) << header[header.size() - 41 + k];
 
   // The LFPW portrait's fit against its annotation (0.033 of the eye
   // distance measured; dlib's own landmarks 0.029).

@@ -4,10 +4,16 @@
 
 namespace facecap {
 
+std::vector<std::string> action_unit_columns() {
+  std::vector<std::string> columns;
+  for (char suffix : {'r', 'c'})
+    for (const ActionUnit& unit : action_units()) columns.push_back(unit.column(suffix));
+  return columns;
+}
+
 std::string ActionUnitTable::header() const {
   std::string h = "frame,time,status";
-  for (char suffix : {'r', 'c'})
-    for (const ActionUnit& unit : action_units()) h += ',' + unit.column(suffix);
+  for (const std::string& column : action_unit_columns()) h += ',' + column;
   return h;
 }
 

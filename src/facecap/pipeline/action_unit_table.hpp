@@ -17,6 +17,9 @@
 
 namespace facecap {
 
+// The unit columns, after frame, time and status: AU01_r ... AU45_r, AU01_c ... AU45_c.
+std::vector<std::string> action_unit_columns();
+
 class ActionUnitTable {
  public:
   explicit ActionUnitTable(const std::vector<std::string>& expression_names) : reader_(expression_names) {}

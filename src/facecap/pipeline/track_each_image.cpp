@@ -12,6 +12,7 @@
 #include "facecap/core/interrupt.hpp"
 #include "facecap/core/progress.hpp"
 #include "facecap/io/input.hpp"
+#include "facecap/pipeline/action_unit_table.hpp"
 
 namespace facecap {
 
@@ -121,6 +122,13 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
         row["identity_weights"] = std::vector<double>(id.identity.data(), id.identity.data() + id.identity.size());
         row["focal_px"] = id.focal;
         for (Eigen::Index k = 0; k < id.identity.size() && k < modes; ++k) fields.push_back(csv_number(id.identity[k]));
+        if (options.action_units) {  // the units after the identity, as the header has them
+          const std::vector<std::string> units = file_lines(dir / "action_units.csv");
+          if (units.size() != 2) throw Error("expected one frame in " + (dir / "action_units.csv").string());
+          const std::vector<std::string> unit_fields = split_csv_line(units[1]);
+          fields.resize(1 + header.size() + size_t(modes));
+          fields.insert(fields.end(), unit_fields.begin() + 3, unit_fields.end());  // after frame, time, status
+        }
       }
     }
     row["image"] = file;
@@ -138,8 +146,11 @@ EachImageSummary run_track_each_image(const FaceModel& model, const fs::path& fo
   std::string csv = "image";
   for (const std::string& h : header) csv += "," + h;
   for (int k = 0; k < modes; ++k) csv += ",id_" + std::to_string(k);
+  const std::vector<std::string> unit_columns =
+      options.action_units ? action_unit_columns() : std::vector<std::string>{};
+  for (const std::string& column : unit_columns) csv += "," + column;
   csv += "\n";
-  const size_t width = 1 + header.size() + size_t(modes);
+  const size_t width = 1 + header.size() + size_t(modes) + unit_columns.size();
   for (const std::vector<std::string>& fields : csv_rows) {
     csv += csv_field(fields[0]);
     for (size_t k = 1; k < width; ++k) csv += "," + (k < fields.size() ? fields[k] : std::string());
