@@ -90,6 +90,7 @@ void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& opt
   std::fprintf(out, "%s\n", (s.output_dir / "frames.csv").string().c_str());
   if (options.landmarks_csv) std::fprintf(out, "%s\n", (s.output_dir / "landmarks.csv").string().c_str());
   if (options.action_units) std::fprintf(out, "%s\n", (s.output_dir / "action_units.csv").string().c_str());
+  if (options.aligned_faces) std::fprintf(out, "%s\n", (s.output_dir / "aligned").string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
@@ -161,6 +162,16 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "... AU45_r (0-5) and presence AU01_c ... AU45_c (0 or 1, from intensity 1), read off the fitted "
                 "expression weights (a weight of 1 is intensity 5); ICT has no shape for AU23 and AU25, which are "
                 "left out");
+  CLI::Option* aligned = cmd->add_flag(
+      "--aligned-faces", a->options.aligned_faces,
+      "Write DIR/aligned/frame_NNNNNN.png: each tracked frame's face cropped upright, its eyes, nose tip and mouth "
+      "corners moved by a similarity onto the 5-point template of ArcFace (InsightFace's recognition models), the "
+      "input that face recognition and expression networks take");
+  cmd->add_option("--aligned-size", a->options.aligned_face_size,
+                  "--aligned-faces: the crops' width and height in pixels (the template scaled from its 112)")
+      ->check(CLI::Range(32, 1024))
+      ->needs(aligned)
+      ->capture_default_str();
   cmd->add_flag("--livelink", a->options.livelink,
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "

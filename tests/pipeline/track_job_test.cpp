@@ -323,6 +323,13 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   o.gltf = true;
   o.landmarks_csv = true;
   o.action_units = true;
+  o.aligned_faces = true;
+  o.aligned_face_size = 96;
+  // An earlier run's crops of frames this one loses or does not reach go;
+  // other files stay.
+  fs::create_directories(out.path() / "aligned");
+  for (const char* name : {"frame_000031.png", "frame_000099.png", "notes.txt"})
+    std::ofstream(out.path() / "aligned" / name) << "earlier";
   const TrackSummary s = run_track(*model, frames.path().string(), out.path(), o);
   const auto csv = lines(out.path() / "frames.csv");
   ASSERT_EQ(csv.size(), 37u);
@@ -361,6 +368,21 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
       EXPECT_NEAR(double(json_row["action_units"][action_units()[u].label()]), std::stod(unit_row[3 + u]), 1e-4);
   }
   EXPECT_FALSE(nlohmann::json::parse(jsonl[31]).contains("action_units"));  // the lost frame
+  // A crop for each tracked frame, none for the lost one.
+  int crops = 0;
+  for (int frame = 0; frame < 36; ++frame) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+    const fs::path crop = out.path() / "aligned" / name;
+    const bool tracked = csv[frame + 1].find(",lost,") == std::string::npos;
+    ASSERT_EQ(fs::exists(crop), tracked) << name;
+    if (!tracked) continue;
+    ++crops;
+    EXPECT_EQ(read_image(crop.string()).size(), cv::Size(96, 96)) << name;
+  }
+  EXPECT_EQ(crops, 36 - s.capture.lost);
+  EXPECT_FALSE(fs::exists(out.path() / "aligned" / "frame_000099.png"));
+  EXPECT_TRUE(fs::exists(out.path() / "aligned" / "notes.txt"));
   EXPECT_NE(csv[32].find(",lost,,,"), std::string::npos) << csv[32];
   // Every field after the status is empty, gaze included; then the shot.
   EXPECT_EQ(csv[32].substr(csv[32].find(",lost,") + 5), std::string(11 + 53 + 9 + 1, ',') + "0") << csv[32];

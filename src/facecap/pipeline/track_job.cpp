@@ -5,11 +5,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <unordered_set>
 
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
+#include "facecap/detect/aligned_face.hpp"
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/livelink_csv.hpp"
@@ -17,6 +19,7 @@
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/action_unit_table.hpp"
 #include "facecap/pipeline/face_animation.hpp"
+#include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/landmark_table.hpp"
 #include "facecap/pipeline/livelink_streamer.hpp"
 #include "facecap/pipeline/photo_face_texture.hpp"
@@ -36,6 +39,7 @@ namespace {
 constexpr const char* kLiveLinkCsv = "livelink_face.csv";
 constexpr const char* kLandmarkTable = "landmarks.csv";
 constexpr const char* kActionUnitTable = "action_units.csv";
+constexpr const char* kAlignedFaces = "aligned";  // a folder
 constexpr const char* kAlbedoImage = "albedo.png";
 constexpr const char* kTextureImage = "texture.png";
 
@@ -99,6 +103,7 @@ class FrameWriter {
       action_unit_table_.emplace(model.expression_names);
       action_units_->stream() << action_unit_table_->header() << '\n';
     }
+    if (options.aligned_faces) ensure_writable_dir(dir / kAlignedFaces);
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
       livelink_csv_.emplace(info.fps);
@@ -176,6 +181,7 @@ class FrameWriter {
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
     if (ok && texture_ && texture_->wants_more()) texture_->add(f.image, coarse, camera);
+    if (ok && options_.aligned_faces) write_aligned_face(f);
     if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
@@ -269,6 +275,7 @@ class FrameWriter {
     jsonl_.commit();
     if (landmarks_) landmarks_->commit();
     if (action_units_) action_units_->commit();
+    if (options_.aligned_faces) remove_unwritten_frame_files(dir_ / kAlignedFaces, {"png"}, aligned_written_);
     if (livelink_) livelink_->commit();
     if (videos_) videos_->finish();
     meshes_.finish();
@@ -299,6 +306,14 @@ class FrameWriter {
   // --livelink, --livelink-udp: the frame's weights, head angles and each
   // eye's gaze as Live Link Face values (io/livelink_face.hpp), a row of the
   // take and a datagram of the stream.
+  // The fitted landmarks place the crop: steadier than the detector's, and
+  // where the model puts the face.
+  void write_aligned_face(const CapturedFrame& f) {
+    const std::string name = frame_file_name(f.index, "png");
+    write_image(dir_ / kAlignedFaces / name, aligned_face(f.image, f.fit.fitted, options_.aligned_face_size));
+    aligned_written_.insert(name);
+  }
+
   void write_livelink(const CapturedFrame& f) {
     if (f.status != TrackStatus::kLost) {
       LiveLinkPose pose;
@@ -365,6 +380,7 @@ class FrameWriter {
   std::optional<StagedText> landmarks_;     // --landmarks-csv (landmark_table.hpp)
   std::optional<StagedText> action_units_;  // --action-units (action_unit_table.hpp)
   std::optional<ActionUnitTable> action_unit_table_;
+  std::unordered_set<std::string> aligned_written_;  // --aligned-faces: the crops' file names
   // --livelink, --livelink-udp: a row and a datagram per frame; a lost frame
   // holds the last tracked one's values (importers read rows as frames, and
   // a rig keeps its face), the first ones the rest pose.

@@ -23,6 +23,8 @@
 //   DIR/action_units.csv (--action-units) each frame's FACS action units,
 //                      read off the weights, in OpenFace's AU columns
 //                      (action_unit_table.hpp)
+//   DIR/aligned/      (--aligned-faces) each tracked frame's face as a
+//                      similarity-aligned crop (detect/aligned_face.hpp)
 //   DIR/livelink_face.csv (--livelink) the weights, head pose and gaze as a
 //                      Live Link Face take, for Unreal (MetaHuman) and
 //                      ARKit rigs (io/livelink_csv.hpp)
@@ -78,6 +80,11 @@ struct TrackOptions {
   // DIR/action_units.csv: each frame's FACS action units (action_unit_table.hpp:
   // OpenFace's AU columns)
   bool action_units = false;
+  // DIR/aligned/frame_NNNNNN.png: each tracked frame's face, upright and
+  // scaled onto ArcFace's 5-point template (detect/aligned_face.hpp), in a
+  // square of aligned_face_size pixels.
+  bool aligned_faces = false;
+  int aligned_face_size = 112;
   bool livelink = false;  // DIR/livelink_face.csv (io/livelink_csv.hpp)
   // Each frame's Live Link Face values also sent as a datagram as the frame
   // is written (io/livelink_packet.hpp: Unreal's Live Link, a MetaHuman).
@@ -93,7 +100,7 @@ struct TrackOptions {
   RefineOptions refine_options;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
   // Whether the outputs draw on the frames' images (CaptureOptions::keep_images).
-  bool needs_images() const { return overlay || refine || texture; }
+  bool needs_images() const { return overlay || refine || texture || aligned_faces; }
   // Optional: each frame's frames.jsonl row (one line of JSON, no newline),
   // in frame order, as soon as it is written (`track --stream`).
   std::function<void(const std::string&)> on_row;

@@ -8,6 +8,7 @@
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/ply_writer.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/shot_animations.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
 
@@ -78,7 +79,7 @@ void TrackMeshes::finish() {
     remove_other_shot_files(dir_ / kPointCache, point_cache_files_, /*remove_first_when_none=*/true);
     remove_other_shot_files(dir_ / point_cache_rest_name(), point_cache_rest_files_, /*remove_first_when_none=*/true);
   }
-  if (options_.meshes) remove_earlier_meshes();
+  if (options_.meshes) remove_unwritten_frame_files(dir_ / "meshes", {"obj", "ply"}, meshes_written_);
 }
 
 std::vector<fs::path> TrackMeshes::point_cache_files() const {
@@ -91,8 +92,7 @@ std::vector<fs::path> TrackMeshes::point_cache_files() const {
 }
 
 void TrackMeshes::write_mesh(const CapturedFrame& f, const Refinement* ref, const Positions& coarse) {
-  char name[64];
-  std::snprintf(name, sizeof(name), "frame_%06d.%s", f.index, mesh_extension());
+  const std::string name = frame_file_name(f.index, mesh_extension());
   meshes_written_.insert(name);
   write_frame_mesh(dir_ / "meshes" / name, dir_ / "meshes", f, ref, coarse);
   ++meshes_;
@@ -201,16 +201,6 @@ void TrackMeshes::append_to_point_cache(const CapturedFrame& f, int shot_first_f
 const std::vector<Vec2f>& TrackMeshes::coarse_uvs() {
   if (!coarse_uvs_) coarse_uvs_ = per_vertex_uvs(face_mesh_);
   return *coarse_uvs_;
-}
-
-void TrackMeshes::remove_earlier_meshes() const {
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir_ / "meshes", ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.starts_with("frame_") && (name.ends_with(".obj") || name.ends_with(".ply")) &&
-        !meshes_written_.contains(name))
-      fs::remove(entry.path(), ec);
-  }
 }
 
 }  // namespace facecap

@@ -70,10 +70,6 @@ class TrackMeshes {
   // One UV a face-region vertex (its corners share one on the face region:
   // the layout's seams lie outside it).
   const std::vector<Vec2f>& coarse_uvs();
-  // An earlier run's meshes in this folder that this run did not write
-  // (frames past its end, or lost in it) would read as part of its sequence:
-  // removed, as an earlier identity.json is. Other files are left alone.
-  void remove_earlier_meshes() const;
 
   const FaceModel& model_;
   std::filesystem::path dir_;
