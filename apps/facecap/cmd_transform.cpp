@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "facecap/core/error.hpp"
+#include "facecap/expr/action_units.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 
@@ -25,9 +26,11 @@ void report_transform(const TransformTimings& t, const std::string& output) {
 void register_transform(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand("transform",
                                  "Change a speaking face's expression (anger, disgust, fear, happiness, sadness, "
-                                 "surprise, neutral) with the lips kept in sync; writes a video marked as synthetic");
+                                 "surprise, neutral, or FACS action units) with the lips kept in sync; writes a video "
+                                 "marked as synthetic");
   struct Args {
-    std::string input, output, to = "happiness", from = "neutral", method = "cyclegan", schedule, plot, gltf, models;
+    std::string input, output, to = "happiness", from = "neutral", method = "cyclegan", schedule, plot, gltf, models,
+                               units;
     double intensity = 1.0;
     int window = 1;
     bool all_faces = false;
@@ -41,13 +44,31 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                   "Output video (.mp4, .m4v, .mov or .mkv), or for a photo also an image (.png, .jpg, .jpeg) marked "
                   "as synthetic in its metadata; OUT.json is its synthetic-media sidecar")
       ->required();
-  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
-  cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();
+  CLI::Option* to =
+      cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
+  CLI::Option* from = cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();
   cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")->capture_default_str();
-  cmd->add_option("--schedule", a->schedule, "File of 'seconds target intensity' keys with transitions between them");
-  cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
-      ->check(CLI::IsMember({"cyclegan", "linear"}))
-      ->capture_default_str();
+  CLI::Option* schedule = cmd->add_option("--schedule", a->schedule,
+                                          "File of 'seconds target intensity' keys with transitions between them");
+  CLI::Option* method = cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
+                            ->check(CLI::IsMember({"cyclegan", "linear"}))
+                            ->capture_default_str();
+  CLI::Option* units =
+      cmd->add_option("--units", a->units,
+                      "Instead of an emotion, set FACS action units (as track --action-units reads them) to the "
+                      "intensities given, 0-5, in every frame: AU12=3,AU6=2 adds a smile, AU4=0 smooths a frown; "
+                      "the lips stay in sync as with --to, which may hold back a unit that moves them (AU12, AU15, "
+                      "AU26 ...). With --intensity")
+          ->type_name("AU=X,...")
+          ->check([](const std::string& text) {
+            try {
+              parse_action_unit_targets(text);
+              return std::string();
+            } catch (const Error& e) {
+              return std::string(e.what());
+            }
+          });
+  units->excludes(to)->excludes(from)->excludes(schedule)->excludes(method);
   cmd->add_option("--window", a->window, "Smoothing window half-width k (2k + 1 frames)")->capture_default_str();
   CLI::Option* plot =
       cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
@@ -78,11 +99,13 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                   "instead of --to; repeat for more faces")
       ->type_name("K=EMOTION")
       ->needs(all_faces)
+      ->excludes(units)
       ->check(face_value_check([](const std::string& emotion) { emotion_argument("the expression", emotion); }));
   cmd->add_option("--face-schedule", a->face_schedule,
                   "--all-faces: give face K a schedule of its own, K=FILE (as --schedule); repeat for more faces")
       ->type_name("K=FILE")
       ->needs(all_faces)
+      ->excludes(units)
       ->check(face_value_check());
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to), from = emotion_argument("--from", a->from);
@@ -117,6 +140,11 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     }
     o.capture.quiet = global.quiet;
     const FaceModel model = load_model(global);
+    if (!a->units.empty()) {  // a FACS edit instead of the emotion
+      const std::vector<ActionUnitTarget> targets = parse_action_unit_targets(a->units);
+      o.transform.shape_targets = ActionUnitReader(model.expression_names).shape_weights(targets);
+      o.description = "FACS units " + describe(targets);
+    }
     if (a->all_faces) {
       const AllFacesTransformSummary s = run_transform_all_faces(model, a->input, a->output, o, a->all);
       report_edited_faces(

@@ -79,6 +79,45 @@ TEST(ActionUnits, AModelWithoutAUnitsShapeIsAnErrorNamingIt) {
   }
 }
 
+TEST(ActionUnits, AnEditIsReadFromUnitsAndIntensities) {
+  const std::vector<ActionUnitTarget> targets = parse_action_unit_targets("AU12=3, au4=0,6=2.5");
+  ASSERT_EQ(targets.size(), 3u);
+  EXPECT_EQ(targets[0].number, 12);
+  EXPECT_DOUBLE_EQ(targets[0].intensity, 3.0);
+  EXPECT_EQ(targets[1].number, 4);
+  EXPECT_EQ(targets[2].number, 6);
+  EXPECT_DOUBLE_EQ(targets[2].intensity, 2.5);
+  EXPECT_EQ(describe(targets), "AU12=3, AU4=0, AU6=2.5");
+  // Each unit's shapes at its intensity over 5.
+  const std::vector<std::string> names = table_shapes();
+  const auto weights = ActionUnitReader(names).shape_weights(targets);
+  ASSERT_EQ(weights.size(), 6u);  // two halves each
+  EXPECT_EQ(names[weights[0].first], "mouthSmile_L");
+  EXPECT_EQ(names[weights[1].first], "mouthSmile_R");
+  EXPECT_FLOAT_EQ(weights[1].second, 0.6f);
+  EXPECT_EQ(names[weights[2].first], "browDown_L");
+  EXPECT_FLOAT_EQ(weights[2].second, 0.0f);
+  EXPECT_FLOAT_EQ(weights[5].second, 0.5f);
+}
+
+TEST(ActionUnits, ABadEditSaysWhatIsWrong) {
+  auto message = [](const std::string& text) {
+    try {
+      parse_action_unit_targets(text);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("AU25=2").find("no shape for AU25"), std::string::npos) << message("AU25=2");
+  EXPECT_NE(message("AU12=7").find("between 0 and 5"), std::string::npos) << message("AU12=7");
+  EXPECT_NE(message("AU12=nan").find("between 0 and 5"), std::string::npos) << message("AU12=nan");
+  EXPECT_NE(message("AU12").find("AU<number>=<intensity 0-5>"), std::string::npos);
+  EXPECT_NE(message("smile=3").find("not \"smile=3\""), std::string::npos) << message("smile=3");
+  EXPECT_NE(message("AU12=1,AU12=2").find("given twice"), std::string::npos);
+  EXPECT_NE(message("").find("no unit given"), std::string::npos);
+}
+
 // Each unit's shapes at full weight on the mean face, against the movement
 // FACS describes for the unit (Ekman, Friesen and Hager's manual), measured
 // at the model's landmark vertices (iBUG numbers; model space: x toward the

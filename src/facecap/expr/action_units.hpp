@@ -23,6 +23,7 @@
 // emotions.hpp uses it; FACTS.md pairs AU10 with mouthShrugUpper, which in
 // ICT lifts the whole upper lip's middle instead.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +45,18 @@ const std::vector<ActionUnit>& action_units();
 inline constexpr double kActionUnitScale = 5.0;
 inline constexpr double kActionUnitPresentFrom = 1.0;
 
+// A FACS edit (`transform --units AU12=3,AU4=0`): each named unit set to an
+// intensity (0-5).
+struct ActionUnitTarget {
+  int number = 0;
+  double intensity = 0;
+};
+// "AU12=3,AU4=0" (or "12=3,4=0"); throws facecap::Error naming what is wrong
+// (a unit the table lacks, an intensity outside 0-5, a malformed item).
+std::vector<ActionUnitTarget> parse_action_unit_targets(const std::string& text);
+// "AU12=3, AU4=0", for messages and the synthetic-media marks.
+std::string describe(const std::vector<ActionUnitTarget>& targets);
+
 // The units of one model: each unit's shapes found once by name.
 class ActionUnitReader {
  public:
@@ -53,6 +66,9 @@ class ActionUnitReader {
   int size() const { return static_cast<int>(shape_indices_.size()); }
   // Each unit's intensity (0-5), in action_units() order, from the model's weights.
   Eigen::VectorXd intensities(const Eigen::VectorXf& weights) const;
+  // The model's shapes (index, weight) that set each target unit to its
+  // intensity: every shape of the unit at intensity / 5.
+  std::vector<std::pair<int, float>> shape_weights(const std::vector<ActionUnitTarget>& targets) const;
 
  private:
   std::vector<std::vector<int>> shape_indices_;

@@ -9,7 +9,8 @@ ExpressionTransformer::ExpressionTransformer(const ExpressionMapper& mapper, Eig
 Eigen::VectorXf ExpressionTransformer::map_scheduled(const Eigen::VectorXf& w, double time, float& confidence) const {
   const ScheduleState s = options_.schedule.at(time);
   auto one = [&](const ScheduleKey& key, float& c) -> Eigen::VectorXf {
-    const MappedWeights m = mapper_.map(w, options_.from, key.target, options_.method);
+    const MappedWeights m = options_.shape_targets.empty() ? mapper_.map(w, options_.from, key.target, options_.method)
+                                                           : with_shapes_set(w);
     c = m.confidence;
     // --intensity scales the change from the source expression.
     return w + float(key.intensity) * (m.weights - w);
@@ -23,6 +24,12 @@ Eigen::VectorXf ExpressionTransformer::map_scheduled(const Eigen::VectorXf& w, d
   const Eigen::VectorXf b = one(s.b, cb);
   confidence = float((1 - s.b_share) * ca + s.b_share * cb);
   return float(1 - s.b_share) * a + float(s.b_share) * b;
+}
+
+MappedWeights ExpressionTransformer::with_shapes_set(const Eigen::VectorXf& w) const {
+  MappedWeights m{w, 1.0f};  // nothing to be unsure of: every frame's target is given
+  for (const auto& [shape, weight] : options_.shape_targets) m.weights[shape] = weight;
+  return m;
 }
 
 std::vector<TransformedFrame> ExpressionTransformer::push(int index, double time,

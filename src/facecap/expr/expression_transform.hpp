@@ -6,6 +6,7 @@
 // that the key lip vertices stay where the source put them (eq. 5.4).
 #include <deque>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "facecap/expr/expression_mapper.hpp"
@@ -19,6 +20,12 @@ struct TransformOptions {
   ExpressionSchedule schedule = ExpressionSchedule::constant(Emotion::kHappiness, 1.0);
   MappingMethod method = MappingMethod::kCycleGan;
   int window = 1;  // k of eq. 5.4: 2k + 1 frames
+  // A FACS edit (`transform --units`, action_units.hpp) in place of the
+  // mapping to an emotion: these shapes (model indices) set to these
+  // weights in every frame, the rest as tracked; the schedule's intensity
+  // still scales the change (its targets are not used). Then smoothed and
+  // lip-corrected as a mapping is.
+  std::vector<std::pair<int, float>> shape_targets;
   LipCorrectionOptions lips;
 };
 
@@ -47,6 +54,7 @@ class ExpressionTransformer {
   };
   TransformedFrame complete(size_t at);
   Eigen::VectorXf map_scheduled(const Eigen::VectorXf& w, double time, float& confidence) const;
+  MappedWeights with_shapes_set(const Eigen::VectorXf& w) const;  // options_.shape_targets
 
   const ExpressionMapper& mapper_;
   Eigen::MatrixXd lip_rows_;

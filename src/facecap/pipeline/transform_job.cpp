@@ -64,7 +64,9 @@ SyntheticMark transform_mark(const std::string& input, const InputInfo& info, co
       "The facial expression was changed by facecap (" + what + "); the lips follow the original speech.";
   mark.sources = {input};
   mark.parameters = {{"description", options.description},
-                     {"method", options.transform.method == MappingMethod::kLinear ? "linear" : "cyclegan"},
+                     {"method", !options.transform.shape_targets.empty()             ? "facs-units"
+                                : options.transform.method == MappingMethod::kLinear ? "linear"
+                                                                                     : "cyclegan"},
                      {"start_seconds", std::to_string(start_time(info))}};
   for (const auto& [face, expression] : options.face_expressions)
     mark.parameters["face_" + std::to_string(face)] = expression.description;
