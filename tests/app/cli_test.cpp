@@ -147,6 +147,28 @@ TEST(Cli, CountsBelowTheirLeastOrNotWholeAreRefusedByName) {
   EXPECT_NE(run("eval track --help").out.find("--synthetic INT:POSITIVE"), std::string::npos);
 }
 
+// A FACS edit that cannot be done, or that another option contradicts, and
+// a crop size without the crops, are refused before any work, by name.
+TEST(Cli, FacsEditsAndAlignedCropsAreRefusedByNameWhereTheyCannotBeDone) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"transform in.mp4 -o x.mp4 --units AU25=2",
+       "--units: the face model has no shape for AU25 (its units: 1, 2, 4, 5, 6, 7, 9, 10, 12, 14, 15, 17, 18, 20, 22, "
+       "24, 26, 28, 45)"},
+      {"transform in.mp4 -o x.mp4 --units AU12=9", "--units: AU12's intensity must be between 0 and 5, not 9"},
+      {"transform in.mp4 -o x.mp4 --units smile",
+       "--units: a unit is AU<number>=<intensity 0-5>, as AU12=3, not \"smile\""},
+      {"transform in.mp4 -o x.mp4 --units AU12=3 --to sadness", "--to excludes --units"},
+      {"transform in.mp4 -o x.mp4 --units AU12=3 --schedule keys.txt", "--schedule excludes --units"},
+      {"transform in.mp4 -o x.mp4 --units AU12=3 --all-faces --face-to 1=anger", "--units excludes --face-to"},
+      {"track in.mp4 -o x --aligned-size 64", "--aligned-size requires --aligned-faces"},
+  };
+  for (const auto& [args, message] : cases) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), message) << args;
+  }
+}
+
 // Not-a-number and infinity are refused as out of range, where they once
 // passed CLI11's range check (NaN fails every comparison) or a "< 0" test:
 // `--focal inf` lost every frame and wrote an infinite focal length.
