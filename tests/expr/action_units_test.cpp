@@ -30,12 +30,6 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
   return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
-int unit_row(int number) {
-  const auto& units = action_units();
-  const auto it = std::find_if(units.begin(), units.end(), [&](const ActionUnit& u) { return u.number == number; });
-  return it == units.end() ? -1 : static_cast<int>(it - units.begin());
-}
-
 }  // namespace
 
 TEST(ActionUnits, AreOpenFacesColumnsInFacsOrder) {
@@ -44,10 +38,11 @@ TEST(ActionUnits, AreOpenFacesColumnsInFacsOrder) {
   EXPECT_EQ(units.back().column('c'), "AU45_c");
   for (size_t u = 1; u < units.size(); ++u) EXPECT_LT(units[u - 1].number, units[u].number);
   // OpenFace's intensity units that ICT has a shape for are all here...
-  for (int number : {1, 2, 4, 5, 6, 7, 9, 10, 12, 14, 15, 17, 20, 26, 45}) EXPECT_GE(unit_row(number), 0) << number;
+  for (int number : {1, 2, 4, 5, 6, 7, 9, 10, 12, 14, 15, 17, 20, 26, 45})
+    EXPECT_GE(action_unit_index(number), 0) << number;
   // ...and the two it has none for are left out, not guessed.
-  EXPECT_EQ(unit_row(23), -1);
-  EXPECT_EQ(unit_row(25), -1);
+  EXPECT_EQ(action_unit_index(23), -1);
+  EXPECT_EQ(action_unit_index(25), -1);
 }
 
 TEST(ActionUnits, IntensityIsTheShapesMeanWeightOnFacsScale) {
@@ -61,9 +56,9 @@ TEST(ActionUnits, IntensityIsTheShapesMeanWeightOnFacsScale) {
   w[index_of(names, "eyeBlink_L")] = 1.0f;  // a wink: half the unit
   w[index_of(names, "tongueOut")] = 1.0f;   // no unit of its own
   const Eigen::VectorXd a = reader.intensities(w);
-  EXPECT_NEAR(a[unit_row(12)], 2.0, 1e-6);
-  EXPECT_NEAR(a[unit_row(26)], 5.0, 1e-6);
-  EXPECT_NEAR(a[unit_row(45)], 2.5, 1e-6);
+  EXPECT_NEAR(a[action_unit_index(12)], 2.0, 1e-6);
+  EXPECT_NEAR(a[action_unit_index(26)], 5.0, 1e-6);
+  EXPECT_NEAR(a[action_unit_index(45)], 2.5, 1e-6);
   EXPECT_NEAR(a.sum(), 2.0 + 5.0 + 2.5, 1e-6);  // nothing else moved
 }
 

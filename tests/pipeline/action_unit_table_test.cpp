@@ -79,11 +79,7 @@ TEST(ActionUnitTable, ASmileAndCryingShowTheirUnitsOnRealFootage) {
   const ActionUnitReader reader(model->expression_names);
   std::map<std::string, Eigen::VectorXd> sum;
   std::map<std::string, int> frames, smile_present;
-  auto row = [](int number) {
-    for (size_t u = 0; u < action_units().size(); ++u)
-      if (action_units()[u].number == number) return static_cast<Eigen::Index>(u);
-    return Eigen::Index(-1);
-  };
+  auto row = [](int number) { return static_cast<Eigen::Index>(action_unit_index(number)); };
   CaptureOptions o;
   o.quiet = true;
   o.gaze = false;

@@ -140,12 +140,6 @@ Eigen::VectorXd tracked_units(const FaceModel& model, const fs::path& video, int
   return tracked > 0 ? Eigen::VectorXd(sum / tracked) : sum;
 }
 
-Eigen::Index unit_row(int number) {
-  for (size_t u = 0; u < action_units().size(); ++u)
-    if (action_units()[u].number == number) return Eigen::Index(u);
-  return -1;
-}
-
 }  // namespace
 
 // transform --units: FACS units set in every frame instead of an emotion.
@@ -172,10 +166,10 @@ TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
     const Eigen::VectorXd units = reader.intensities(f.weights);
     // As asked, but for the lip correction's nudge (ICT's brow shapes move
     // the lip vertices by a hair): 0.006 at most.
-    EXPECT_NEAR(units[unit_row(1)], 4.0, 0.02) << "frame " << f.index;
-    EXPECT_NEAR(units[unit_row(4)], 0.0, 0.02) << "frame " << f.index;
-    smile += units[unit_row(12)] / m.valid_frames;
-    tracked_smile += reader.intensities(f.tracked)[unit_row(12)] / m.valid_frames;
+    EXPECT_NEAR(units[action_unit_index(1)], 4.0, 0.02) << "frame " << f.index;
+    EXPECT_NEAR(units[action_unit_index(4)], 0.0, 0.02) << "frame " << f.index;
+    smile += units[action_unit_index(12)] / m.valid_frames;
+    tracked_smile += reader.intensities(f.tracked)[action_unit_index(12)] / m.valid_frames;
   }
   EXPECT_GT(smile, tracked_smile + 1.5);  // 2.13 against 0: the lips hold it under the 3 asked
   // The sidecar names the edit.
@@ -192,9 +186,9 @@ TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
   Eigen::VectorXd identity;
   const Eigen::VectorXd before = tracked_units(*model, video, 60, identity);
   const Eigen::VectorXd after = tracked_units(*model, out, 60, identity);
-  EXPECT_GT(after[unit_row(1)], before[unit_row(1)] + 0.8);
-  EXPECT_LT(after[unit_row(4)], before[unit_row(4)]);
-  EXPECT_GT(after[unit_row(12)], before[unit_row(12)] + 0.2);
+  EXPECT_GT(after[action_unit_index(1)], before[action_unit_index(1)] + 0.8);
+  EXPECT_LT(after[action_unit_index(4)], before[action_unit_index(4)]);
+  EXPECT_GT(after[action_unit_index(12)], before[action_unit_index(12)] + 0.2);
 }
 
 // --matte: the re-rendered face's blend mask over each frame, frame for

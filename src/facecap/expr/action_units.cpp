@@ -59,6 +59,12 @@ const std::vector<ActionUnit>& action_units() {
   return units;
 }
 
+int action_unit_index(int number) {
+  const auto& units = action_units();
+  const auto it = std::find_if(units.begin(), units.end(), [&](const ActionUnit& u) { return u.number == number; });
+  return it == units.end() ? -1 : static_cast<int>(it - units.begin());
+}
+
 ActionUnitReader::ActionUnitReader(const std::vector<std::string>& expression_names) {
   for (const ActionUnit& unit : action_units()) {
     std::vector<int>& indices = shape_indices_.emplace_back();
@@ -87,8 +93,7 @@ std::vector<ActionUnitTarget> parse_action_unit_targets(const std::string& text)
     const bool value_ok = !value.empty() && std::from_chars(value.data(), value.data() + value.size(), intensity).ptr ==
                                                 value.data() + value.size();
     if (!number_ok || !value_ok) throw Error("a unit is AU<number>=<intensity 0-5>, as AU12=3, not \"" + item + "\"");
-    const auto& units = action_units();
-    if (std::none_of(units.begin(), units.end(), [&](const ActionUnit& u) { return u.number == number; }))
+    if (action_unit_index(number) < 0)
       throw Error("the face model has no shape for AU" + std::to_string(number) + " (its units: " + describe_numbers() +
                   ")");
     if (!(intensity >= 0 && intensity <= kActionUnitScale))
@@ -113,10 +118,11 @@ std::string describe(const std::vector<ActionUnitTarget>& targets) {
 
 std::vector<std::pair<int, float>> ActionUnitReader::shape_weights(const std::vector<ActionUnitTarget>& targets) const {
   std::vector<std::pair<int, float>> out;
-  for (const ActionUnitTarget& t : targets)
-    for (int u = 0; u < size(); ++u)
-      if (action_units()[u].number == t.number)
-        for (int k : shape_indices_[u]) out.emplace_back(k, float(t.intensity / kActionUnitScale));
+  for (const ActionUnitTarget& t : targets) {
+    const int u = action_unit_index(t.number);
+    if (u < 0) throw Error("no action unit AU" + std::to_string(t.number));
+    for (int k : shape_indices_[u]) out.emplace_back(k, float(t.intensity / kActionUnitScale));
+  }
   return out;
 }
 

@@ -40,6 +40,8 @@ struct ActionUnit {
 
 // The units, in FACS order.
 const std::vector<ActionUnit>& action_units();
+// Where the unit numbered `number` (12 for AU12) is in action_units(); -1 where it is not there.
+int action_unit_index(int number);
 
 // Intensity (0-5) from a shape weight, and where a unit counts as present.
 inline constexpr double kActionUnitScale = 5.0;
