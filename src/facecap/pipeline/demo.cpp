@@ -6,6 +6,7 @@
 #include "facecap/core/rigid_alignment.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/expr/action_units.hpp"
 #include "facecap/pipeline/track_job.hpp"
 #include "facecap/synth/synthesize.hpp"
 
@@ -30,7 +31,8 @@ nlohmann::json run_demo(const FaceModel& model, const DemoOptions& options) {
   // 2. The capture pipeline on the rendered video, as a user would run it,
   //    compared with the truth frame by frame.
   const std::filesystem::path track_dir = dir / "track";
-  std::vector<double> rotation, vertex, vertex_similarity, nme, weights;
+  std::vector<double> rotation, vertex, vertex_similarity, nme, weights, units;
+  const ActionUnitReader action_units(model.expression_names);
   int lost = 0;
   TrackOptions to;
   to.capture.quiet = options.quiet;
@@ -48,6 +50,8 @@ nlohmann::json run_demo(const FaceModel& model, const DemoOptions& options) {
     vertex_similarity.push_back(10.0 * aligned_mean_distance(fitted, true_shape, true));
     nme.push_back(landmark_nme(f.fit.observed, synth.ground_truth.landmarks[f.index]));
     weights.push_back((f.fit.expression - t.expression).cwiseAbs().mean());
+    units.push_back(
+        (action_units.intensities(f.fit.expression) - action_units.intensities(t.expression)).cwiseAbs().mean());
   };
   const TrackSummary summary = run_track(model, synth.video.string(), track_dir, to);
   const CaptureSummary& cs = summary.capture;
@@ -72,6 +76,7 @@ nlohmann::json run_demo(const FaceModel& model, const DemoOptions& options) {
       {"vertex_error_mm_median", median(vertex)},
       {"vertex_error_similarity_mm_median", median(vertex_similarity)},
       {"weights_mae_median", median(weights)},
+      {"action_units_mae_median", median(units)},  // FACS intensity, 0-5 (action_units.hpp)
       {"dlib_landmark_nme_vs_truth_median", median(nme)}};
   report["note"] =
       "Landmarks come from dlib on the rendered video, as on real footage; `facecap eval track` measures the fit "
