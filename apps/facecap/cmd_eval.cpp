@@ -361,6 +361,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
                 {"lip_error_mm", r.lip_error_mm},
                 {"lip_error_max_mm", r.lip_error_max_mm},
                 {"target_rise", r.target_rise},
+                {"retracked_rise", r.retracked_rise},
                 {"smoothness", r.smoothness},
                 {"smoothness_raw", r.smoothness_raw},
                 {"smoothness_mapped", r.smoothness_mapped},

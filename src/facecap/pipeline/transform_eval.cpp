@@ -25,6 +25,35 @@ double mean_step(const std::vector<TransformedFrame>& frames, Get get) {
   return count > 0 ? sum / count : 0.0;
 }
 
+// Mean of the target's defining weights over weight vectors.
+double defining_mean(const FaceModel& model, const std::vector<Eigen::VectorXf>& weights, Emotion target) {
+  double sum = 0;
+  long count = 0;
+  for (const std::string& name : defining_shapes(target)) {
+    const int k = model.expression_index(name);
+    if (k < 0) continue;
+    for (const Eigen::VectorXf& w : weights) sum += w[k], ++count;
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
+// TransformEval::retracked_rise.
+double retracked_rise(const FaceModel& model, const TransformSummary& s, const std::filesystem::path& output,
+                      Emotion target, CaptureOptions capture) {
+  std::vector<Eigen::VectorXf> before, after;
+  for (const TransformedFrame& f : s.frames)
+    if (f.valid) before.push_back(f.tracked);
+  if (before.empty()) return 0.0;
+  capture.quiet = true;
+  capture.start_seconds = 0;  // the output begins where the input's run did
+  capture.fit.known_identity = s.capture.identity.identity;
+  auto source = open_input(output.string());
+  run_capture(model, *source, capture, [&](const CapturedFrame& f) {
+    if (f.status != TrackStatus::kLost) after.push_back(f.fit.expression);
+  });
+  return after.empty() ? 0.0 : defining_mean(model, after, target) - defining_mean(model, before, target);
+}
+
 }  // namespace
 
 TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames,
@@ -100,6 +129,7 @@ TransformEval evaluate_transform(const FaceModel& model, const std::string& vide
   // One frame of slack: AAC frames are 1024 samples (21-23 ms) and the encoder pads.
   r.audio_ok = in.audio && result.audio && std::abs(r.audio_seconds_out - r.audio_seconds_in) <= 1.0 / fps + 0.05;
   r.marked_synthetic = carries_synthetic_marks(out);
+  r.retracked_rise = retracked_rise(model, s, out, target, o.capture);
   return r;
 }
 
