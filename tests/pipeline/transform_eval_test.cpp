@@ -122,27 +122,12 @@ TEST(TransformEval, LinearBaselineAlsoKeepsTheLips) {
 
 namespace {
 
-// Mean FACS intensities (action_units.hpp) that `track` reads off a video's
-// first frames; with `identity`, that face held (as `track --identity`).
-// The face's identity held, as the input's: solved on an edited clip, which
-// smiles from its first frame to its last, the identity takes up much of
-// the edit as the person's own face (as a smiling portrait's does).
-Eigen::VectorXd tracked_units(const FaceModel& model, const fs::path& video, int frames, Eigen::VectorXd& identity) {
+// Mean FACS intensities (action_units.hpp) over frames' weights.
+Eigen::VectorXd mean_units(const FaceModel& model, const std::vector<Eigen::VectorXf>& weights) {
   const ActionUnitReader reader(model.expression_names);
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(reader.size());
-  int tracked = 0;
-  CaptureOptions o;
-  o.quiet = true;
-  o.max_frames = frames;
-  if (identity.size() > 0) o.fit.known_identity = identity;
-  auto source = open_input(video.string());
-  const CaptureSummary s = run_capture(model, *source, o, [&](const CapturedFrame& f) {
-    if (f.status == TrackStatus::kLost) return;
-    sum += reader.intensities(f.fit.expression);
-    ++tracked;
-  });
-  identity = s.identity.identity;
-  return tracked > 0 ? Eigen::VectorXd(sum / tracked) : sum;
+  for (const Eigen::VectorXf& w : weights) sum += reader.intensities(w);
+  return weights.empty() ? sum : Eigen::VectorXd(sum / double(weights.size()));
 }
 
 }  // namespace
@@ -188,9 +173,12 @@ TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
   // the weights changed (AU1 0 -> 1.28, AU4 0.42 -> 0.24, AU12 0 -> 0.35):
   // dlib's brow points move as the asked AU1 says, but the fit of the 68
   // points reads part of the change as other units (README).
-  Eigen::VectorXd identity;
-  const Eigen::VectorXd before = tracked_units(*model, video, 60, identity);
-  const Eigen::VectorXd after = tracked_units(*model, out, 60, identity);
+  CaptureOptions capture;
+  capture.max_frames = 60;
+  const TrackedWeights input = track_weights(*model, video, capture);
+  capture.fit.known_identity = input.identity;
+  const Eigen::VectorXd before = mean_units(*model, input.weights);
+  const Eigen::VectorXd after = mean_units(*model, track_weights(*model, out, capture).weights);
   EXPECT_GT(after[action_unit_index(1)], before[action_unit_index(1)] + 0.8);
   EXPECT_LT(after[action_unit_index(4)], before[action_unit_index(4)]);
   EXPECT_GT(after[action_unit_index(12)], before[action_unit_index(12)] + 0.2);

@@ -40,18 +40,15 @@ double defining_mean(const FaceModel& model, const std::vector<Eigen::VectorXf>&
 // TransformEval::retracked_rise.
 double retracked_rise(const FaceModel& model, const TransformSummary& s, const std::filesystem::path& output,
                       Emotion target, CaptureOptions capture) {
-  std::vector<Eigen::VectorXf> before, after;
+  std::vector<Eigen::VectorXf> before;
   for (const TransformedFrame& f : s.frames)
     if (f.valid) before.push_back(f.tracked);
   if (before.empty()) return 0.0;
-  capture.quiet = true;
   capture.start_seconds = 0;  // the output begins where the input's run did
   capture.fit.known_identity = s.capture.identity.identity;
-  auto source = open_input(output.string());
-  run_capture(model, *source, capture, [&](const CapturedFrame& f) {
-    if (f.status != TrackStatus::kLost) after.push_back(f.fit.expression);
-  });
-  return after.empty() ? 0.0 : defining_mean(model, after, target) - defining_mean(model, before, target);
+  const TrackedWeights after = track_weights(model, output, capture);
+  return after.weights.empty() ? 0.0
+                               : defining_mean(model, after.weights, target) - defining_mean(model, before, target);
 }
 
 }  // namespace
@@ -89,6 +86,17 @@ TransformMetrics measure_transform(const FaceModel& model, const std::vector<Tra
   m.smoothness_raw = mean_step(frames, [](const TransformedFrame& f) -> const Eigen::VectorXf& { return f.lip_only; });
   m.smoothness_mapped = mean_step(frames, [](const TransformedFrame& f) -> const Eigen::VectorXf& { return f.mapped; });
   return m;
+}
+
+TrackedWeights track_weights(const FaceModel& model, const std::filesystem::path& video, CaptureOptions capture) {
+  TrackedWeights out;
+  capture.quiet = true;
+  auto source = open_input(video.string());
+  const CaptureSummary summary = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
+    if (f.status != TrackStatus::kLost) out.weights.push_back(f.fit.expression);
+  });
+  out.identity = summary.identity.identity;
+  return out;
 }
 
 TransformEval evaluate_transform(const FaceModel& model, const std::string& video, Emotion target,

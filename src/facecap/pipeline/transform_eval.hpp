@@ -6,6 +6,7 @@
 // mapping, and the output keeps the input's audio.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "facecap/pipeline/transform_job.hpp"
 
@@ -45,6 +46,15 @@ struct TransformMetrics {
   int valid_frames = 0;
 };
 TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames, Emotion target);
+
+// Each frame's weights as `track` fits a video (lost frames left out), and
+// the identity it solved or held (capture.fit.known_identity): what
+// retracked_rise reads an output with.
+struct TrackedWeights {
+  std::vector<Eigen::VectorXf> weights;
+  Eigen::VectorXd identity;
+};
+TrackedWeights track_weights(const FaceModel& model, const std::filesystem::path& video, CaptureOptions capture);
 
 // Writes the output to `output` (a temporary file when empty) and measures it.
 TransformEval evaluate_transform(const FaceModel& model, const std::string& video, Emotion target,
