@@ -161,6 +161,7 @@ TEST(Cli, FacsEditsAndAlignedCropsAreRefusedByNameWhereTheyCannotBeDone) {
       {"transform in.mp4 -o x.mp4 --units AU12=3 --schedule keys.txt", "--schedule excludes --units"},
       {"transform in.mp4 -o x.mp4 --units AU12=3 --all-faces --face-to 1=anger", "--units excludes --face-to"},
       {"track in.mp4 -o x --aligned-size 64", "--aligned-size requires --aligned-faces"},
+      {"track in.mp4 -o x --aligned-faces --aligned-size 8", "--aligned-size: Value 8 not in range 32 to 1024"},
   };
   for (const auto& [args, message] : cases) {
     const RunResult r = run(args);
