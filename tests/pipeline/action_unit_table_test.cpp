@@ -44,7 +44,8 @@ TEST(ActionUnitTable, GivesIntensitiesThenPresenceUnderOpenFacesColumns) {
   w[1] = 0.23f;
   w[names.size() - 2] = 0.3f;  // eyeBlink_L and _R: AU45 at 1.5
   w[names.size() - 1] = 0.3f;
-  const std::vector<std::string> row = split_csv_line(table.row(12, 0.5, "tracked", &w));
+  const Eigen::VectorXd intensities = table.intensities(w);
+  const std::vector<std::string> row = split_csv_line(table.row(12, 0.5, "tracked", &intensities));
   ASSERT_EQ(row.size(), header.size());
   EXPECT_EQ(row[0], "12");
   EXPECT_EQ(row[1], "0.5");
@@ -58,7 +59,7 @@ TEST(ActionUnitTable, GivesIntensitiesThenPresenceUnderOpenFacesColumns) {
   EXPECT_EQ(row[4 + units], "0");
 
   // The same for frames.jsonl, keyed by the unit.
-  const nlohmann::json json = table.intensities_json(w);
+  const nlohmann::json json = ActionUnitTable::intensities_json(intensities);
   EXPECT_EQ(json.size(), units);
   EXPECT_NEAR(double(json["AU01"]), 1.05, 1e-6);
   EXPECT_NEAR(double(json["AU45"]), 1.5, 1e-6);

@@ -18,19 +18,17 @@ std::string ActionUnitTable::header() const {
 }
 
 std::string ActionUnitTable::row(int frame, double time, const std::string& status,
-                                 const Eigen::VectorXf* weights) const {
+                                 const Eigen::VectorXd* intensities) const {
   std::string row = std::to_string(frame) + ',' + csv_number(time) + ',' + status;
-  if (weights == nullptr) return row + std::string(2 * reader_.size(), ',');
-  const Eigen::VectorXd intensity = reader_.intensities(*weights);
-  for (double v : intensity) row += ',' + csv_number(v);
-  for (double v : intensity) row += v >= kActionUnitPresentFrom ? ",1" : ",0";
+  if (intensities == nullptr) return row + std::string(2 * reader_.size(), ',');
+  for (double v : *intensities) row += ',' + csv_number(v);
+  for (double v : *intensities) row += v >= kActionUnitPresentFrom ? ",1" : ",0";
   return row;
 }
 
-nlohmann::json ActionUnitTable::intensities_json(const Eigen::VectorXf& weights) const {
-  const Eigen::VectorXd intensity = reader_.intensities(weights);
+nlohmann::json ActionUnitTable::intensities_json(const Eigen::VectorXd& intensities) {
   nlohmann::json units = nlohmann::json::object();
-  for (Eigen::Index u = 0; u < intensity.size(); ++u) units[action_units()[u].label()] = intensity[u];
+  for (Eigen::Index u = 0; u < intensities.size(); ++u) units[action_units()[u].label()] = intensities[u];
   return units;
 }
 

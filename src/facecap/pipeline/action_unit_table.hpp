@@ -25,10 +25,12 @@ class ActionUnitTable {
   explicit ActionUnitTable(const std::vector<std::string>& expression_names) : reader_(expression_names) {}
 
   std::string header() const;
-  // A frame's row, without its newline; `weights` null for a frame without a face.
-  std::string row(int frame, double time, const std::string& status, const Eigen::VectorXf* weights) const;
+  // Each unit's intensity (0-5) from a frame's weights, for row() and intensities_json().
+  Eigen::VectorXd intensities(const Eigen::VectorXf& weights) const { return reader_.intensities(weights); }
+  // A frame's row, without its newline; `intensities` null for a frame without a face.
+  std::string row(int frame, double time, const std::string& status, const Eigen::VectorXd* intensities) const;
   // The same units as JSON for frames.jsonl: {"AU01": intensity, ...}.
-  nlohmann::json intensities_json(const Eigen::VectorXf& weights) const;
+  static nlohmann::json intensities_json(const Eigen::VectorXd& intensities);
 
  private:
   ActionUnitReader reader_;

@@ -137,6 +137,7 @@ class FrameWriter {
     o << f.index << ',' << csv_number(f.time) << ',' << to_string(f.status);
     nlohmann::json row = {{"frame", f.index}, {"time", f.time}, {"status", to_string(f.status)}, {"shot", f.shot}};
     if (!f.error.empty()) row["error"] = f.error;
+    std::optional<Eigen::VectorXd> unit_intensities;  // --action-units: a tracked frame's, for both tables
     if (f.damaged) row["damaged"] = true;
     if (ok) {
       const Vec3d ypr = yaw_pitch_roll_deg(f.fit.pose.rotation_matrix());
@@ -157,7 +158,10 @@ class FrameWriter {
       row["weights"] = weights;
       row["landmarks"] = landmarks_json(f.fit.observed);
       row["fitted_landmarks"] = landmarks_json(f.fit.fitted);
-      if (action_unit_table_) row["action_units"] = action_unit_table_->intensities_json(f.fit.expression);
+      if (action_unit_table_) {
+        unit_intensities = action_unit_table_->intensities(f.fit.expression);
+        row["action_units"] = ActionUnitTable::intensities_json(*unit_intensities);
+      }
       if (ref != nullptr) {
         for (int k = 0; k < 9; ++k) o << ',' << csv_number(ref->lighting[k]);
         row["lighting"] = std::vector<double>(ref->lighting.data(), ref->lighting.data() + 9);
@@ -174,7 +178,7 @@ class FrameWriter {
       landmarks_->stream() << landmark_table_row(f.index, f.time, to_string(f.status), ok ? &f.fit : nullptr) << '\n';
     if (action_units_)
       action_units_->stream() << action_unit_table_->row(f.index, f.time, to_string(f.status),
-                                                         ok ? &f.fit.expression : nullptr)
+                                                         unit_intensities ? &*unit_intensities : nullptr)
                               << '\n';
     if (livelink_face_) write_livelink(f);
     const std::string line = row.dump();

@@ -25,15 +25,22 @@ double mean_step(const std::vector<TransformedFrame>& frames, Get get) {
   return count > 0 ? sum / count : 0.0;
 }
 
+// The model's indices of the target's defining shapes (emotions.hpp).
+std::vector<int> defining_indices(const FaceModel& model, Emotion target) {
+  std::vector<int> defining;
+  for (const std::string& name : defining_shapes(target)) {
+    const int k = model.expression_index(name);
+    if (k >= 0) defining.push_back(k);
+  }
+  return defining;
+}
+
 // Mean of the target's defining weights over weight vectors.
 double defining_mean(const FaceModel& model, const std::vector<Eigen::VectorXf>& weights, Emotion target) {
   double sum = 0;
   long count = 0;
-  for (const std::string& name : defining_shapes(target)) {
-    const int k = model.expression_index(name);
-    if (k < 0) continue;
+  for (int k : defining_indices(model, target))
     for (const Eigen::VectorXf& w : weights) sum += w[k], ++count;
-  }
   return count > 0 ? sum / count : 0.0;
 }
 
@@ -57,11 +64,7 @@ TransformMetrics measure_transform(const FaceModel& model, const std::vector<Tra
                                    Emotion target) {
   TransformMetrics m;
   const Eigen::MatrixXd lips = lip_basis(model);  // 12 x E, cm per unit weight
-  std::vector<int> defining;
-  for (const std::string& name : defining_shapes(target)) {
-    const int k = model.expression_index(name);
-    if (k >= 0) defining.push_back(k);
-  }
+  const std::vector<int> defining = defining_indices(model, target);
   double lip_sum = 0, rise_sum = 0;
   long lip_count = 0, rise_count = 0;
   for (const TransformedFrame& f : frames) {
