@@ -91,6 +91,7 @@ void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& opt
   if (options.landmarks_csv) std::fprintf(out, "%s\n", (s.output_dir / "landmarks.csv").string().c_str());
   if (options.action_units) std::fprintf(out, "%s\n", (s.output_dir / "action_units.csv").string().c_str());
   if (options.aligned_faces) std::fprintf(out, "%s\n", (s.output_dir / "aligned").string().c_str());
+  if (options.detail_maps) std::fprintf(out, "%s\n", (s.output_dir / "detail").string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
@@ -196,8 +197,21 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--livelink-subject", a->subject, "--livelink-udp: the Live Link subject name")
       ->needs("--livelink-udp")
       ->capture_default_str();
-  cmd->add_flag("--refine", a->options.refine,
-                "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
+  CLI::Option* refine =
+      cmd->add_flag("--refine", a->options.refine,
+                    "Shading-based refinement: per-frame SH lighting, DIR/albedo.png, wrinkle-level meshes");
+  CLI::Option* detail_maps = cmd->add_flag(
+      "--detail-maps", a->options.detail_maps,
+      "Write DIR/detail/frame_NNNNNN.png: each refined frame's wrinkle-level detail (the refinement's displacement "
+      "along the tracked surface's normal) as a 16-bit displacement map in the ICT UV layout of albedo.png, and "
+      "DIR/detail/detail.json: value / 65535 = 0.5 + mm / 4 (Blender's Displace: UV, midlevel 0.5, strength 0.4 "
+      "cm, the image read as non-colour data)");
+  detail_maps->needs(refine);
+  cmd->add_option("--detail-map-size", a->options.detail_map_size,
+                  "--detail-maps: the maps' width and height in texels")
+      ->check(CLI::Range(64, 4096))
+      ->needs(detail_maps)
+      ->capture_default_str();
   add_device_option(*cmd, a->options.refine_options.device);
   cmd->add_option("--focal", a->options.capture.fit.focal_guess,
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");

@@ -147,9 +147,10 @@ TEST(Cli, CountsBelowTheirLeastOrNotWholeAreRefusedByName) {
   EXPECT_NE(run("eval track --help").out.find("--synthetic INT:POSITIVE"), std::string::npos);
 }
 
-// A FACS edit that cannot be done, or that another option contradicts, and
-// a crop size without the crops, are refused before any work, by name.
-TEST(Cli, FacsEditsAndAlignedCropsAreRefusedByNameWhereTheyCannotBeDone) {
+// A FACS edit that cannot be done, or that another option contradicts, a
+// crop size without the crops and detail maps without the refinement, are
+// refused before any work, by name.
+TEST(Cli, FacsEditsCropsAndDetailMapsAreRefusedByNameWhereTheyCannotBeDone) {
   const std::pair<const char*, const char*> cases[] = {
       {"transform in.mp4 -o x.mp4 --units AU25=2",
        "--units: the face model has no shape for AU25 (its units: 1, 2, 4, 5, 6, 7, 9, 10, 12, 14, 15, 17, 18, 20, 22, "
@@ -162,6 +163,10 @@ TEST(Cli, FacsEditsAndAlignedCropsAreRefusedByNameWhereTheyCannotBeDone) {
       {"transform in.mp4 -o x.mp4 --units AU12=3 --all-faces --face-to 1=anger", "--units excludes --face-to"},
       {"track in.mp4 -o x --aligned-size 64", "--aligned-size requires --aligned-faces"},
       {"track in.mp4 -o x --aligned-faces --aligned-size 8", "--aligned-size: Value 8 not in range 32 to 1024"},
+      {"track in.mp4 -o x --detail-maps", "--detail-maps requires --refine"},
+      {"track in.mp4 -o x --refine --detail-map-size 512", "--detail-map-size requires --detail-maps"},
+      {"track in.mp4 -o x --refine --detail-maps --detail-map-size 16",
+       "--detail-map-size: Value 16 not in range 64 to 4096"},
   };
   for (const auto& [args, message] : cases) {
     const RunResult r = run(args);

@@ -19,6 +19,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/marked_image.hpp"
+#include "facecap/io/png_grey16.hpp"
 #include "io/damaged_clip.hpp"
 #include "test_support.hpp"
 
@@ -75,6 +76,27 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("no-such-host.invalid"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "frames.csv"));
+}
+
+// Where the folder of per-frame files (--aligned-faces' `aligned`,
+// --detail-maps' `detail`) is a file, the run stops before any frame in one
+// line naming it, leaves the file as it was and writes no table.
+TEST(Cli, TrackRefusesAPerFrameFolderThatIsAFile) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  for (const auto& [folder, options] : {std::pair<const char*, const char*>{"aligned", "--aligned-faces"},
+                                        std::pair<const char*, const char*>{"detail", "--refine --detail-maps"}}) {
+    TempDir dir;
+    std::ofstream(dir.path() / folder) << "mine";
+    const RunResult r = run("track " + video.string() + " --max-frames 2 " + options + " -o " + dir.path().string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(lines(r.out), 1) << r.out;
+    EXPECT_NE(r.out.find((dir.path() / folder).string()), std::string::npos) << r.out;
+    EXPECT_EQ(test::read_file(dir.path() / folder), "mine");
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
+    EXPECT_EQ(entries, 1) << folder << ": only the file is there";
+  }
 }
 
 TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
@@ -578,6 +600,50 @@ TEST(Cli, TrackWritesTheLandmarkAndActionUnitTablesAndNamesThem) {
     ASSERT_EQ(rows.size(), 5u) << name;
     for (const std::string& row : rows) EXPECT_EQ(split_csv_line(row).size(), fields) << row.substr(0, 40);
   }
+}
+
+// --refine --detail-maps on real footage: a map for every frame, named with
+// the other files, each a 16-bit map of the refinement's detail that
+// follows the face (the maps of two frames differ), within detail.json's
+// range and its reported extremes.
+TEST(Cli, TrackWritesADetailMapForEachRefinedFrame) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  constexpr int kFrames = 36;
+  const RunResult r = run("track " + video.string() + " --refine --detail-maps --detail-map-size 512 --max-frames " +
+                          std::to_string(kFrames) + " -o " + dir.path().string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const fs::path detail = dir.path() / "detail";
+  EXPECT_NE(r.out.find(detail.string()), std::string::npos) << r.out;
+  std::ifstream info_in(detail / "detail.json");
+  const nlohmann::json info = nlohmann::json::parse(info_in);
+  EXPECT_EQ(info["maps"], kFrames);
+  EXPECT_EQ(info["size"], nlohmann::json({512, 512}));
+  EXPECT_EQ(info["encoding"]["clamped_fraction"], 0.0);
+  const double range = info["encoding"]["range_mm"], lowest = info["displacement_mm"]["min"],
+               highest = info["displacement_mm"]["max"], rms = info["displacement_mm"]["rms"];
+  // Measured on this clip: rms 0.046 mm, extremes -0.62 and 0.68 mm.
+  EXPECT_GT(rms, 0.01);
+  EXPECT_LT(rms, 0.5);
+  const auto decode = [&](double v) { return (v / 65535 - 0.5) * 2 * range; };
+  cv::Mat first, last;
+  for (int frame : {0, kFrames / 2, kFrames - 1}) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+    const cv::Mat map = read_png_grey16(detail / name);
+    ASSERT_EQ(map.type(), CV_16UC1) << name;
+    ASSERT_EQ(map.size(), cv::Size(512, 512)) << name;
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(map, &lo, &hi);
+    EXPECT_GE(decode(lo), lowest - 1e-3) << name;
+    EXPECT_LE(decode(hi), highest + 1e-3) << name;
+    EXPECT_GT(decode(hi) - decode(lo), 0.1) << name;
+    (frame == 0 ? first : last) = map;
+  }
+  cv::Mat change;
+  cv::absdiff(first, last, change);
+  EXPECT_GT(cv::countNonZero(change > 65535 * 0.01 / (2 * range)), 1000);  // texels 0.01 mm apart or more
 }
 
 }  // namespace facecap

@@ -18,6 +18,7 @@
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/action_unit_table.hpp"
+#include "facecap/pipeline/detail_maps.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/landmark_table.hpp"
@@ -104,6 +105,10 @@ class FrameWriter {
       action_units_->stream() << action_unit_table_->header() << '\n';
     }
     if (options.aligned_faces) ensure_writable_dir(dir / kAlignedFaces);
+    if (options.detail_maps) {
+      if (!options.refine) throw Error("detail maps are the refinement's: they need --refine");
+      detail_maps_.emplace(model, dir, options.detail_map_size);
+    }
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
       livelink_csv_.emplace(info.fps);
@@ -187,6 +192,8 @@ class FrameWriter {
     if (ok && texture_ && texture_->wants_more()) texture_->add(f.image, coarse, camera);
     if (ok && options_.aligned_faces) write_aligned_face(f);
     if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
+    if (ok && detail_maps_ && ref != nullptr && refiner_ != nullptr)
+      detail_maps_->add(f.index, refiner_->hierarchy(), ref->displacement);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
                            f.fit.expression, key_gaze(f.fit.gaze));
@@ -280,12 +287,14 @@ class FrameWriter {
     if (landmarks_) landmarks_->commit();
     if (action_units_) action_units_->commit();
     if (options_.aligned_faces) remove_unwritten_frame_files(dir_ / kAlignedFaces, {"png"}, aligned_written_);
+    if (detail_maps_) detail_maps_->finish();
     if (livelink_) livelink_->commit();
     if (videos_) videos_->finish();
     meshes_.finish();
   }
 
   int meshes_written() const { return meshes_.meshes_written(); }
+  int detail_maps_written() const { return detail_maps_ ? detail_maps_->maps_written() : 0; }
   const std::vector<fs::path>& animation_files() const { return animation_files_; }
   std::vector<fs::path> point_cache_files() const { return meshes_.point_cache_files(); }
   int gaze_frames() const { return gaze_frames_; }
@@ -385,6 +394,7 @@ class FrameWriter {
   std::optional<StagedText> action_units_;  // --action-units (action_unit_table.hpp)
   std::optional<ActionUnitTable> action_unit_table_;
   std::unordered_set<std::string> aligned_written_;  // --aligned-faces: the crops' file names
+  std::optional<DetailMaps> detail_maps_;            // --detail-maps
   // --livelink, --livelink-udp: a row and a datagram per frame; a lost frame
   // holds the last tracked one's values (importers read rows as frames, and
   // a rig keeps its face), the first ones the rest pose.
@@ -480,6 +490,7 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
   summary.animation_files = impl_->writer.animation_files();
   summary.point_cache_files = impl_->writer.point_cache_files();
   summary.meshes_written = impl_->writer.meshes_written();
+  summary.detail_maps = impl_->writer.detail_maps_written();
   summary.gaze_frames = impl_->writer.gaze_frames();
   if (const LiveLinkStreamer* stream = impl_->writer.livelink_stream()) {
     summary.livelink_sent = stream->sent();

@@ -98,6 +98,11 @@ struct TrackOptions {
   std::optional<LiveLinkStream> livelink_stream;
   bool refine = false;
   RefineOptions refine_options;
+  // With refine: DIR/detail/frame_NNNNNN.png, each refined frame's
+  // displacements as a 16-bit map of detail_map_size texels square in the ICT
+  // UV layout, and DIR/detail/detail.json (detail_maps.hpp).
+  bool detail_maps = false;
+  int detail_map_size = 1024;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
   // Whether the outputs draw on the frames' images (CaptureOptions::keep_images).
   bool needs_images() const { return overlay || refine || texture || aligned_faces; }
@@ -117,6 +122,7 @@ struct TrackSummary {
   std::string livelink_address;                          // ...to this address, as resolved
   std::string livelink_error;                            // why the first datagram that failed did ("" where none did)
   int refined_frames = 0;
+  int detail_maps = 0;   // TrackOptions::detail_maps: the maps written
   double refine_ms = 0;  // total, on the refinement thread
 };
 

@@ -29,12 +29,6 @@ Positions to_model(const Positions& camera_points, const HeadPose& pose) {
   return rf.transpose() * (camera_points.colwise() - pose.translation.cast<float>());
 }
 
-Eigen::MatrixXf uv_matrix(const std::vector<Vec2f>& uvs) {
-  Eigen::MatrixXf m(2, Eigen::Index(uvs.size()));
-  for (size_t i = 0; i < uvs.size(); ++i) m.col(Eigen::Index(i)) = uvs[i];
-  return m;
-}
-
 }  // namespace
 
 TrackMeshes::TrackMeshes(const FaceModel& model, const fs::path& dir, const TrackOptions& options)
@@ -125,10 +119,7 @@ void TrackMeshes::write_frame_mesh(const fs::path& file, const fs::path& dir, co
     const MeshHierarchy& h = refiner_->hierarchy();
     const int finest = h.num_levels() - 1;
     if (!refined_uvs_) {
-      const Eigen::MatrixXf coarse_uv = uv_matrix(coarse_uvs());
-      const Eigen::MatrixXf fine = h.prolong_from_coarse(coarse_uv, finest);
-      refined_uvs_ = std::vector<Vec2f>(fine.cols());
-      for (Eigen::Index i = 0; i < fine.cols(); ++i) (*refined_uvs_)[i] = fine.col(i);
+      refined_uvs_ = level_uv_mesh(h, finest, coarse_uvs()).uvs;
       for (const Triangle& t : h.level(finest).triangles) {
         Polygon p;
         for (int k = 0; k < 3; ++k) p.v[k] = p.uv[k] = t[k];

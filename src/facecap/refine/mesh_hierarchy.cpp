@@ -294,6 +294,19 @@ std::vector<bool> MeshHierarchy::prolong_mask(const std::vector<bool>& coarse, i
   return mask;
 }
 
+TriangleMesh level_uv_mesh(const MeshHierarchy& hierarchy, int level, const std::vector<Vec2f>& coarse_uvs) {
+  Eigen::MatrixXf coarse(2, Eigen::Index(coarse_uvs.size()));
+  for (size_t i = 0; i < coarse_uvs.size(); ++i) coarse.col(Eigen::Index(i)) = coarse_uvs[i];
+  const Eigen::MatrixXf fine = hierarchy.prolong_from_coarse(coarse, level);
+  TriangleMesh mesh;
+  mesh.num_vertices = int(fine.cols());
+  mesh.triangles = hierarchy.level(level).triangles;
+  mesh.triangle_uvs = mesh.triangles;
+  mesh.uvs.resize(fine.cols());
+  for (Eigen::Index i = 0; i < fine.cols(); ++i) mesh.uvs[i] = fine.col(i);
+  return mesh;
+}
+
 Positions level_normals(const MeshLevel& level, const Positions& p) {
   Positions n(3, level.num_vertices);
   parallel_for(

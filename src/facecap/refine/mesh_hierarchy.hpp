@@ -83,6 +83,12 @@ class MeshHierarchy {
   std::vector<MeshLevel> levels_;
 };
 
+// Level l as a mesh with UVs: each vertex's UV prolonged from the coarse
+// mesh's per-vertex UVs (per_vertex_uvs) with the level's stencils, one UV
+// per vertex (ICT's face region has no UV seam: where a vertex lists two UVs
+// they are equal).
+TriangleMesh level_uv_mesh(const MeshHierarchy& hierarchy, int level, const std::vector<Vec2f>& coarse_uvs);
+
 // Area-weighted vertex normals from the level's corner lists (eq. 4.11 with d = 0).
 Positions level_normals(const MeshLevel& level, const Positions& positions);
 

@@ -217,6 +217,7 @@ void Refiner::solve_level(int l, PendingFrame& f) {
   previous_[l] = f.d;
   if (l == levels - 1) {
     out.positions = displaced_positions(problem.base, problem.base_normals, f.d);
+    out.displacement = f.d;
     out.normals = level_normals(level, out.positions);
     out.albedo = f.albedo;
     out.visible = samples.visible;

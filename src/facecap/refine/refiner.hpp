@@ -90,11 +90,12 @@ struct RefineTimings {
 
 struct Refinement {
   ShCoeffs lighting = ShCoeffs::Zero();
-  Positions positions;          // refined finest level, camera space (cm)
-  Positions normals;            // of the refined finest level
-  Positions albedo;             // finest level, RGB
-  std::vector<bool> visible;    // finest level vertices seen in this frame (and in the data mask)
-  std::vector<bool> data_mask;  // finest level vertices the estimators used
+  Positions positions;           // refined finest level, camera space (cm)
+  Eigen::VectorXf displacement;  // finest level: d of M_d = M + d N (eq. 4.11), cm along the base's outward normal
+  Positions normals;             // of the refined finest level
+  Positions albedo;              // finest level, RGB
+  std::vector<bool> visible;     // finest level vertices seen in this frame (and in the data mask)
+  std::vector<bool> data_mask;   // finest level vertices the estimators used
   int levels = 0;
   bool albedo_final = false;  // the albedo was fixed by this frame or before it: later lightings are final
   RefineTimings timings;

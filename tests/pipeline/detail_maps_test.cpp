@@ -1,0 +1,160 @@
+// DetailMaps (track --refine --detail-maps): what a map holds at each texel,
+// against a displacement known in closed form, and what its folder keeps.
+#include "facecap/pipeline/detail_maps.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "facecap/core/camera.hpp"
+#include "facecap/core/error.hpp"
+#include "facecap/core/statistics.hpp"
+#include "facecap/core/temp_dir.hpp"
+#include "facecap/io/png_grey16.hpp"
+#include "facecap/model/regions.hpp"
+#include "facecap/refine/mesh_hierarchy.hpp"
+#include "facecap/render/uv_raster.hpp"
+#include "facecap/synth/wrinkles.hpp"
+#include "test_support.hpp"
+
+namespace facecap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The mean face's region in model space (cm).
+Positions mean_face(const FaceModel& model) {
+  const Eigen::Map<const Positions> neutral(model.neutral.data(), 3, model.num_vertices);
+  return neutral.leftCols(regions::kFace.num_vertices());
+}
+
+// The hierarchy a 1280 x 720 frame builds of the mean face 60 cm from the
+// camera, looking at it (X_camera = diag(1, -1, -1) X_model + (0, 0, 60)).
+MeshHierarchy frontal_hierarchy(const FaceModel& model) {
+  Positions camera_space = mean_face(model);
+  camera_space.row(1) *= -1;
+  camera_space.row(2) = 60.0f - camera_space.row(2).array();
+  return MeshHierarchy::build(model.region_polygons(regions::kFace), regions::kFace.num_vertices(), camera_space,
+                              PinholeCamera::centered(1400, 1280, 720));
+}
+
+// The synthetic renders' wrinkles (synth/wrinkles.hpp), cm, at each vertex of
+// the finest level, placed on the mean face by the hierarchy's own stencils.
+Eigen::VectorXf finest_wrinkles(const FaceModel& model, const MeshHierarchy& h) {
+  const Eigen::MatrixXf place = h.prolong_from_coarse(mean_face(model), h.num_levels() - 1);
+  Eigen::VectorXf d(place.cols());
+  for (Eigen::Index v = 0; v < place.cols(); ++v) d[v] = wrinkle_displacement(Vec3f(place.col(v)));
+  return d;
+}
+
+nlohmann::json read_json(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+// Each texel holds the wrinkles' depth at the surface point the model's own
+// UVs put there: the point found through the coarse mesh's per-corner UVs
+// (rasterised on their own, not through the hierarchy's prolonged UVs), the
+// depth evaluated there in closed form. What differs is the finest level's
+// piecewise-linear sampling of the wrinkles and the 16-bit quantisation.
+TEST(DetailMaps, EachTexelHoldsTheDepthAtItsPointOfTheFace) {
+  FACECAP_REQUIRE_MODEL(model);
+  const MeshHierarchy h = frontal_hierarchy(*model);
+  const Eigen::VectorXf wrinkles = finest_wrinkles(*model, h);
+  TempDir dir;
+  constexpr int kSize = 1024;
+  DetailMaps maps(*model, dir.path(), kSize);
+  maps.add(3, h, wrinkles);
+  maps.finish();
+  EXPECT_EQ(maps.maps_written(), 1);
+  const cv::Mat map = read_png_grey16(dir.path() / "detail" / "frame_000003.png");
+  ASSERT_EQ(map.type(), CV_16UC1);
+  ASSERT_EQ(map.rows, kSize);
+
+  const TriangleMesh coarse = model->region_mesh(regions::kFace);
+  const UvTexelMap texels = rasterize_uv(coarse, kSize);
+  const Positions face = mean_face(*model);
+  const DetailEncoding encoding;
+  std::vector<double> truth, baked, wrinkle_error;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const int i = texels.index(x, y);
+      if (texels.triangle[i] < 0) continue;
+      const Vec3f point = texels.interpolate(coarse.triangles, face, i);
+      truth.push_back(10.0 * wrinkle_displacement(point));
+      baked.push_back(encoding.decode(map.at<uint16_t>(y, x)));
+      if (std::abs(truth.back()) > 0.05) wrinkle_error.push_back(std::abs(baked.back() - truth.back()));
+    }
+  ASSERT_GT(wrinkle_error.size(), 10000u);
+  const double corr = pearson_correlation(truth, baked);
+  const double median_error = median(wrinkle_error);
+  std::printf("texels %zu (wrinkles %zu): correlation %.4f, median error on the wrinkles %.4f mm\n", truth.size(),
+              wrinkle_error.size(), corr, median_error);
+  // Measured: 0.9968 and 0.0093 mm of wrinkles 0.3-0.9 mm deep, over a
+  // million texels (the face region fills 95 % of ICT's UV square).
+  EXPECT_GT(corr, 0.99);
+  EXPECT_LT(median_error, 0.02);
+}
+
+// detail.json says how to read the maps and what they hold; an earlier run's
+// map of a frame this run did not write is removed, other files are kept.
+TEST(DetailMaps, TheFolderHoldsThisRunsMapsAndSaysHowToReadThem) {
+  FACECAP_REQUIRE_MODEL(model);
+  const MeshHierarchy h = frontal_hierarchy(*model);
+  const Eigen::VectorXf wrinkles = finest_wrinkles(*model, h);
+  TempDir dir;
+  {
+    DetailMaps earlier(*model, dir.path(), 128);
+    earlier.add(0, h, wrinkles);
+    earlier.add(1, h, wrinkles);
+    earlier.finish();
+  }
+  std::ofstream(dir.path() / "detail" / "notes.txt") << "mine\n";
+  DetailMaps maps(*model, dir.path(), 128);
+  maps.add(0, h, 2 * wrinkles);
+  maps.finish();
+  EXPECT_TRUE(fs::exists(dir.path() / "detail" / "frame_000000.png"));
+  EXPECT_FALSE(fs::exists(dir.path() / "detail" / "frame_000001.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "detail" / "notes.txt"));
+
+  const nlohmann::json j = read_json(dir.path() / "detail" / "detail.json");
+  EXPECT_EQ(j.at("format"), "facecap-detail-maps");
+  EXPECT_EQ(j.at("maps"), 1);
+  EXPECT_EQ(j.at("size"), nlohmann::json({128, 128}));
+  const double range = j.at("encoding").at("range_mm");
+  EXPECT_EQ(range, DetailEncoding{}.range_mm);
+  EXPECT_NEAR(j.at("blender_displace").at("strength_cm").get<double>(), 2 * range / 10, 1e-12);
+  EXPECT_NEAR(j.at("displacement_mm").at("max").get<double>(), 20.0 * wrinkles.maxCoeff(), 1e-5);
+  EXPECT_NEAR(j.at("displacement_mm").at("min").get<double>(), 20.0 * wrinkles.minCoeff(), 1e-5);
+  EXPECT_NEAR(j.at("displacement_mm").at("rms").get<double>(),
+              20.0 * std::sqrt(wrinkles.squaredNorm() / wrinkles.size()), 1e-5);
+  EXPECT_EQ(j.at("encoding").at("clamped_fraction"), 0.0);
+}
+
+// The encoding's ends: zero at the middle, the range at the ends, beyond it clamped.
+TEST(DetailMaps, TheEncodingSpansTheRangeAndClampsBeyondIt) {
+  const DetailEncoding e;
+  EXPECT_NEAR(e.decode(e.encode(0.0)), 0.0, e.range_mm / 65535);
+  EXPECT_EQ(e.encode(e.range_mm), 65535);
+  EXPECT_EQ(e.encode(-e.range_mm), 0);
+  EXPECT_EQ(e.encode(10 * e.range_mm), 65535);
+  EXPECT_NEAR(e.decode(e.encode(0.1234)), 0.1234, e.range_mm / 65535);
+}
+
+// A displacement that does not fit the hierarchy is refused, naming the problem.
+TEST(DetailMaps, ADisplacementOfAnotherMeshIsRefused) {
+  FACECAP_REQUIRE_MODEL(model);
+  const MeshHierarchy h = frontal_hierarchy(*model);
+  TempDir dir;
+  DetailMaps maps(*model, dir.path(), 64);
+  EXPECT_THROW(maps.add(0, h, Eigen::VectorXf::Zero(10)), Error);
+}
+
+}  // namespace facecap
