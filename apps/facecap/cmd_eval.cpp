@@ -328,15 +328,21 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
                                   "Expression-transformation measures as JSON on real footage: lip error, rise of the "
                                   "target's defining weights, smoothness against the per-frame mapping, audio");
   struct Args {
-    std::string video, to = "happiness", output, method = "cyclegan";
+    std::string video, to = "happiness", output, method = "cyclegan", units;
     TransformJobOptions options;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--video", a->video, "Footage of a speaking face")->required();
-  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
-  cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
-      ->check(CLI::IsMember({"cyclegan", "linear"}))
-      ->capture_default_str();
+  CLI::Option* to =
+      cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
+  CLI::Option* method = cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
+                            ->check(CLI::IsMember({"cyclegan", "linear"}))
+                            ->capture_default_str();
+  add_action_units_option(*cmd, a->units,
+                          "Instead of an emotion, measure a FACS edit (as transform --units): for each unit the "
+                          "intensity asked, the input's, the output's and the output's tracked again (\"units\")")
+      ->excludes(to)
+      ->excludes(method);
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames")
       ->check(whole_number_at_least(0));
   add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
@@ -350,18 +356,35 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     a->options.transform.method = a->method == "linear" ? MappingMethod::kLinear : MappingMethod::kCycleGan;
-    a->options.description = std::string("neutral to ") + to_string(to) + " (eval)";
-    const TransformEval r = evaluate_transform(model, a->video, to, a->options, a->output);
+    const bool facs = !a->units.empty();
+    const std::vector<ActionUnitTarget> units =
+        facs ? parse_action_unit_targets(a->units) : std::vector<ActionUnitTarget>{};
+    a->options.description =
+        (facs ? "FACS units " + describe(units) : std::string("neutral to ") + to_string(to)) + " (eval)";
+    const TransformEval r = facs ? evaluate_unit_edit(model, a->video, units, a->options, a->output)
+                                 : evaluate_transform(model, a->video, to, a->options, a->output);
     const double n = std::max(1, r.timings.frames);
+    const auto emotion_only = [facs](double value) { return facs ? nlohmann::json(nullptr) : nlohmann::json(value); };
+    nlohmann::json unit_rows = nlohmann::json::array();
+    for (const UnitEditMeasure& u : r.units) {
+      const ActionUnit& unit = action_units()[size_t(action_unit_index(u.asked.number))];
+      unit_rows.push_back({{"unit", unit.label()},
+                           {"name", unit.name},
+                           {"asked", u.asked.intensity},
+                           {"input", u.input},
+                           {"output", u.output},
+                           {"retracked", u.retracked}});
+    }
     print_json({{"video", a->video},
-                {"to", to_string(to)},
-                {"method", a->method},
+                {"to", facs ? nlohmann::json(nullptr) : nlohmann::json(to_string(to))},
+                {"method", facs ? "facs-units" : a->method},
+                {"units", facs ? unit_rows : nlohmann::json(nullptr)},
                 {"frames", r.frames},
                 {"valid_frames", r.valid_frames},
                 {"lip_error_mm", r.lip_error_mm},
                 {"lip_error_max_mm", r.lip_error_max_mm},
-                {"target_rise", r.target_rise},
-                {"retracked_rise", r.retracked_rise},
+                {"target_rise", emotion_only(r.target_rise)},
+                {"retracked_rise", emotion_only(r.retracked_rise)},
                 {"smoothness", r.smoothness},
                 {"smoothness_raw", r.smoothness_raw},
                 {"smoothness_mapped", r.smoothness_mapped},

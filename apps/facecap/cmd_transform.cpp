@@ -53,21 +53,11 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   CLI::Option* method = cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
                             ->check(CLI::IsMember({"cyclegan", "linear"}))
                             ->capture_default_str();
-  CLI::Option* units =
-      cmd->add_option("--units", a->units,
-                      "Instead of an emotion, set FACS action units (as track --action-units reads them) to the "
-                      "intensities given, 0-5, in every frame: AU12=3,AU6=2 adds a smile, AU4=0 smooths a frown; "
-                      "the lips stay in sync as with --to, which may hold back a unit that moves them (AU12, AU15, "
-                      "AU26 ...). With --intensity")
-          ->type_name("AU=X,...")
-          ->check([](const std::string& text) {
-            try {
-              parse_action_unit_targets(text);
-              return std::string();
-            } catch (const Error& e) {
-              return std::string(e.what());
-            }
-          });
+  CLI::Option* units = add_action_units_option(
+      *cmd, a->units,
+      "Instead of an emotion, set FACS action units (as track --action-units reads them) to the intensities given, "
+      "0-5, in every frame: AU12=3,AU6=2 adds a smile, AU4=0 smooths a frown; the lips stay in sync as with --to, "
+      "which may hold back a unit that moves them (AU12, AU15, AU26 ...). With --intensity");
   units->excludes(to)->excludes(from)->excludes(schedule)->excludes(method);
   cmd->add_option("--window", a->window, "Smoothing window half-width k (2k + 1 frames)")->capture_default_str();
   CLI::Option* plot =

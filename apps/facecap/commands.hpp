@@ -62,6 +62,9 @@ CLI::Validator number_between(double least, double most);
 void add_start_option(CLI::App& cmd, double& start_seconds);
 // --no-shot-cuts: one identity and focal length for the whole input (CaptureOptions::shot_cuts).
 void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
+// --units AU12=3,AU4=0: a FACS edit (action_units.hpp), checked when given
+// (parse_action_unit_targets names what is wrong). Returns the option.
+CLI::Option* add_action_units_option(CLI::App& cmd, std::string& units, const std::string& help);
 // --face largest|left|right|X,Y: which face to follow where several are in
 // view (FaceTrackerOptions::pick); `name` and `help` for another input's
 // (swap's --source-face).

@@ -10,6 +10,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_tracker.hpp"
+#include "facecap/expr/action_units.hpp"
 #include "facecap/expr/emotions.hpp"
 #include "facecap/model/model_cache.hpp"
 #include "facecap/pipeline/face_roster.hpp"
@@ -69,6 +70,17 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts) {
       "Keep one identity and focal length for the whole input. By default a shot cut (the picture changes "
       "all at once: an edit to another speaker, another camera) starts a new shot whose identity and focal "
       "length are solved again");
+}
+
+CLI::Option* add_action_units_option(CLI::App& cmd, std::string& units, const std::string& help) {
+  return cmd.add_option("--units", units, help)->type_name("AU=X,...")->check([](const std::string& text) {
+    try {
+      parse_action_unit_targets(text);
+      return std::string();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+  });
 }
 
 CLI::Option* add_face_option(CLI::App& cmd, FacePick& pick, const std::string& name, const std::string& help) {

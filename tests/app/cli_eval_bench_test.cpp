@@ -32,6 +32,31 @@ TEST(Cli, EvalTrackFitsSyntheticFramesAsPhotos) {
   }
 }
 
+// eval transform --units: a FACS edit's report, unit by unit in the order
+// asked, with the emotion's keys null; the units it set are what was asked
+// in the output, and the output tracked again shows the raised brows.
+TEST(Cli, EvalTransformReportsAFacsEditUnitByUnit) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  const nlohmann::json j =
+      json_from("eval transform --video " + video.string() + " --units AU1=4,AU4=0 --max-frames 40");
+  EXPECT_EQ(j.at("method"), "facs-units") << j.dump();
+  EXPECT_TRUE(j.at("to").is_null());
+  EXPECT_TRUE(j.at("target_rise").is_null());
+  EXPECT_TRUE(j.at("retracked_rise").is_null());
+  EXPECT_EQ(j.at("marked_synthetic"), true);
+  EXPECT_LT(j.at("lip_error_mm").get<double>(), 1.0);
+  const nlohmann::json& units = j.at("units");
+  ASSERT_EQ(units.size(), 2u);
+  EXPECT_EQ(units[0].at("unit"), "AU01");
+  EXPECT_EQ(units[0].at("name"), "inner brow raiser");
+  EXPECT_EQ(units[1].at("unit"), "AU04");
+  EXPECT_EQ(units[0].at("asked"), 4.0);
+  EXPECT_NEAR(units[0].at("output").get<double>(), 4.0, 0.02);
+  EXPECT_NEAR(units[1].at("output").get<double>(), 0.0, 0.02);
+  EXPECT_GT(units[0].at("retracked").get<double>(), units[0].at("input").get<double>() + 0.5);
+}
+
 // eval landmarks FOLDER: one JSON object with both sets' summaries and a row
 // per annotated image; a folder without annotations is a one-line error.
 TEST(Cli, EvalLandmarksScoresAFolderOfAnnotatedImages) {

@@ -163,6 +163,10 @@ TEST(Cli, FacsEditsCropsAndDetailMapsAreRefusedByNameWhereTheyCannotBeDone) {
       {"transform in.mp4 -o x.mp4 --units AU12=3 --all-faces --face-to 1=anger", "--units excludes --face-to"},
       {"track in.mp4 -o x --aligned-size 64", "--aligned-size requires --aligned-faces"},
       {"track in.mp4 -o x --aligned-faces --aligned-size 8", "--aligned-size: Value 8 not in range 32 to 1024"},
+      {"eval transform --video in.mp4 --units AU1=4 --to anger", "--to excludes --units"},
+      {"eval transform --video in.mp4 --units AU23=1",
+       "--units: the face model has no shape for AU23 (its units: 1, 2, 4, 5, 6, 7, 9, 10, 12, 14, 15, 17, 18, 20, "
+       "22, 24, 26, 28, 45)"},
       {"track in.mp4 -o x --detail-maps", "--detail-maps requires --refine"},
       {"track in.mp4 -o x --refine --detail-map-size 512", "--detail-map-size requires --detail-maps"},
       {"track in.mp4 -o x --refine --detail-maps --detail-map-size 16",

@@ -120,22 +120,11 @@ TEST(TransformEval, LinearBaselineAlsoKeepsTheLips) {
   EXPECT_GT(r.target_rise, 0.1);
 }
 
-namespace {
-
-// Mean FACS intensities (action_units.hpp) over frames' weights.
-Eigen::VectorXd mean_units(const FaceModel& model, const std::vector<Eigen::VectorXf>& weights) {
-  const ActionUnitReader reader(model.expression_names);
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(reader.size());
-  for (const Eigen::VectorXf& w : weights) sum += reader.intensities(w);
-  return weights.empty() ? sum : Eigen::VectorXd(sum / double(weights.size()));
-}
-
-}  // namespace
-
-// transform --units: FACS units set in every frame instead of an emotion.
-// A unit away from the lips (AU1, AU4) is exactly what was asked; one that
-// moves them (AU12) goes as far as the lips allow; the lips stay within
-// 1 mm; and tracking the output again finds the units changed.
+// transform --units: FACS units set in every frame instead of an emotion
+// (evaluate_unit_edit, `eval transform --units`). A unit away from the lips
+// (AU1, AU4) is exactly what was asked; one that moves them (AU12) goes as
+// far as the lips allow; the lips stay within 1 mm; and tracking the output
+// again finds the units changed.
 TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
@@ -143,25 +132,21 @@ TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
   const fs::path out = dir.path() / "units.mp4";
   TransformJobOptions o = short_run(60);
   const std::vector<ActionUnitTarget> targets = parse_action_unit_targets("AU1=4, AU4=0, AU12=3");
-  o.transform.shape_targets = ActionUnitReader(model->expression_names).shape_weights(targets);
   o.description = "FACS units " + describe(targets);
-  const TransformSummary s = run_transform(*model, video.string(), out, o);
-  const TransformMetrics m = measure_transform(*model, s.frames, Emotion::kHappiness);
-  EXPECT_GE(m.valid_frames, 58);
-  EXPECT_LE(m.lip_error_mm, 1.0);
-  const ActionUnitReader reader(model->expression_names);
-  double smile = 0, tracked_smile = 0;
-  for (const TransformedFrame& f : s.frames) {
-    if (!f.valid) continue;
-    const Eigen::VectorXd units = reader.intensities(f.weights);
-    // As asked, but for the lip correction's nudge (ICT's brow shapes move
-    // the lip vertices by a hair): 0.006 at most.
-    EXPECT_NEAR(units[action_unit_index(1)], 4.0, 0.02) << "frame " << f.index;
-    EXPECT_NEAR(units[action_unit_index(4)], 0.0, 0.02) << "frame " << f.index;
-    smile += units[action_unit_index(12)] / m.valid_frames;
-    tracked_smile += reader.intensities(f.tracked)[action_unit_index(12)] / m.valid_frames;
-  }
-  EXPECT_GT(smile, tracked_smile + 1.5);  // 2.13 against 0: the lips hold it under the 3 asked
+  const TransformEval r = evaluate_unit_edit(*model, video.string(), targets, o, out);
+  EXPECT_GE(r.valid_frames, 58);
+  EXPECT_LE(r.lip_error_mm, 1.0);
+  EXPECT_TRUE(r.marked_synthetic);
+  ASSERT_EQ(r.units.size(), 3u);
+  const UnitEditMeasure &brows = r.units[0], &frown = r.units[1], &smile = r.units[2];
+  EXPECT_EQ(brows.asked.number, 1);
+  EXPECT_EQ(frown.asked.number, 4);
+  EXPECT_EQ(smile.asked.number, 12);
+  // As asked, but for the lip correction's nudge (ICT's brow shapes move the
+  // lip vertices by a hair): 0.006 at most.
+  EXPECT_NEAR(brows.output, 4.0, 0.02);
+  EXPECT_NEAR(frown.output, 0.0, 0.02);
+  EXPECT_GT(smile.output, smile.input + 1.5);  // 2.13 against 0: the lips hold it under the 3 asked
   // The sidecar names the edit.
   std::ifstream side(out.string() + ".json");
   const auto j = nlohmann::json::parse(side);
@@ -173,15 +158,11 @@ TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
   // the weights changed (AU1 0 -> 1.28, AU4 0.42 -> 0.24, AU12 0 -> 0.35):
   // dlib's brow points move as the asked AU1 says, but the fit of the 68
   // points reads part of the change as other units (README).
-  CaptureOptions capture;
-  capture.max_frames = 60;
-  const TrackedWeights input = track_weights(*model, video, capture);
-  capture.fit.known_identity = input.identity;
-  const Eigen::VectorXd before = mean_units(*model, input.weights);
-  const Eigen::VectorXd after = mean_units(*model, track_weights(*model, out, capture).weights);
-  EXPECT_GT(after[action_unit_index(1)], before[action_unit_index(1)] + 0.8);
-  EXPECT_LT(after[action_unit_index(4)], before[action_unit_index(4)]);
-  EXPECT_GT(after[action_unit_index(12)], before[action_unit_index(12)] + 0.2);
+  std::printf("AU1 %.2f -> %.2f, AU4 %.2f -> %.2f, AU12 %.2f -> %.2f (retracked)\n", brows.input, brows.retracked,
+              frown.input, frown.retracked, smile.input, smile.retracked);
+  EXPECT_GT(brows.retracked, brows.input + 0.8);
+  EXPECT_LT(frown.retracked, frown.input);
+  EXPECT_GT(smile.retracked, smile.input + 0.2);
 }
 
 // --matte: the re-rendered face's blend mask over each frame, frame for

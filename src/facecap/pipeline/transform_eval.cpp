@@ -1,6 +1,7 @@
 #include "facecap/pipeline/transform_eval.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
@@ -44,27 +45,82 @@ double defining_mean(const FaceModel& model, const std::vector<Eigen::VectorXf>&
   return count > 0 ? sum / count : 0.0;
 }
 
-// TransformEval::retracked_rise.
-double retracked_rise(const FaceModel& model, const TransformSummary& s, const std::filesystem::path& output,
-                      Emotion target, CaptureOptions capture) {
-  std::vector<Eigen::VectorXf> before;
-  for (const TransformedFrame& f : s.frames)
-    if (f.valid) before.push_back(f.tracked);
-  if (before.empty()) return 0.0;
+// The output tracked again as TransformEval::retracked_rise says: from its
+// first frame, with the identity the input's run solved held.
+TrackedWeights retrack(const FaceModel& model, const TransformSummary& s, const std::filesystem::path& output,
+                       CaptureOptions capture) {
   capture.start_seconds = 0;  // the output begins where the input's run did
   capture.fit.known_identity = s.capture.identity.identity;
-  const TrackedWeights after = track_weights(model, output, capture);
-  return after.weights.empty() ? 0.0
-                               : defining_mean(model, after.weights, target) - defining_mean(model, before, target);
+  return track_weights(model, output, capture);
+}
+
+// The input's tracked weights over its valid frames.
+std::vector<Eigen::VectorXf> tracked_input(const TransformSummary& s) {
+  std::vector<Eigen::VectorXf> input;
+  for (const TransformedFrame& f : s.frames)
+    if (f.valid) input.push_back(f.tracked);
+  return input;
+}
+
+// Mean intensity of each unit over weight vectors (action_units() order).
+Eigen::VectorXd mean_intensities(const ActionUnitReader& reader, const std::vector<Eigen::VectorXf>& weights) {
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(reader.size());
+  for (const Eigen::VectorXf& w : weights) sum += reader.intensities(w);
+  return weights.empty() ? sum : Eigen::VectorXd(sum / double(weights.size()));
+}
+
+// Runs the job into `output` (a temporary file in `temp` when empty) and
+// measures what every edit is measured by: frames, the lips, smoothness, the
+// rise over `shapes`, the audio and the marks.
+TransformEval run_and_measure(const FaceModel& model, const std::string& video, const TransformJobOptions& o,
+                              std::filesystem::path& output, std::optional<TempDir>& temp,
+                              const std::vector<int>& shapes, TransformSummary& s) {
+  if (output.empty()) {
+    temp.emplace("facecap-eval-transform");
+    output = temp->path() / "transformed.mp4";
+  }
+  s = run_transform(model, video, output, o);
+  const TransformMetrics m = measure_transform(model, s.frames, shapes);
+
+  TransformEval r;
+  r.frames = static_cast<int>(s.frames.size());
+  r.valid_frames = m.valid_frames;
+  r.lip_error_mm = m.lip_error_mm;
+  r.lip_error_max_mm = m.lip_error_max_mm;
+  r.target_rise = m.target_rise;
+  r.smoothness = m.smoothness;
+  r.smoothness_raw = m.smoothness_raw;
+  r.smoothness_mapped = m.smoothness_mapped;
+  r.timings = s.timings;
+
+  const InputInfo in = probe_video_file(video);
+  r.input_audio = in.audio;
+  const InputInfo result = probe_video_file(output);
+  const double fps = in.fps > 0 ? in.fps : 25.0;
+  // The input's audio (ending with the output's last frame when --max-frames
+  // stopped the run early), against the output's.
+  const double audio_in = in.audio_duration > 0 ? in.audio_duration : in.duration;
+  const bool cut = output_like(in, o.capture.max_frames).audio_ends_with_video;
+  const double video_out = result.fps > 0 ? result.frames / result.fps : result.duration;
+  r.audio_seconds_in = in.audio ? (cut ? std::min(audio_in, video_out) : audio_in) : 0;
+  r.audio_seconds_out = result.audio ? result.audio_duration : 0;
+  // One frame of slack: AAC frames are 1024 samples (21-23 ms) and the encoder pads.
+  r.audio_ok = in.audio && result.audio && std::abs(r.audio_seconds_out - r.audio_seconds_in) <= 1.0 / fps + 0.05;
+  r.marked_synthetic = carries_synthetic_marks(output);
+  return r;
 }
 
 }  // namespace
 
 TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames,
                                    Emotion target) {
+  return measure_transform(model, frames, defining_indices(model, target));
+}
+
+TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames,
+                                   const std::vector<int>& defining) {
   TransformMetrics m;
   const Eigen::MatrixXd lips = lip_basis(model);  // 12 x E, cm per unit weight
-  const std::vector<int> defining = defining_indices(model, target);
   double lip_sum = 0, rise_sum = 0;
   long lip_count = 0, rise_count = 0;
   for (const TransformedFrame& f : frames) {
@@ -104,43 +160,43 @@ TrackedWeights track_weights(const FaceModel& model, const std::filesystem::path
 
 TransformEval evaluate_transform(const FaceModel& model, const std::string& video, Emotion target,
                                  const TransformJobOptions& options, const std::filesystem::path& output) {
-  std::optional<TempDir> temp;
-  std::filesystem::path out = output;
-  if (out.empty()) {
-    temp.emplace("facecap-eval-transform");
-    out = temp->path() / "transformed.mp4";
-  }
   TransformJobOptions o = options;
   o.transform.schedule = ExpressionSchedule::constant(target, 1.0);
-  const TransformSummary s = run_transform(model, video, out, o);
-  const TransformMetrics m = measure_transform(model, s.frames, target);
+  std::optional<TempDir> temp;
+  std::filesystem::path out = output;
+  TransformSummary s;
+  TransformEval r = run_and_measure(model, video, o, out, temp, defining_indices(model, target), s);
+  const std::vector<Eigen::VectorXf> before = tracked_input(s);
+  if (!before.empty()) {
+    const TrackedWeights after = retrack(model, s, out, o.capture);
+    if (!after.weights.empty())
+      r.retracked_rise = defining_mean(model, after.weights, target) - defining_mean(model, before, target);
+  }
+  return r;
+}
 
-  TransformEval r;
-  r.frames = static_cast<int>(s.frames.size());
-  r.valid_frames = m.valid_frames;
-  r.lip_error_mm = m.lip_error_mm;
-  r.lip_error_max_mm = m.lip_error_max_mm;
-  r.target_rise = m.target_rise;
-  r.smoothness = m.smoothness;
-  r.smoothness_raw = m.smoothness_raw;
-  r.smoothness_mapped = m.smoothness_mapped;
-  r.timings = s.timings;
-
-  const InputInfo in = probe_video_file(video);
-  r.input_audio = in.audio;
-  const InputInfo result = probe_video_file(out);
-  const double fps = in.fps > 0 ? in.fps : 25.0;
-  // The input's audio (ending with the output's last frame when --max-frames
-  // stopped the run early), against the output's.
-  const double audio_in = in.audio_duration > 0 ? in.audio_duration : in.duration;
-  const bool cut = output_like(in, o.capture.max_frames).audio_ends_with_video;
-  const double video_out = result.fps > 0 ? result.frames / result.fps : result.duration;
-  r.audio_seconds_in = in.audio ? (cut ? std::min(audio_in, video_out) : audio_in) : 0;
-  r.audio_seconds_out = result.audio ? result.audio_duration : 0;
-  // One frame of slack: AAC frames are 1024 samples (21-23 ms) and the encoder pads.
-  r.audio_ok = in.audio && result.audio && std::abs(r.audio_seconds_out - r.audio_seconds_in) <= 1.0 / fps + 0.05;
-  r.marked_synthetic = carries_synthetic_marks(out);
-  r.retracked_rise = retracked_rise(model, s, out, target, o.capture);
+TransformEval evaluate_unit_edit(const FaceModel& model, const std::string& video,
+                                 const std::vector<ActionUnitTarget>& units, const TransformJobOptions& options,
+                                 const std::filesystem::path& output) {
+  if (units.empty()) throw Error("a FACS edit needs at least one unit");
+  const ActionUnitReader reader(model.expression_names);
+  TransformJobOptions o = options;
+  o.transform.shape_targets = reader.shape_weights(units);
+  std::optional<TempDir> temp;
+  std::filesystem::path out = output;
+  TransformSummary s;
+  TransformEval r = run_and_measure(model, video, o, out, temp, {}, s);
+  std::vector<Eigen::VectorXf> edited;
+  for (const TransformedFrame& f : s.frames)
+    if (f.valid) edited.push_back(f.weights);
+  const std::vector<Eigen::VectorXf> before = tracked_input(s);
+  const Eigen::VectorXd input = mean_intensities(reader, before), result = mean_intensities(reader, edited);
+  const Eigen::VectorXd again = before.empty() ? Eigen::VectorXd::Zero(reader.size())
+                                               : mean_intensities(reader, retrack(model, s, out, o.capture).weights);
+  for (const ActionUnitTarget& unit : units) {
+    const int u = action_unit_index(unit.number);
+    r.units.push_back({unit, input[u], result[u], again[u]});
+  }
   return r;
 }
 

@@ -3,14 +3,27 @@
 // transformation on real footage and measures what chapter 5 promises: the
 // lips stay where the speaker put them, the target emotion's defining weights
 // rise, the window smoothing makes the curves calmer than the per-frame
-// mapping, and the output keeps the input's audio.
+// mapping, and the output keeps the input's audio. With `--units AU1=4,...`
+// (a FACS edit, `transform --units`) the same of that edit, and for each unit
+// the intensity asked, the input's, the output's and what tracking the output
+// again reads.
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "facecap/expr/action_units.hpp"
 #include "facecap/pipeline/transform_job.hpp"
 
 namespace facecap {
+
+// One unit of a FACS edit, its intensities (0-5, action_units.hpp) meaned
+// over the valid frames.
+struct UnitEditMeasure {
+  ActionUnitTarget asked;  // the unit and the intensity set
+  double input = 0;        // as the input was tracked
+  double output = 0;       // the edit's weights (the lip correction may hold a unit that moves the lips back)
+  double retracked = 0;    // the output tracked again with the input's identity held (TransformEval::retracked_rise)
+};
 
 struct TransformEval {
   int frames = 0;
@@ -35,7 +48,8 @@ struct TransformEval {
   bool input_audio = false;
   bool audio_ok = false;  // output audio as long as the input's (over the frames processed)
   double audio_seconds_in = 0, audio_seconds_out = 0;
-  bool marked_synthetic = false;  // container tag and sidecar present
+  bool marked_synthetic = false;       // container tag and sidecar present
+  std::vector<UnitEditMeasure> units;  // a FACS edit's (evaluate_unit_edit): one per unit set
   TransformTimings timings;
 };
 
@@ -46,6 +60,9 @@ struct TransformMetrics {
   int valid_frames = 0;
 };
 TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames, Emotion target);
+// The same with the rise taken over the model's shapes `shapes` (none: 0).
+TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames,
+                                   const std::vector<int>& shapes);
 
 // Each frame's weights as `track` fits a video (lost frames left out), and
 // the identity it solved or held (capture.fit.known_identity): what
@@ -59,5 +76,12 @@ TrackedWeights track_weights(const FaceModel& model, const std::filesystem::path
 // Writes the output to `output` (a temporary file when empty) and measures it.
 TransformEval evaluate_transform(const FaceModel& model, const std::string& video, Emotion target,
                                  const TransformJobOptions& options, const std::filesystem::path& output = {});
+// The same of a FACS edit setting `units` in every frame (`transform
+// --units`): `units` has each unit's intensities; target_rise and
+// retracked_rise stay 0 (an edit may set a unit lower, so a mean over its
+// shapes would say little).
+TransformEval evaluate_unit_edit(const FaceModel& model, const std::string& video,
+                                 const std::vector<ActionUnitTarget>& units, const TransformJobOptions& options,
+                                 const std::filesystem::path& output = {});
 
 }  // namespace facecap
