@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -109,6 +110,22 @@ TEST(Cli, BadOptionValuesAreNamed) {
   EXPECT_NE(shading.out.find("--true-shading"), std::string::npos) << shading.out;
 }
 
+namespace {
+
+// Each command line (first) is refused before any work with exit code 2 and
+// its message (second) on the first of two lines: the error, and CLI11's
+// pointer to --help.
+void expect_refused_by_cli11(std::span<const std::pair<const char*, const char*>> cases) {
+  for (const auto& [args, message] : cases) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), message) << args;
+    EXPECT_EQ(lines(r.out), 2) << r.out;
+  }
+}
+
+}  // namespace
+
 // Counts of frames and faces are whole numbers from their least value up:
 // anything else is refused before any work, naming the option, the least
 // value and what was given (a negative --max-frames once ran the whole input,
@@ -136,12 +153,7 @@ TEST(Cli, CountsBelowTheirLeastOrNotWholeAreRefusedByName) {
       {"transform in.mp4 -o x.mp4 --all-faces --leave-faces 1,-2",
        "--leave-faces: must be a whole number of at least 0, not -2"},
   };
-  for (const auto& [args, message] : cases) {
-    const RunResult r = run(args);
-    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
-    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), message) << args;
-    EXPECT_EQ(lines(r.out), 2) << r.out;  // the error, and CLI11's pointer to --help
-  }
+  expect_refused_by_cli11(cases);
   // The help says which values they take.
   EXPECT_NE(run("track --help").out.find("--max-frames INT:NONNEGATIVE"), std::string::npos);
   EXPECT_NE(run("eval track --help").out.find("--synthetic INT:POSITIVE"), std::string::npos);
@@ -172,11 +184,7 @@ TEST(Cli, FacsEditsCropsAndDetailMapsAreRefusedByNameWhereTheyCannotBeDone) {
       {"track in.mp4 -o x --refine --detail-maps --detail-map-size 16",
        "--detail-map-size: Value 16 not in range 64 to 4096"},
   };
-  for (const auto& [args, message] : cases) {
-    const RunResult r = run(args);
-    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
-    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), message) << args;
-  }
+  expect_refused_by_cli11(cases);
 }
 
 // Not-a-number and infinity are refused as out of range, where they once
