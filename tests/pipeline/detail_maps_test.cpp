@@ -136,6 +136,14 @@ TEST(DetailMaps, TheFolderHoldsThisRunsMapsAndSaysHowToReadThem) {
   EXPECT_NEAR(j.at("displacement_mm").at("rms").get<double>(),
               20.0 * std::sqrt(wrinkles.squaredNorm() / wrinkles.size()), 1e-5);
   EXPECT_EQ(j.at("encoding").at("clamped_fraction"), 0.0);
+
+  // A run that wrote no map (no face found) says so, with no extremes.
+  TempDir empty;
+  DetailMaps none(*model, empty.path(), 64);
+  none.finish();
+  const nlohmann::json nothing = read_json(empty.path() / "detail" / "detail.json");
+  EXPECT_EQ(nothing.at("maps"), 0);
+  EXPECT_TRUE(nothing.at("displacement_mm").is_null());
 }
 
 // The encoding's ends: zero at the middle, the range at the ends, beyond it clamped.

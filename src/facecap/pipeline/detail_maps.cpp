@@ -86,9 +86,10 @@ void DetailMaps::finish() {
                            {"midlevel", 0.5},
                            {"strength_cm", strength_cm},
                            {"note", "the meshes are in centimetres: strength in their units is 2 * range_mm / 10"}};
-  // Over the finest level's vertices in every map.
-  j["displacement_mm"] = {
-      {"min", min_mm_}, {"max", max_mm_}, {"rms", vertices_ > 0 ? std::sqrt(sum_squares_ / double(vertices_)) : 0.0}};
+  // Over the finest level's vertices in every map; none without a map.
+  j["displacement_mm"] = nullptr;
+  if (vertices_ > 0)
+    j["displacement_mm"] = {{"min", min_mm_}, {"max", max_mm_}, {"rms", std::sqrt(sum_squares_ / double(vertices_))}};
   write_text_file(dir_ / kDetailInfo, j.dump(2) + "\n");
 }
 

@@ -9,7 +9,9 @@
 // Displace modifier in Blender or a material's displacement elsewhere.
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
+#include <string>
 #include <unordered_set>
 #include <vector>
 
@@ -63,7 +65,8 @@ class DetailMaps {
   std::optional<UvBaker> baker_;   // the finest level's, made at the first frame
   std::unordered_set<std::string> written_;
   long long vertices_ = 0, clamped_ = 0;
-  double min_mm_ = 0, max_mm_ = 0, sum_squares_ = 0;
+  double min_mm_ = std::numeric_limits<double>::infinity(), max_mm_ = -std::numeric_limits<double>::infinity();
+  double sum_squares_ = 0;
 };
 
 }  // namespace facecap
