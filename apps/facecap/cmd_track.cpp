@@ -92,6 +92,7 @@ void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& opt
   if (options.action_units) std::fprintf(out, "%s\n", (s.output_dir / "action_units.csv").string().c_str());
   if (options.aligned_faces) std::fprintf(out, "%s\n", (s.output_dir / "aligned").string().c_str());
   if (options.detail_maps) std::fprintf(out, "%s\n", (s.output_dir / "detail").string().c_str());
+  if (options.uv_pass) std::fprintf(out, "%s\n", (s.output_dir / "uv").string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
@@ -173,6 +174,12 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       ->check(CLI::Range(32, 1024))
       ->needs(aligned)
       ->capture_default_str();
+  cmd->add_flag("--uv-pass", a->options.uv_pass,
+                "Write DIR/uv/frame_NNNNNN.png: each frame's UV pass (an ST map) at the input's size, 16-bit RGBA: red "
+                "u and green v of the face's surface point each pixel shows, in the ICT UV layout of albedo.png and "
+                "texture.png, alpha where the face region covers the pixel (with --refine, the refined surface's); "
+                "an empty pass for a frame without a face. Nuke's STMap node (or another compositor's UV map) puts a "
+                "texture painted in that layout onto the face in every frame");
   cmd->add_flag("--livelink", a->options.livelink,
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "

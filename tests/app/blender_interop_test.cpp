@@ -21,7 +21,7 @@
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
-#include "facecap/io/png_grey16.hpp"
+#include "facecap/io/png16.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
@@ -289,7 +289,7 @@ TEST(BlenderInterop, ADetailMapDisplacesTheRefinedMeshAsDetailJsonSays) {
   EXPECT_EQ(report["is_float"], true);  // 16 bits read as such, not as 8
   std::ifstream info_in(info);
   const double range_mm = nlohmann::json::parse(info_in)["encoding"]["range_mm"];
-  const cv::Mat map = read_png_grey16(map_file);
+  const cv::Mat map = read_png16(map_file);
   ASSERT_FALSE(map.empty());
   cv::Mat mm;  // (value / 65535 - 0.5) * 2 range, as detail.json says
   map.convertTo(mm, CV_32F, 2 * range_mm / 65535, -range_mm);

@@ -19,7 +19,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/marked_image.hpp"
-#include "facecap/io/png_grey16.hpp"
+#include "facecap/io/png16.hpp"
 #include "io/damaged_clip.hpp"
 #include "test_support.hpp"
 
@@ -79,13 +79,14 @@ TEST(Cli, TrackRejectsBadInputsAndOutputsWithOneLine) {
 }
 
 // Where the folder of per-frame files (--aligned-faces' `aligned`,
-// --detail-maps' `detail`) is a file, the run stops before any frame in one
+// --detail-maps' `detail`, --uv-pass' `uv`) is a file, the run stops before any frame in one
 // line naming it, leaves the file as it was and writes no table.
 TEST(Cli, TrackRefusesAPerFrameFolderThatIsAFile) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   for (const auto& [folder, options] : {std::pair<const char*, const char*>{"aligned", "--aligned-faces"},
-                                        std::pair<const char*, const char*>{"detail", "--refine --detail-maps"}}) {
+                                        std::pair<const char*, const char*>{"detail", "--refine --detail-maps"},
+                                        std::pair<const char*, const char*>{"uv", "--uv-pass"}}) {
     TempDir dir;
     std::ofstream(dir.path() / folder) << "mine";
     const RunResult r = run("track " + video.string() + " --max-frames 2 " + options + " -o " + dir.path().string());
@@ -631,7 +632,7 @@ TEST(Cli, TrackWritesADetailMapForEachRefinedFrame) {
   for (int frame : {0, kFrames / 2, kFrames - 1}) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
-    const cv::Mat map = read_png_grey16(detail / name);
+    const cv::Mat map = read_png16(detail / name);
     ASSERT_EQ(map.type(), CV_16UC1) << name;
     ASSERT_EQ(map.size(), cv::Size(512, 512)) << name;
     double lo = 0, hi = 0;

@@ -14,7 +14,7 @@
 #include "facecap/core/error.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
-#include "facecap/io/png_grey16.hpp"
+#include "facecap/io/png16.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/refine/mesh_hierarchy.hpp"
 #include "facecap/render/uv_raster.hpp"
@@ -74,7 +74,7 @@ TEST(DetailMaps, EachTexelHoldsTheDepthAtItsPointOfTheFace) {
   maps.add(3, h, wrinkles);
   maps.finish();
   EXPECT_EQ(maps.maps_written(), 1);
-  const cv::Mat map = read_png_grey16(dir.path() / "detail" / "frame_000003.png");
+  const cv::Mat map = read_png16(dir.path() / "detail" / "frame_000003.png");
   ASSERT_EQ(map.type(), CV_16UC1);
   ASSERT_EQ(map.rows, kSize);
 

@@ -20,7 +20,7 @@ extern "C" {
 #include "facecap/core/atomic_file.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/io/input.hpp"
-#include "facecap/io/png_grey16.hpp"
+#include "facecap/io/png16.hpp"
 
 namespace facecap {
 
@@ -279,10 +279,10 @@ cv::Mat read_image(const fs::path& path) {
 }
 
 std::vector<unsigned char> encode_png(const cv::Mat& image) {
-  if (image.type() == CV_16UC1) return encode_png_grey16(image);
+  if (image.depth() == CV_16U) return encode_png16(image);
   if (image.empty() || image.depth() != CV_8U ||
       (image.channels() != 1 && image.channels() != 3 && image.channels() != 4))
-    throw Error("cannot encode a PNG from this image: it needs 8 bits and 1, 3 or 4 channels, or 16-bit grey");
+    throw Error("cannot encode a PNG from this image: it needs 8 or 16 bits and 1, 3 or 4 channels");
   const auto describe = [&]() {
     png_image header{};
     header.version = PNG_IMAGE_VERSION;

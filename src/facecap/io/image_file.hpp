@@ -18,8 +18,8 @@ namespace facecap {
 cv::Mat read_image(const std::filesystem::path& path);
 cv::Mat decode_image(std::span<const unsigned char> bytes);
 
-// An 8-bit image of 1, 3 (BGR) or 4 (BGRA) channels, or 16-bit grey
-// (CV_16UC1: data, png_grey16.hpp); throws facecap::Error for any other.
+// An image of 1, 3 (BGR) or 4 (BGRA) channels, 8 bits a channel, or 16
+// (data: png16.hpp); throws facecap::Error for any other.
 std::vector<unsigned char> encode_png(const cv::Mat& image);
 // An 8-bit image of 1 or 3 (BGR) channels.
 std::vector<unsigned char> encode_jpeg(const cv::Mat& image, int quality = 95);

@@ -29,6 +29,7 @@
 #include "facecap/pipeline/shot_animations.hpp"
 #include "facecap/pipeline/track_meshes.hpp"
 #include "facecap/pipeline/track_videos.hpp"
+#include "facecap/pipeline/uv_passes.hpp"
 
 namespace facecap {
 
@@ -109,6 +110,7 @@ class FrameWriter {
       if (!options.refine) throw Error("detail maps are the refinement's: they need --refine");
       detail_maps_.emplace(model, dir, options.detail_map_size);
     }
+    if (options.uv_pass) uv_passes_.emplace(model, dir, cv::Size(info.width, info.height));
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
       livelink_csv_.emplace(info.fps);
@@ -194,6 +196,7 @@ class FrameWriter {
     if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
     if (ok && detail_maps_ && ref != nullptr && refiner_ != nullptr)
       detail_maps_->add(f.index, refiner_->hierarchy(), ref->displacement);
+    if (uv_passes_) write_uv_pass(f, ref, coarse, camera);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,
                            f.fit.expression, key_gaze(f.fit.gaze));
@@ -288,6 +291,7 @@ class FrameWriter {
     if (action_units_) action_units_->commit();
     if (options_.aligned_faces) remove_unwritten_frame_files(dir_ / kAlignedFaces, {"png"}, aligned_written_);
     if (detail_maps_) detail_maps_->finish();
+    if (uv_passes_) uv_passes_->finish();
     if (livelink_) livelink_->commit();
     if (videos_) videos_->finish();
     meshes_.finish();
@@ -295,6 +299,7 @@ class FrameWriter {
 
   int meshes_written() const { return meshes_.meshes_written(); }
   int detail_maps_written() const { return detail_maps_ ? detail_maps_->maps_written() : 0; }
+  int uv_passes_written() const { return uv_passes_ ? uv_passes_->passes_written() : 0; }
   const std::vector<fs::path>& animation_files() const { return animation_files_; }
   std::vector<fs::path> point_cache_files() const { return meshes_.point_cache_files(); }
   int gaze_frames() const { return gaze_frames_; }
@@ -325,6 +330,18 @@ class FrameWriter {
     const std::string name = frame_file_name(f.index, "png");
     write_image(dir_ / kAlignedFaces / name, aligned_face(f.image, f.fit.fitted, options_.aligned_face_size));
     aligned_written_.insert(name);
+  }
+
+  // --uv-pass: the refined surface where the frame was refined, else the
+  // tracked one; an empty pass where no face was tracked.
+  void write_uv_pass(const CapturedFrame& f, const Refinement* ref, const Positions& coarse,
+                     const PinholeCamera& camera) {
+    if (f.status == TrackStatus::kLost)
+      uv_passes_->add_empty(f.index);
+    else if (ref != nullptr && refiner_ != nullptr)
+      uv_passes_->add(f.index, ref->positions, camera, &refiner_->hierarchy());
+    else
+      uv_passes_->add(f.index, coarse, camera);
   }
 
   void write_livelink(const CapturedFrame& f) {
@@ -395,6 +412,7 @@ class FrameWriter {
   std::optional<ActionUnitTable> action_unit_table_;
   std::unordered_set<std::string> aligned_written_;  // --aligned-faces: the crops' file names
   std::optional<DetailMaps> detail_maps_;            // --detail-maps
+  std::optional<UvPasses> uv_passes_;                // --uv-pass
   // --livelink, --livelink-udp: a row and a datagram per frame; a lost frame
   // holds the last tracked one's values (importers read rows as frames, and
   // a rig keeps its face), the first ones the rest pose.
@@ -491,6 +509,7 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
   summary.point_cache_files = impl_->writer.point_cache_files();
   summary.meshes_written = impl_->writer.meshes_written();
   summary.detail_maps = impl_->writer.detail_maps_written();
+  summary.uv_passes = impl_->writer.uv_passes_written();
   summary.gaze_frames = impl_->writer.gaze_frames();
   if (const LiveLinkStreamer* stream = impl_->writer.livelink_stream()) {
     summary.livelink_sent = stream->sent();

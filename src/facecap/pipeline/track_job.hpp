@@ -103,6 +103,9 @@ struct TrackOptions {
   // UV layout, and DIR/detail/detail.json (detail_maps.hpp).
   bool detail_maps = false;
   int detail_map_size = 1024;
+  // DIR/uv/frame_NNNNNN.png: each frame's UV pass (an ST map) at the input's
+  // size, of the refined surface with refine (uv_passes.hpp).
+  bool uv_pass = false;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
   // Whether the outputs draw on the frames' images (CaptureOptions::keep_images).
   bool needs_images() const { return overlay || refine || texture || aligned_faces; }
@@ -123,6 +126,7 @@ struct TrackSummary {
   std::string livelink_error;                            // why the first datagram that failed did ("" where none did)
   int refined_frames = 0;
   int detail_maps = 0;   // TrackOptions::detail_maps: the maps written
+  int uv_passes = 0;     // TrackOptions::uv_pass: the passes written
   double refine_ms = 0;  // total, on the refinement thread
 };
 
