@@ -1,13 +1,16 @@
 // Output-writer benchmarks: one `track --refine --meshes` frame, the finest
 // level of address_720p_a's hierarchy (33k vertices, 66k triangles, UVs), as
-// an OBJ and as a PLY (with normals and colours too).
+// an OBJ and as a PLY (with normals and colours too); and the 16-bit PNGs of
+// `--detail-maps` (a 1024-texel map) and `--uv-pass` (a 1280x720 pass).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <random>
 
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/mesh_writer.hpp"
 #include "facecap/io/ply_writer.hpp"
+#include "facecap/io/png16.hpp"
 
 namespace facecap {
 
@@ -57,6 +60,35 @@ void BM_WritePlyRefinedFrame(benchmark::State& state) {
                                          .comment = "benchmark"});
 }
 BENCHMARK(BM_WritePlyRefinedFrame)->Unit(benchmark::kMillisecond);
+
+// A stand-in detail map: smooth relief about the midlevel with a little
+// noise in its low bits, over the whole square (ICT's face region fills 95 %
+// of it).
+void BM_EncodeDetailMap1024(benchmark::State& state) {
+  cv::Mat map(1024, 1024, CV_16UC1);
+  std::mt19937 rng(2);
+  std::uniform_int_distribution<int> noise(-40, 40);
+  for (int y = 0; y < map.rows; ++y)
+    for (int x = 0; x < map.cols; ++x)
+      map.at<uint16_t>(y, x) = uint16_t(32768 + 600 * std::sin(x * 0.05) * std::cos(y * 0.03) + noise(rng));
+  for (auto _ : state) benchmark::DoNotOptimize(encode_png16(map));
+}
+BENCHMARK(BM_EncodeDetailMap1024)->Unit(benchmark::kMillisecond);
+
+// A stand-in UV pass: a face-sized ellipse (450 x 620 px) of smooth UVs in a
+// 1280x720 frame, empty elsewhere.
+void BM_EncodeUvPass720p(benchmark::State& state) {
+  cv::Mat pass(720, 1280, CV_16UC4, cv::Scalar::all(0));
+  for (int y = 100; y < 720; ++y)
+    for (int x = 415; x < 865; ++x) {
+      const double ex = (x - 640) / 225.0, ey = (y - 410) / 310.0;
+      if (ex * ex + ey * ey > 1) continue;
+      pass.at<cv::Vec<uint16_t, 4>>(y, x) = {0, uint16_t(65535 * (0.5 - 0.45 * ey)),
+                                             uint16_t(65535 * (0.5 + 0.45 * ex)), 65535};
+    }
+  for (auto _ : state) benchmark::DoNotOptimize(encode_png16(pass));
+}
+BENCHMARK(BM_EncodeUvPass720p)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
