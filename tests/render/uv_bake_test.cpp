@@ -44,13 +44,13 @@ Eigen::MatrixXf linear_values(const TriangleMesh& m) {
 TEST(UvBaker, ACoveredTexelHoldsTheValueAtItsUv) {
   const TriangleMesh m = hexagon();
   constexpr int kSize = 64;
-  const UvBaker baker(m.triangles, rasterize_uv(m, kSize));
-  const cv::Mat baked = baker.bake(linear_values(m));
+  const UvTexelMap map = rasterize_uv(m, kSize);
+  const cv::Mat baked = UvBaker(m.triangles, map).bake(linear_values(m));
   ASSERT_EQ(baked.type(), CV_32FC2);
   int covered = 0;
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
-      if (baker.map().triangle[baker.map().index(x, y)] < 0) continue;
+      if (map.triangle[map.index(x, y)] < 0) continue;
       ++covered;
       const float u = float(x) / (kSize - 1), v = 1.0f - float(y) / (kSize - 1);
       const cv::Vec2f b = baked.at<cv::Vec2f>(y, x);

@@ -44,9 +44,8 @@ void DetailMaps::add(int frame, const MeshHierarchy& hierarchy, const Eigen::Vec
   if (finest_level < 0 || displacement_cm.size() != hierarchy.vertices(finest_level))
     throw Error("a detail map needs one displacement per vertex of the hierarchy's finest level");
   if (!baker_) {
-    TriangleMesh finest = level_uv_mesh(hierarchy, finest_level, coarse_uvs_);
-    UvTexelMap texels = rasterize_uv(finest, size_);
-    baker_.emplace(std::move(finest.triangles), std::move(texels));
+    const TriangleMesh finest = level_uv_mesh(hierarchy, finest_level, coarse_uvs_);
+    baker_.emplace(finest.triangles, rasterize_uv(finest, size_));
   }
   // The displacement in millimetres (the refinement's is in centimetres).
   const Eigen::VectorXf d_mm = 10.0f * displacement_cm;

@@ -8,15 +8,14 @@
 
 namespace facecap {
 
-UvBaker::UvBaker(std::vector<Triangle> triangles, UvTexelMap map, int grow_texels)
-    : triangles_(std::move(triangles)), map_(std::move(map)) {
-  const int size = map_.size;
+UvBaker::UvBaker(const std::vector<Triangle>& triangles, const UvTexelMap& map, int grow_texels) : size_(map.size) {
+  const int size = map.size;
   std::vector<unsigned char> reached(size_t(size) * size, 0);
   for (int i = 0; i < size * size; ++i) {
-    if (map_.triangle[i] < 0) continue;
+    if (map.triangle[i] < 0) continue;
     covered_.push_back(i);
-    corners_.push_back(triangles_[map_.triangle[i]]);
-    weights_.push_back(map_.weights[i]);
+    corners_.push_back(triangles[map.triangle[i]]);
+    weights_.push_back(map.weights[i]);
     reached[i] = 1;
   }
   for (int r = 0; r < grow_texels; ++r) {
@@ -24,13 +23,13 @@ UvBaker::UvBaker(std::vector<Triangle> triangles, UvTexelMap map, int grow_texel
     ring.offsets.push_back(0);
     for (int y = 0; y < size; ++y) {
       for (int x = 0; x < size; ++x) {
-        if (reached[map_.index(x, y)]) continue;
+        if (reached[map.index(x, y)]) continue;
         const size_t first = ring.sources.size();
         for (int ny = std::max(0, y - 1); ny <= std::min(size - 1, y + 1); ++ny)
           for (int nx = std::max(0, x - 1); nx <= std::min(size - 1, x + 1); ++nx)
-            if (reached[map_.index(nx, ny)]) ring.sources.push_back(map_.index(nx, ny));
+            if (reached[map.index(nx, ny)]) ring.sources.push_back(map.index(nx, ny));
         if (ring.sources.size() == first) continue;
-        ring.texels.push_back(map_.index(x, y));
+        ring.texels.push_back(map.index(x, y));
         ring.offsets.push_back(int(ring.sources.size()));
       }
     }
@@ -42,7 +41,7 @@ UvBaker::UvBaker(std::vector<Triangle> triangles, UvTexelMap map, int grow_texel
 cv::Mat UvBaker::bake(const Eigen::MatrixXf& values) const {
   const int channels = int(values.rows());
   if (channels < 1 || channels > 4) throw Error("a UV bake takes 1 to 4 values per vertex");
-  cv::Mat baked(map_.size, map_.size, CV_32FC(channels), cv::Scalar::all(0));
+  cv::Mat baked(size_, size_, CV_32FC(channels), cv::Scalar::all(0));
   auto* texels = baked.ptr<float>();
   const float* v = values.data();  // column-major: vertex j's channel c at j * channels + c
   for (size_t k = 0; k < covered_.size(); ++k) {

@@ -19,22 +19,22 @@ class UvBaker {
  public:
   // triangles: those `map` was rasterised from. grow_texels: how far the
   // islands grow, so that texture filtering does not pull in the texels no
-  // triangle covers.
-  UvBaker(std::vector<Triangle> triangles, UvTexelMap map, int grow_texels = 2);
+  // triangle covers. Keeps only what the bakes read (the covered texels'
+  // corners and weights, the border's sources), not the map.
+  UvBaker(const std::vector<Triangle>& triangles, const UvTexelMap& map, int grow_texels = 2);
 
   // values: C x N per-vertex values (1 <= C <= 4). Returns a CV_32FC(C)
-  // image of map.size square, channels in the rows' order: each covered
+  // image of size() square, channels in the rows' order: each covered
   // texel the barycentric interpolation of its triangle's corner values; each
   // texel of the grown border the largest of its neighbours nearer the island
   // (per channel: a dilation by a 3 x 3 square a ring); 0 elsewhere.
   // Throws facecap::Error for another number of rows.
   cv::Mat bake(const Eigen::MatrixXf& values) const;
 
-  const UvTexelMap& map() const { return map_; }
+  int size() const { return size_; }
 
  private:
-  std::vector<Triangle> triangles_;
-  UvTexelMap map_;
+  int size_;  // the texture is size_ x size_
   // The covered texels: each one's index, its triangle's corners and its
   // barycentric weights, in texel order.
   std::vector<int> covered_;
