@@ -3,6 +3,7 @@
 // vertex colour; a point cache holds every frame's mesh.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -123,9 +124,9 @@ TEST(TrackMeshes, ARefinedPlyCarriesTheAlbedoAsVertexColours) {
   for (size_t i = 0; i < ply.vertices(); ++i) {
     const Eigen::Vector3d n = ply.point(i, "nx", "ny", "nz");
     EXPECT_NEAR(n.norm(), 1.0, 1e-4) << i;
-    // OBJ's UV origin is the image's bottom-left.
-    const int x = int(ply.vertex.at("s")[i] * (albedo.cols - 1) + 0.5);
-    const int y = int((1.0 - ply.vertex.at("t")[i]) * (albedo.rows - 1) + 0.5);
+    // OBJ's UV origin is the image's bottom-left; texel x's centre at u = (x + 0.5) / N.
+    const int x = int(std::floor(ply.vertex.at("s")[i] * albedo.cols));
+    const int y = int(std::floor((1.0 - ply.vertex.at("t")[i]) * albedo.rows));
     if (x < 0 || y < 0 || x >= albedo.cols || y >= albedo.rows) continue;
     const cv::Vec3b bgr = albedo.at<cv::Vec3b>(y, x);
     if (bgr == cv::Vec3b(0, 0, 0)) continue;  // a texel no triangle covers

@@ -40,7 +40,9 @@ Eigen::MatrixXf linear_values(const TriangleMesh& m) {
 }  // namespace
 
 // A linear function is what barycentric interpolation reproduces: every
-// covered texel holds it at the texel's own UV, channel by channel.
+// covered texel holds it at the UV of its centre as renderers read a
+// texture (Blender, three.js, OpenGL: texel x at u = (x + 0.5) / N, row y
+// at v = 1 - (y + 0.5) / N), channel by channel.
 TEST(UvBaker, ACoveredTexelHoldsTheValueAtItsUv) {
   const TriangleMesh m = hexagon();
   constexpr int kSize = 64;
@@ -52,7 +54,7 @@ TEST(UvBaker, ACoveredTexelHoldsTheValueAtItsUv) {
     for (int x = 0; x < kSize; ++x) {
       if (map.triangle[map.index(x, y)] < 0) continue;
       ++covered;
-      const float u = float(x) / (kSize - 1), v = 1.0f - float(y) / (kSize - 1);
+      const float u = (float(x) + 0.5f) / kSize, v = 1.0f - (float(y) + 0.5f) / kSize;
       const cv::Vec2f b = baked.at<cv::Vec2f>(y, x);
       EXPECT_NEAR(b[0], 0.3f + 2.0f * u - 1.5f * v, 1e-4) << x << ',' << y;
       EXPECT_NEAR(b[1], -1.0f + v, 1e-4) << x << ',' << y;

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/uv_texel.hpp"
 #include "facecap/swap/face_flow.hpp"
 #include "swap/unit_square.hpp"
 
@@ -76,7 +78,9 @@ float evidence_at(const cv::Mat& evidence, cv::Point p, float offset_cm) {
   const float px_per_cm = float(kCamera.focal) / kDepthCm;
   const float u = (p.x - float(kCamera.cx) - (offset_cm - kHalfCm) * px_per_cm) / (2 * kHalfCm * px_per_cm);
   const float row = (p.y - float(kCamera.cy) + kHalfCm * px_per_cm) / (2 * kHalfCm * px_per_cm);
-  return evidence.at<float>(cvRound(row * (evidence.rows - 1)), cvRound(u * (evidence.cols - 1)));
+  const Vec2f t = uv_to_texel(Vec2f(u, 1.0f - row), evidence.cols);
+  const int x = std::clamp(cvRound(t.x()), 0, evidence.cols - 1), y = std::clamp(cvRound(t.y()), 0, evidence.rows - 1);
+  return evidence.at<float>(y, x);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/core/uv_texel.hpp"
 #include "facecap/detect/upright_view.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
@@ -167,10 +168,7 @@ TEST(SkinAlbedo, BrowsHangBelowTheirLandmarkVertices) {
   const Vec3f tone(0.8f, 0.6f, 0.5f);
   const SynthAppearance a = paint_appearance(*model, tone, 1, size);
   const std::vector<Vec2f> uv = per_vertex_uvs(model->region_mesh(regions::kFace));
-  auto px = [&](int landmark) {
-    const Vec2f t = uv[model->landmarks.vertices[landmark]];
-    return Vec2f(t.x() * (size - 1), (1.0f - t.y()) * (size - 1));
-  };
+  auto px = [&](int landmark) { return uv_to_texel(uv[model->landmarks.vertices[landmark]], size); };
   auto brightness = [&](const Vec2f& p) {
     const cv::Vec3f c = a.face_texture.at<cv::Vec3f>(int(std::lround(p.y())), int(std::lround(p.x())));
     return (c[0] + c[1] + c[2]) / 3.0f;

@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 
 #include "facecap/core/geometry.hpp"
+#include "facecap/core/uv_texel.hpp"
 
 namespace facecap {
 
@@ -52,10 +53,10 @@ inline Vec3f sample_bilinear_rgb8(const cv::Mat& bgr8, float x, float y) {
 }
 
 // Samples a texture at UV (u right, v up, OBJ convention) into RGB, for a
-// BGR CV_32FC3 texture.
+// square BGR CV_32FC3 texture (texel centres as core/uv_texel.hpp says).
 inline Vec3f sample_uv_rgb(const cv::Mat& texture_bgr, const Vec2f& uv) {
-  const Vec3f bgr =
-      sample_bilinear(texture_bgr, uv.x() * (texture_bgr.cols - 1), (1.0f - uv.y()) * (texture_bgr.rows - 1));
+  const Vec2f texel = uv_to_texel(uv, texture_bgr.cols);
+  const Vec3f bgr = sample_bilinear(texture_bgr, texel.x(), texel.y());
   return {bgr.z(), bgr.y(), bgr.x()};
 }
 

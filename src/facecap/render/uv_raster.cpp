@@ -53,7 +53,7 @@ MillimetreGrid millimetre_grid(const TriangleMesh& mesh, double mm_per_uv, doubl
   if (!(mm_per_uv > 0)) throw Error("the mesh has no UV extent");
   if (!(texel_mm > 0)) throw Error("a texel must have a positive size");
   const int size = std::clamp(static_cast<int>(std::lround(mm_per_uv / texel_mm)), 32, 1024);
-  return {rasterize_uv(mesh, size), (size - 1) / mm_per_uv};
+  return {rasterize_uv(mesh, size), size / mm_per_uv};
 }
 
 }  // namespace facecap

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "facecap/core/mesh.hpp"
+#include "facecap/core/uv_texel.hpp"
 
 namespace facecap {
 
@@ -39,8 +40,5 @@ struct MillimetreGrid {
 };
 // Throws facecap::Error unless mm_per_uv and texel_mm are positive.
 MillimetreGrid millimetre_grid(const TriangleMesh& mesh, double mm_per_uv, double texel_mm);
-
-// Texel coordinates of a UV (u right, v up).
-inline Vec2f uv_to_texel(const Vec2f& uv, int size) { return {uv.x() * (size - 1), (1.0f - uv.y()) * (size - 1)}; }
 
 }  // namespace facecap

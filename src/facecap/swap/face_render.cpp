@@ -5,6 +5,7 @@
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
+#include "facecap/core/uv_texel.hpp"
 #include "facecap/render/outline_distance.hpp"
 #include "facecap/render/rasterizer.hpp"
 #include "facecap/render/shading.hpp"
@@ -22,7 +23,6 @@ cv::Mat render_swapped_face(const TriangleMesh& skin, const TextureLevels& textu
   cv::Mat render(size, CV_32FC3, cv::Scalar::all(0));
   alpha = cv::Mat(size, CV_32F, cv::Scalar(0));
   const int texture_size = texture.level(0).cols;
-  const float texels = float(texture_size - 1);
   // The texture at the density the face is seen at (texture_levels.hpp).
   const float lod = texture.lod_for(texels_per_pixel(skin, points, frame_camera, texture_size));
   // The silhouette fade's band: a tenth of the face's width (a cylinder's
@@ -34,8 +34,6 @@ cv::Mat render_swapped_face(const TriangleMesh& skin, const TextureLevels& textu
                             std::max(2.0f, 0.1f * float(projected_bounds(points, frame_camera).width))};
   const cv::Mat& gains = light.residual_gains;
   const cv::Mat& ratio_gains = light.expression_gains;
-  const float gain_texels = gains.empty() ? 0.0f : float(gains.cols - 1);
-  const float ratio_texels = ratio_gains.empty() ? 0.0f : float(ratio_gains.cols - 1);
   const Vec3f tint = light.tint;
   // The UV of the pixel at buffer index i (drawn).
   const auto uv_at = [&](size_t i) {
@@ -57,26 +55,29 @@ cv::Mat render_swapped_face(const TriangleMesh& skin, const TextureLevels& textu
             const size_t i = row + x;
             // The texture a few pixels on, asked for now (TextureLevels::prefetch).
             if (x + kPixelsAhead < size.width && buffers.triangle[i + kPixelsAhead] >= 0) {
-              const Vec2f ahead = uv_at(i + kPixelsAhead);
-              texture.prefetch(lod, ahead.x() * texels, (1.0f - ahead.y()) * texels);
+              const Vec2f ahead = uv_to_texel(uv_at(i + kPixelsAhead), texture_size);
+              texture.prefetch(lod, ahead.x(), ahead.y());
             }
             const int tri = buffers.triangle[i];
             if (tri < 0) continue;
             const Vec2f coord = uv_at(i);
-            const cv::Vec4f s = texture.sample<4>(lod, coord.x() * texels, (1.0f - coord.y()) * texels);
+            const Vec2f texel = uv_to_texel(coord, texture_size);
+            const cv::Vec4f s = texture.sample<4>(lod, texel.x(), texel.y());
             const Vec3f normal = interpolate(buffers, skin.triangles, normals, i).normalized();
             const Vec3f n = to_viewer_frame(normal);
             const float shade = 255.0f * std::max(0.0f, sh_shade(lighting, n.x(), n.y(), n.z()));
             cv::Vec3f lit(shade * tint[0], shade * tint[1], shade * tint[2]);
-            if (!gains.empty())
-              lit = lit.mul(
-                  sample_bilinear_channels<3>(gains, coord.x() * gain_texels, (1.0f - coord.y()) * gain_texels));
-            if (ratio_gains.channels() == 3)
-              lit = lit.mul(sample_bilinear_channels<3>(ratio_gains, coord.x() * ratio_texels,
-                                                        (1.0f - coord.y()) * ratio_texels));
-            else if (!ratio_gains.empty())
-              lit *= sample_bilinear_channels<1>(ratio_gains, coord.x() * ratio_texels,
-                                                 (1.0f - coord.y()) * ratio_texels)[0];
+            if (!gains.empty()) {
+              const Vec2f g = uv_to_texel(coord, gains.cols);
+              lit = lit.mul(sample_bilinear_channels<3>(gains, g.x(), g.y()));
+            }
+            if (!ratio_gains.empty()) {
+              const Vec2f r = uv_to_texel(coord, ratio_gains.cols);
+              if (ratio_gains.channels() == 3)
+                lit = lit.mul(sample_bilinear_channels<3>(ratio_gains, r.x(), r.y()));
+              else
+                lit *= sample_bilinear_channels<1>(ratio_gains, r.x(), r.y())[0];
+            }
             colour[x] = cv::Vec3f(s[0] * lit[0], s[1] * lit[1], s[2] * lit[2]);
             const Vec3f ray = interpolate(buffers, skin.triangles, points, i).normalized();
             turn[x] = fade.turned(-normal.dot(ray));

@@ -17,8 +17,8 @@ cv::Scalar bgr(const Vec3f& rgb) { return cv::Scalar(rgb.z(), rgb.y(), rgb.x());
 cv::Mat painted_skin(const FaceModel& model, const std::vector<Vec2f>& uv, const Vec3f& tone, std::mt19937_64& rng,
                      int size) {
   auto to_px = [&](int vertex) {
-    const Vec2f t = uv[vertex];
-    return cv::Point2f(t.x() * (size - 1), (1.0f - t.y()) * (size - 1));
+    const Vec2f t = uv_to_texel(uv[vertex], size);
+    return cv::Point2f(t.x(), t.y());
   };
   auto landmark_px = [&](int i) { return to_px(model.landmarks.vertices[i]); };
 
