@@ -212,7 +212,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       "Write DIR/detail/frame_NNNNNN.png: each refined frame's wrinkle-level detail (the refinement's displacement "
       "along the tracked surface's normal) as a 16-bit displacement map in the ICT UV layout of albedo.png, and "
       "DIR/detail/detail.json: value / 65535 = 0.5 + mm / 4 (Blender's Displace: UV, midlevel 0.5, strength 0.4 "
-      "cm, the image read as non-colour data)");
+      "cm, the image read as non-colour data); a frame without a refined face gets a flat map, so the sequence "
+      "has no gaps. blender/import_facecap.py puts them on the --gltf animation");
   detail_maps->needs(refine);
   cmd->add_option("--detail-map-size", a->options.detail_map_size,
                   "--detail-maps: the maps' width and height in texels")

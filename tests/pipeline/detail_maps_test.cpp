@@ -184,6 +184,32 @@ TEST(DetailMaps, TheFolderHoldsThisRunsMapsAndSaysHowToReadThem) {
   EXPECT_TRUE(nothing.at("displacement_mm").is_null());
 }
 
+// A frame without a refined face gets a flat map (0 mm everywhere), so that
+// the maps make an unbroken image sequence for Blender and compositors;
+// detail.json counts them, and their zeros stay out of the extremes.
+TEST(DetailMaps, AFrameWithoutAFaceGetsAFlatMap) {
+  FACECAP_REQUIRE_MODEL(model);
+  const MeshHierarchy h = frontal_hierarchy(*model);
+  const Eigen::VectorXf wrinkles = finest_wrinkles(*model, h);
+  TempDir dir;
+  DetailMaps maps(*model, dir.path(), 64);
+  maps.add(0, h, wrinkles);
+  maps.add_flat(1);
+  maps.add(2, h, wrinkles);
+  maps.finish();
+  EXPECT_EQ(maps.maps_written(), 3);
+  EXPECT_EQ(maps.flat_maps_written(), 1);
+  const cv::Mat flat = read_png16(dir.path() / "detail" / "frame_000001.png");
+  ASSERT_EQ(flat.type(), CV_16UC1);
+  ASSERT_EQ(flat.size(), cv::Size(64, 64));
+  EXPECT_EQ(cv::countNonZero(flat != uint16_t(DetailEncoding::kOffset + 0.5)), 0);
+  const nlohmann::json j = read_json(dir.path() / "detail" / "detail.json");
+  EXPECT_EQ(j.at("maps"), 3);
+  EXPECT_EQ(j.at("flat_maps"), 1);
+  EXPECT_NEAR(j.at("displacement_mm").at("rms").get<double>(),
+              10.0 * std::sqrt(wrinkles.squaredNorm() / wrinkles.size()), 1e-5);
+}
+
 // The encoding's ends: zero at the middle, the range at the ends, beyond it clamped.
 TEST(DetailMaps, TheEncodingSpansTheRangeAndClampsBeyondIt) {
   const DetailEncoding e;

@@ -57,6 +57,15 @@ void DetailMaps::add(int frame, const MeshHierarchy& hierarchy, const Eigen::Vec
   // DetailEncoding::encode, texel by texel (rounded and saturated).
   cv::Mat map;
   baker_->bake(d_mm.transpose()).convertTo(map, CV_16UC1, encoding_.scale(), DetailEncoding::kOffset);
+  write_map(frame, map);
+}
+
+void DetailMaps::add_flat(int frame) {
+  write_map(frame, cv::Mat(size_, size_, CV_16UC1, cv::Scalar(DetailEncoding::kOffset)));
+  ++flat_maps_;
+}
+
+void DetailMaps::write_map(int frame, const cv::Mat& map) {
   const std::string name = frame_file_name(frame, "png");
   write_image(dir_ / name, map);
   written_.insert(name);
@@ -70,7 +79,10 @@ void DetailMaps::finish() {
   j["version"] = 1;
   j["generator"] = "facecap " + std::string(kFacecapVersion);
   j["maps"] = maps_written();
-  j["files"] = "frame_NNNNNN.png, NNNNNN the frame's number in the input; none for a frame without a face";
+  j["flat_maps"] = flat_maps_;
+  j["files"] =
+      "frame_NNNNNN.png, NNNNNN the frame's number in the input, one for every frame: a flat one (0 mm "
+      "everywhere) where the frame has no refined face";
   j["size"] = {size_, size_};
   j["uv_layout"] = "ICT-FaceKit's (albedo.png, texture.png and the meshes' UVs; v up, as in OBJ)";
   j["meaning"] =

@@ -47,17 +47,26 @@ class DetailMaps {
   // fixed at its first frame, the same for every map).
   void add(int frame, const MeshHierarchy& hierarchy, const Eigen::VectorXf& displacement_cm);
 
+  // Writes frame `frame`'s map as flat (0 mm everywhere): a frame without a
+  // refined face, so that the maps make an unbroken image sequence, as
+  // Blender's and compositors' image sequences need.
+  void add_flat(int frame);
+
   // Writes detail.json and removes the frame maps in DIR/detail of an earlier
   // run that this one did not write (its frames past this run's end, or lost
   // in it, would read as part of this sequence).
   void finish();
 
+  // Maps written, flat ones included; flat ones alone.
   int maps_written() const { return int(written_.size()); }
+  int flat_maps_written() const { return flat_maps_; }
   // Share of the maps' vertex values (the finest level's) beyond the range,
   // clamped in the maps.
   double clamped_fraction() const { return vertices_ > 0 ? double(clamped_) / double(vertices_) : 0.0; }
 
  private:
+  void write_map(int frame, const cv::Mat& map);
+
   std::filesystem::path dir_;
   int size_;
   DetailEncoding encoding_;
@@ -67,6 +76,7 @@ class DetailMaps {
   long long vertices_ = 0, clamped_ = 0;
   double min_mm_ = std::numeric_limits<double>::infinity(), max_mm_ = -std::numeric_limits<double>::infinity();
   double sum_squares_ = 0;
+  int flat_maps_ = 0;
 };
 
 }  // namespace facecap

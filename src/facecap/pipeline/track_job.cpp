@@ -194,8 +194,12 @@ class FrameWriter {
     if (ok && texture_ && texture_->wants_more()) texture_->add(f.image, coarse, camera);
     if (ok && options_.aligned_faces) write_aligned_face(f);
     if (ok) meshes_.add(f, shot_first_frame_, ref, coarse);
-    if (ok && detail_maps_ && ref != nullptr && refiner_ != nullptr)
-      detail_maps_->add(f.index, refiner_->hierarchy(), ref->displacement);
+    if (detail_maps_) {
+      if (ok && ref != nullptr && refiner_ != nullptr)
+        detail_maps_->add(f.index, refiner_->hierarchy(), ref->displacement);
+      else
+        detail_maps_->add_flat(f.index);
+    }
     if (uv_passes_) write_uv_pass(f, ref, coarse, camera);
     if (ok && animations_)
       append_animation_key(animations_->keys(f.shot, f.identity), has_timeline(info_), f.index, f.time, f.fit.pose,

@@ -1,0 +1,196 @@
+# Brings a `facecap track` output folder into Blender as one animated scene:
+#
+#   blender --python blender/import_facecap.py -- DIR [--glb FILE] [--subdivisions N] [--save FILE.blend]
+#
+# - imports DIR/animation.glb (`track --gltf`) with Blender's own glTF importer: the face
+#   with its shape keys and their keys, the head's keys and the fitted camera, which
+#   becomes the scene's camera;
+# - plays it at the input's frame rate (read from DIR/frames.csv; 29.97 fps as 30 / 1.001)
+#   with each video frame on the Blender frame of the same number (the glTF importer keys
+#   at whole frames per second only, so its keys are retimed), the scene's range the keys';
+# - with DIR/detail (`track --refine --detail-maps`), adds the refinement's per-frame
+#   detail: a Subdivision Surface modifier (Simple, N levels, 1 by default: four faces a
+#   face, about the refinement's finest level on a 720p face) and a Displace
+#   modifier reading the maps as an image sequence (non-colour data, UV coordinates,
+#   midlevel and strength as DIR/detail/detail.json says, in the file's metres), over the
+#   face's skin only (the vertex group "facecap_detail": the mouth's and eyes' part has no
+#   map), so that frame N shows DIR/detail/frame_N.png.
+#
+# It adds to the scene Blender opens with and leaves the rest of it alone. With --save
+# (and `blender -b`), it writes the scene to a .blend file and Blender can quit.
+# Checked with Debian 12's Blender 3.4 (tests/app/blender_interop_test.cpp).
+import argparse
+import csv
+import json
+import os
+import sys
+
+import numpy
+
+# Debian 12's Blender 3.4 glTF add-on still uses numpy.bool, which numpy 1.24
+# removed; the alias it meant is the builtin.
+if "bool" not in vars(numpy):
+    numpy.bool = bool
+
+import bpy  # noqa: E402
+
+DETAIL_GROUP = "facecap_detail"
+
+
+def parse_arguments():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(prog="blender --python import_facecap.py --",
+                                     description="Bring a facecap track folder into Blender.")
+    parser.add_argument("dir", help="the folder `facecap track ... -o DIR --gltf` wrote")
+    parser.add_argument("--glb", help="the animation to import (default DIR/animation.glb; a later shot's "
+                        "DIR/animation_shot<N>.glb)")
+    parser.add_argument("--subdivisions", type=int, default=1,
+                        help="Simple subdivision levels under the detail maps (default 1, about the "
+                        "refinement's finest level on a 720p face; 0 displaces the model's own vertices)")
+    parser.add_argument("--save", help="write the scene to this .blend file")
+    return parser.parse_args(argv)
+
+
+def fail(message):
+    print("import_facecap: " + message, file=sys.stderr)
+    sys.exit(1)
+
+
+def frame_rate(frames_csv):
+    """The input's frames per second from frames.csv's frame numbers and times,
+    as Blender's fps and fps_base (29.97 as 30 / 1.001)."""
+    with open(frames_csv, newline="") as f:
+        rows = [(int(r["frame"]), float(r["time"])) for r in csv.DictReader(f) if r.get("time")]
+    if len(rows) < 2 or rows[-1][1] <= rows[0][1]:
+        return 30, 1.0  # a photo or a single frame: nothing moves
+    rate = (rows[-1][0] - rows[0][0]) / (rows[-1][1] - rows[0][1])
+    fps = max(1, round(rate))
+    base = fps / rate
+    return fps, 1.0 if abs(base - 1.0) < 1e-4 else base
+
+
+def retime(actions, factor):
+    """Multiplies every key's frame (and its handles') by `factor`; keys that
+    land within a thousandth of a whole frame are put on it."""
+    for action in actions:
+        for curve in action.fcurves:
+            for key in curve.keyframe_points:
+                frame = key.co.x * factor
+                if abs(frame - round(frame)) < 1e-3:
+                    frame = float(round(frame))
+                shift = frame - key.co.x
+                key.co.x = frame
+                key.handle_left.x += shift
+                key.handle_right.x += shift
+            curve.update()
+
+
+def imported_actions(objects):
+    actions = []
+    for obj in objects:
+        if obj.animation_data and obj.animation_data.action:
+            actions.append(obj.animation_data.action)
+        keys = obj.data.shape_keys if obj.type == "MESH" else None
+        if keys and keys.animation_data and keys.animation_data.action:
+            actions.append(keys.animation_data.action)
+    return actions
+
+
+def key_range(actions):
+    frames = [k.co.x for a in actions for c in a.fcurves for k in c.keyframe_points]
+    return (int(round(min(frames))), int(round(max(frames)))) if frames else (0, 0)
+
+
+def detail_sequence(detail_dir):
+    """The maps' first frame number, their count and detail.json's settings."""
+    with open(os.path.join(detail_dir, "detail.json")) as f:
+        info = json.load(f)
+    numbers = sorted(int(n[6:12]) for n in os.listdir(detail_dir)
+                     if n.startswith("frame_") and n.endswith(".png") and n[6:12].isdigit())
+    if not numbers:
+        return None
+    if numbers != list(range(numbers[0], numbers[0] + len(numbers))):
+        fail(detail_dir + " has gaps in its frame numbers (maps of another run?)")
+    return numbers[0], len(numbers), info
+
+
+def add_detail(face, detail_dir, subdivisions):
+    sequence = detail_sequence(detail_dir)
+    if sequence is None:
+        print("import_facecap: " + detail_dir + " has no maps; no detail added")
+        return
+    first, count, info = sequence
+    # The face's skin: the polygons of the material named "face" (the other
+    # part, the mouth's and eyes', lies outside the maps' UV islands).
+    mesh = face.data
+    skin = [i for i, m in enumerate(mesh.materials) if m and m.name.startswith("face")]
+    group = face.vertex_groups.new(name=DETAIL_GROUP)
+    vertices = {v for p in mesh.polygons if p.material_index in skin for v in p.vertices}
+    group.add(sorted(vertices), 1.0, "REPLACE")
+
+    image = bpy.data.images.load(os.path.join(detail_dir, "frame_%06d.png" % first))
+    image.source = "SEQUENCE"
+    image.colorspace_settings.name = "Non-Color"
+    texture = bpy.data.textures.new("facecap detail", type="IMAGE")
+    texture.image = image
+    texture.extension = "EXTEND"
+    # Scene frame F shows map F: Blender's image number is (F - start + 1) + offset.
+    texture.image_user.frame_start = first
+    texture.image_user.frame_offset = first - 1
+    texture.image_user.frame_duration = count
+    texture.image_user.use_auto_refresh = True
+
+    if subdivisions > 0:
+        subdivide = face.modifiers.new("facecap subdivision", "SUBSURF")
+        subdivide.subdivision_type = "SIMPLE"
+        subdivide.levels = subdivisions
+        subdivide.render_levels = subdivisions
+        subdivide.uv_smooth = "NONE"
+    settings = info["blender_displace"]
+    displace = face.modifiers.new("facecap detail", "DISPLACE")
+    displace.texture = texture
+    displace.texture_coords = settings["texture_coordinates"]
+    displace.uv_layer = mesh.uv_layers[0].name
+    displace.mid_level = settings["midlevel"]
+    displace.strength = settings["strength_cm"] / 100.0  # glTF's metres
+    displace.vertex_group = DETAIL_GROUP
+    print("import_facecap: detail maps %06d-%06d on %d vertices of the face" % (first, first + count - 1,
+                                                                              len(vertices)))
+
+
+def main():
+    args = parse_arguments()
+    if not 0 <= args.subdivisions <= 6:
+        fail("--subdivisions must be 0 to 6 (each level has four times the faces of the one before)")
+    glb = args.glb or os.path.join(args.dir, "animation.glb")
+    if not os.path.isfile(glb):
+        fail(glb + " not found (run `facecap track ... --gltf`)")
+    scene = bpy.context.scene
+    fps, fps_base = frame_rate(os.path.join(args.dir, "frames.csv")) \
+        if os.path.isfile(os.path.join(args.dir, "frames.csv")) else (30, 1.0)
+    scene.render.fps, scene.render.fps_base = fps, 1.0  # what the importer keys at
+    before = set(bpy.data.objects)
+    bpy.ops.import_scene.gltf(filepath=glb)
+    objects = [o for o in bpy.data.objects if o not in before]
+    actions = imported_actions(objects)
+    scene.render.fps_base = fps_base
+    if fps_base != 1.0:
+        retime(actions, 1.0 / fps_base)
+    scene.frame_start, scene.frame_end = key_range(actions)
+    scene.frame_set(scene.frame_start)
+    cameras = [o for o in objects if o.type == "CAMERA"]
+    if cameras:
+        scene.camera = cameras[0]
+    faces = [o for o in objects if o.type == "MESH"]
+    if not faces:
+        fail(glb + " holds no mesh")
+    detail_dir = os.path.join(args.dir, "detail")
+    if os.path.isdir(detail_dir):
+        add_detail(faces[0], detail_dir, args.subdivisions)
+    print("import_facecap: %s at %.3f fps, frames %d-%d" % (os.path.basename(glb), fps / fps_base,
+                                                             scene.frame_start, scene.frame_end))
+    if args.save:
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.save))
+
+
+main()

@@ -1,0 +1,64 @@
+# Reads the scene blender/import_facecap.py saved (run as `blender -b
+# SCENE.blend --python blender_scene_probe.py -- OUT.json FRAME...`) and
+# writes to OUT.json its frame rate and range, the face's keyed frames, its
+# modifiers and, at each FRAME, where the face's skin sits and how far the
+# detail modifier moves each vertex of the subdivided mesh along its normal,
+# with the vertex's UV. blender_interop_test.cpp compares these with the
+# track folder's frames.csv and detail maps.
+import json
+import sys
+
+import bpy
+import numpy
+
+out_json = sys.argv[sys.argv.index("--") + 1]
+frames = [int(f) for f in sys.argv[sys.argv.index("--") + 2:]]
+scene = bpy.context.scene
+face = next(o for o in scene.objects if o.type == "MESH")
+detail = face.modifiers["facecap detail"]
+group = face.vertex_groups["facecap_detail"].index
+action = face.animation_data.action
+report = {
+    "fps": scene.render.fps / scene.render.fps_base,
+    "frame_range": [scene.frame_start, scene.frame_end],
+    "camera": scene.camera.name if scene.camera else None,
+    "keyed_frames": sorted({k.co.x for c in action.fcurves for k in c.keyframe_points}),
+    "modifiers": [[m.type, getattr(m, "subdivision_type", None), getattr(m, "levels", None)] for m in face.modifiers],
+    "skin_vertices": sum(1 for v in face.data.vertices if any(g.group == group for g in v.groups)),
+    "frames": {},
+}
+
+
+def evaluated(show_detail):
+    detail.show_viewport = show_detail
+    bpy.context.view_layer.update()
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    return face.evaluated_get(depsgraph).to_mesh().copy()
+
+
+def coordinates(mesh):
+    co = numpy.empty(3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", co)
+    return co.reshape(-1, 3)
+
+
+for frame in frames:
+    scene.frame_set(frame)
+    plain, displaced = evaluated(False), evaluated(True)
+    normals = numpy.empty(3 * len(plain.vertices))
+    plain.vertices.foreach_get("normal", normals)
+    moved = ((coordinates(displaced) - coordinates(plain)) * normals.reshape(-1, 3)).sum(axis=1) * 1000.0  # mm
+    # Each vertex's UV, from its loops (one UV a vertex on the face's skin).
+    corner_vertex = numpy.empty(len(plain.loops), dtype=numpy.int64)
+    plain.loops.foreach_get("vertex_index", corner_vertex)
+    corner_uv = numpy.empty(2 * len(plain.loops))
+    plain.uv_layers[0].data.foreach_get("uv", corner_uv)
+    uv = numpy.zeros((len(plain.vertices), 2))
+    uv[corner_vertex] = corner_uv.reshape(-1, 2)
+    # Every 16th vertex (a sample spread over the whole mesh).
+    keep = numpy.arange(len(moved)) % 16 == 0
+    report["frames"][str(frame)] = {"location": list(face.matrix_world.translation),
+                                    "moved_mm": moved[keep].tolist(), "uv": uv[keep].tolist()}
+
+with open(out_json, "w") as f:
+    json.dump(report, f)
