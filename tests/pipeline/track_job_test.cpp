@@ -61,6 +61,20 @@ double correlation(const std::vector<float>& a, const std::vector<float>& b) {
   return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
 }
 
+// The first `count` frames of `video` as an image folder, frame `blank` grey
+// (no face in it).
+void write_frames_with_a_blank(const fs::path& video, const fs::path& folder, int count, int blank) {
+  auto source = open_input(video.string());
+  Frame f;
+  for (int i = 0; i < count && source->read(f); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "f%03d.png", i);
+    cv::Mat img = f.image;
+    if (i == blank) img = cv::Mat(img.size(), img.type(), cv::Scalar(60, 60, 60));
+    facecap::write_image((folder / name).string(), img);
+  }
+}
+
 }  // namespace
 
 TEST(TrackJob, WritesCsvJsonlIdentityMeshesAndOverlay) {
@@ -310,15 +324,7 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
   // An image folder: 31 face frames, a blank frame, then faces again.
   TempDir frames;
-  auto source = open_input(video.string());
-  Frame f;
-  for (int i = 0; i < 36 && source->read(f); ++i) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "f%03d.png", i);
-    cv::Mat img = f.image;
-    if (i == 31) img = cv::Mat(img.size(), img.type(), cv::Scalar(60, 60, 60));
-    facecap::write_image((frames.path() / name).string(), img);
-  }
+  write_frames_with_a_blank(video, frames.path(), 36, 31);
   TempDir out;
   TrackOptions o;
   o.capture.quiet = true;
@@ -551,6 +557,37 @@ TEST(TrackJob, RefineAddsLightingAlbedoAndRefinedMeshes) {
   EXPECT_NE(std::find(obj.begin(), obj.end(), "# refined (finest level)"), obj.end());
   EXPECT_GE(std::count_if(obj.begin(), obj.end(), [](const std::string& l) { return l.rfind("v ", 0) == 0; }),
             regions::kFace.num_vertices());
+}
+
+// --detail-maps makes an unbroken sequence: a map for every frame, the lost
+// one's flat (0 mm everywhere), the refined ones' not.
+TEST(TrackJob, ALostFrameGetsAFlatDetailMap) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");
+  TempDir frames;
+  write_frames_with_a_blank(video, frames.path(), 14, 10);
+  TempDir out;
+  TrackOptions o;
+  o.capture.quiet = true;
+  o.refine = true;
+  o.detail_maps = true;
+  o.detail_map_size = 64;
+  const TrackSummary s = run_track(*model, frames.path().string(), out.path(), o);
+  EXPECT_EQ(s.capture.lost, 1);
+  EXPECT_EQ(s.detail_maps, 14);
+  for (int frame = 0; frame < 14; ++frame) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+    const cv::Mat map = read_png16(out.path() / "detail" / name);
+    ASSERT_EQ(map.type(), CV_16UC1) << name;
+    const int off_zero = cv::countNonZero(map != 32768);
+    if (frame == 10)
+      EXPECT_EQ(off_zero, 0) << name;
+    else
+      EXPECT_GT(off_zero, 64 * 64 / 4) << name;  // the face region's texels
+  }
+  std::ifstream in(out.path() / "detail" / "detail.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["flat_maps"], 1);
 }
 
 TEST(TrackJob, BadInputWritesNothing) {
