@@ -1,10 +1,11 @@
 # Brings a `facecap track` output folder into Blender as one animated scene:
 #
-#   blender --python blender/import_facecap.py -- DIR [--glb FILE] [--subdivisions N] [--save FILE.blend]
+#   blender --python blender/import_facecap.py -- DIR [--video INPUT] [--glb FILE] [--subdivisions N]
+#                                                       [--save FILE.blend]
 #
 # - imports DIR/animation.glb (`track --gltf`) with Blender's own glTF importer: the face
 #   with its shape keys and their keys, the head's keys and the fitted camera, which
-#   becomes the scene's camera;
+#   becomes the scene's camera, the render the input's size (DIR/identity.json);
 # - plays it at the input's frame rate (read from DIR/frames.csv; 29.97 fps as 30 / 1.001)
 #   with each video frame on the Blender frame of the same number (the glTF importer keys
 #   at whole frames per second only, so its keys are retimed), the scene's range the keys';
@@ -14,10 +15,14 @@
 #   modifier reading the maps as an image sequence (non-colour data, UV coordinates,
 #   midlevel and strength as DIR/detail/detail.json says, in the file's metres), over the
 #   face's skin only (the vertex group "facecap_detail": the mouth's and eyes' part has no
-#   map), so that frame N shows DIR/detail/frame_N.png.
+#   map), so that frame N shows DIR/detail/frame_N.png;
+# - with --video (the tracked input), puts the footage behind the face: the camera's
+#   background in the viewport and, in the compositor, under the render (whose background
+#   is then transparent, its view transform Standard), video frame N on frame N.
 #
-# It adds to the scene Blender opens with and leaves the rest of it alone. With --save
-# (and `blender -b`), it writes the scene to a .blend file and Blender can quit.
+# It starts from an empty scene (run it from the command line: what Blender opened with
+# is let go), lit evenly by a white world. With --save (and `blender -b`), it writes the
+# scene to a .blend file and Blender can quit.
 # Checked with Debian 12's Blender 3.4 (tests/app/blender_interop_test.cpp).
 import argparse
 import csv
@@ -47,6 +52,8 @@ def parse_arguments():
     parser.add_argument("--subdivisions", type=int, default=1,
                         help="Simple subdivision levels under the detail maps (default 1, about the "
                         "refinement's finest level on a 720p face; 0 displaces the model's own vertices)")
+    parser.add_argument("--video", help="the tracked input: seen behind the face through the camera (viewport) "
+                        "and composited under it in renders, frame N under frame N")
     parser.add_argument("--save", help="write the scene to this .blend file")
     return parser.parse_args(argv)
 
@@ -158,6 +165,52 @@ def add_detail(face, detail_dir, subdivisions):
                                                                               len(vertices)))
 
 
+def image_size(folder):
+    """The input's width and height from identity.json (any shot's)."""
+    names = ["identity.json"] + sorted(n for n in os.listdir(folder) if n.startswith("identity_shot"))
+    for name in names:
+        path = os.path.join(folder, name)
+        if os.path.isfile(path):
+            with open(path) as f:
+                size = json.load(f).get("image_size")
+            if size:
+                return int(size[0]), int(size[1])
+    return None
+
+
+def add_plate(scene, camera, video):
+    """The footage behind the face: the camera's background in the viewport,
+    and under the render in the compositor (the render's background
+    transparent, the view transform Standard so the plate keeps its colours).
+    Clip frame 1, the video's first, plays on scene frame 0."""
+    clip = bpy.data.movieclips.load(os.path.abspath(video))
+    clip.frame_start = 0
+    scene.active_clip = clip
+    if camera:
+        camera.data.show_background_images = True
+        background = camera.data.background_images.new()
+        background.source = "MOVIE_CLIP"
+        background.clip = clip
+    scene.render.film_transparent = True
+    scene.view_settings.view_transform = "Standard"
+    scene.use_nodes = True
+    tree = scene.node_tree
+    layers = next((n for n in tree.nodes if n.type == "R_LAYERS"), None) or tree.nodes.new("CompositorNodeRLayers")
+    composite = next((n for n in tree.nodes if n.type == "COMPOSITE"), None) or \
+        tree.nodes.new("CompositorNodeComposite")
+    plate = tree.nodes.new("CompositorNodeMovieClip")
+    plate.clip = clip
+    fit = tree.nodes.new("CompositorNodeScale")  # the clip's pixels onto the render's, at any percentage
+    fit.space = "RENDER_SIZE"
+    fit.frame_method = "STRETCH"
+    over = tree.nodes.new("CompositorNodeAlphaOver")
+    tree.links.new(plate.outputs["Image"], fit.inputs["Image"])
+    tree.links.new(fit.outputs["Image"], over.inputs[1])
+    tree.links.new(layers.outputs["Image"], over.inputs[2])
+    tree.links.new(over.outputs["Image"], composite.inputs["Image"])
+    print("import_facecap: %s behind the face (%d frames)" % (os.path.basename(video), clip.frame_duration))
+
+
 def main():
     args = parse_arguments()
     if not 0 <= args.subdivisions <= 6:
@@ -165,7 +218,12 @@ def main():
     glb = args.glb or os.path.join(args.dir, "animation.glb")
     if not os.path.isfile(glb):
         fail(glb + " not found (run `facecap track ... --gltf`)")
+    # An empty scene (Blender's startup cube would sit around the camera, at
+    # the origin), lit evenly by a white world so that the face shows its albedo.
+    bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
+    scene.world = bpy.data.worlds.new("facecap")
+    scene.world.color = (1.0, 1.0, 1.0)
     fps, fps_base = frame_rate(os.path.join(args.dir, "frames.csv")) \
         if os.path.isfile(os.path.join(args.dir, "frames.csv")) else (30, 1.0)
     scene.render.fps, scene.render.fps_base = fps, 1.0  # what the importer keys at
@@ -181,6 +239,14 @@ def main():
     cameras = [o for o in objects if o.type == "CAMERA"]
     if cameras:
         scene.camera = cameras[0]
+    size = image_size(args.dir)
+    if size:  # the camera sees what the video frame shows
+        scene.render.resolution_x, scene.render.resolution_y = size
+        scene.render.resolution_percentage = 100
+    if args.video:
+        if not os.path.isfile(args.video):
+            fail(args.video + " not found")
+        add_plate(scene, cameras[0] if cameras else None, args.video)
     faces = [o for o in objects if o.type == "MESH"]
     if not faces:
         fail(glb + " holds no mesh")

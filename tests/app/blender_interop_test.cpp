@@ -24,6 +24,7 @@
 #include "facecap/core/temp_dir.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/png16.hpp"
+#include "facecap/io/video_writer.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
@@ -328,10 +329,12 @@ TEST(BlenderInterop, ADetailMapDisplacesTheRefinedMeshAsDetailJsonSays) {
 }
 
 // blender/import_facecap.py on a `track --refine --gltf --detail-maps`
-// folder, the scene saved and opened again: it plays at the video's 29.97
-// fps with video frame N on Blender frame N (the head where frames.csv puts
-// it at frames 3 and 17), and at each frame the detail modifiers move the
-// subdivided face's skin by that frame's map, not another's.
+// folder, with a plate, the scene saved and opened again: it plays at the
+// video's 29.97 fps with video frame N on Blender frame N (the head where
+// frames.csv puts it at frames 3 and 17, the plate's frame 17 behind the
+// face in a render of frame 17), renders at the input's size, and at each
+// frame the detail modifiers move the subdivided face's skin by that frame's
+// map, not another's.
 TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
@@ -342,14 +345,26 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
                         " --max-frames 20 --refine --gltf --detail-maps --detail-map-size 512 2>&1");
   ASSERT_EQ(tracked.code, 0) << tracked.out;
   const fs::path scene = dir.path() / "scene.blend", report_path = dir.path() / "blender.json";
-  const test::CommandResult imported = test::run_command(
-      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_IMPORT_SCRIPT) +
-      " -- " + dir.path().string() + " --subdivisions 1 --save " + scene.string() + " 2>&1");
+  const fs::path plate = dir.path() / "plate.mp4";  // frame k a flat grey of 40 + 10 k, at the input's rate
+  {
+    VideoWriterOptions o;
+    o.width = 320;
+    o.height = 180;
+    o.fps = 30000.0 / 1001.0;
+    VideoWriter writer(plate, o);
+    for (int k = 0; k < 20; ++k) writer.write(cv::Mat(180, 320, CV_8UC3, cv::Scalar::all(40 + 10 * k)));
+    writer.finish();
+  }
+  const test::CommandResult imported =
+      test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
+                        std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- " + dir.path().string() + " --video " +
+                        plate.string() + " --subdivisions 1 --save " + scene.string() + " 2>&1");
   ASSERT_EQ(imported.code, 0) << imported.out;
   EXPECT_NE(imported.out.find("detail maps 000000-000019"), std::string::npos) << imported.out;
-  const test::CommandResult probed =
-      test::run_command("blender -b " + scene.string() + " --python-exit-code 1 --python " +
-                        std::string(FACECAP_BLENDER_SCENE_PROBE) + " -- " + report_path.string() + " 3 17 2>&1");
+  const fs::path render = dir.path() / "render.png";
+  const test::CommandResult probed = test::run_command(
+      "blender -b " + scene.string() + " --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_SCENE_PROBE) +
+      " -- " + report_path.string() + " " + render.string() + " 3 17 2>&1");
   ASSERT_EQ(probed.code, 0) << probed.out;
   std::ifstream in(report_path);
   const nlohmann::json report = nlohmann::json::parse(in);
@@ -360,6 +375,7 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   ASSERT_EQ(keyed.size(), 20u);
   for (int k = 0; k < 20; ++k) EXPECT_EQ(keyed[size_t(k)], double(k));  // whole frames, not k * 1.001
   EXPECT_EQ(report["camera"], "camera");
+  EXPECT_EQ(report["resolution"], nlohmann::json({1280, 720}));  // the input's
   EXPECT_EQ(report["modifiers"], nlohmann::json::parse(R"([["SUBSURF", "SIMPLE", 1], ["DISPLACE", null, null]])"));
   EXPECT_GT(int(report["skin_vertices"]), 5000);
 
@@ -402,6 +418,28 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
     EXPECT_LT(worst(own_error), 0.0001) << frame;
     EXPECT_GT(mean(other_error), 0.005) << frame;
   }
+
+  // The render of frame 17 has the plate's frame 17 behind the face: a plate
+  // whose frame k is a flat grey of 40 + 10 k shows 210 away from the face
+  // (frames 16 and 18 would show 200 and 220).
+  const cv::Mat rendered = read_image(render.string());
+  ASSERT_EQ(rendered.size(), cv::Size(320, 180));
+  cv::Mat away(rendered.size(), CV_8U, cv::Scalar(255));
+  {
+    const nlohmann::json row = nlohmann::json::parse(test::read_lines(dir.path() / "frames.jsonl")[17]);
+    std::vector<cv::Point2f> points;
+    for (const auto& p : row["fitted_landmarks"]) points.emplace_back(p[0].get<float>() / 4, p[1].get<float>() / 4);
+    const cv::Rect face = cv::boundingRect(points);
+    cv::rectangle(away, cv::Rect(face.x - face.width / 2, face.y - face.height, 2 * face.width, 3 * face.height),
+                  cv::Scalar(0), cv::FILLED);  // the face and all round it
+  }
+  cv::Mat grey;
+  cv::cvtColor(rendered, grey, cv::COLOR_BGR2GRAY);
+  double lowest = 0, highest = 0;
+  cv::minMaxLoc(grey, &lowest, &highest, nullptr, nullptr, away);
+  std::printf("render of frame 17 away from the face: grey %.0f-%.0f (the plate's frame 17: 210)\n", lowest, highest);
+  EXPECT_GE(lowest, 206);
+  EXPECT_LE(highest, 214);
 }
 
 }  // namespace facecap

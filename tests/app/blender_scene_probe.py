@@ -1,20 +1,22 @@
 # Reads the scene blender/import_facecap.py saved (run as `blender -b
-# SCENE.blend --python blender_scene_probe.py -- OUT.json FRAME...`) and
-# writes to OUT.json its frame rate and range, the face's keyed frames, its
-# modifiers and, at each FRAME, where the face's skin sits and how far the
-# detail modifier moves each vertex of the subdivided mesh along its normal,
-# with the vertex's UV. blender_interop_test.cpp compares these with the
-# track folder's frames.csv and detail maps.
+# SCENE.blend --python blender_scene_probe.py -- OUT.json RENDER.png FRAME...`)
+# and writes to OUT.json its frame rate and range, render size, the face's
+# keyed frames, its modifiers and, at each FRAME, where the face sits and how
+# far the detail modifier moves each vertex of the subdivided mesh along its
+# normal, with the vertex's UV; then renders the last FRAME at a quarter of
+# the size, one Cycles sample, into RENDER.png. blender_interop_test.cpp
+# compares these with the track folder's frames.csv, its detail maps and
+# the input's frames.
 import json
 import sys
 
 import bpy
 import numpy
 
-out_json = sys.argv[sys.argv.index("--") + 1]
-frames = [int(f) for f in sys.argv[sys.argv.index("--") + 2:]]
+out_json, render_png = sys.argv[sys.argv.index("--") + 1:][:2]
+frames = [int(f) for f in sys.argv[sys.argv.index("--") + 3:]]
 scene = bpy.context.scene
-face = next(o for o in scene.objects if o.type == "MESH")
+face = next(o for o in scene.objects if "facecap detail" in o.modifiers)
 detail = face.modifiers["facecap detail"]
 group = face.vertex_groups["facecap_detail"].index
 action = face.animation_data.action
@@ -22,6 +24,7 @@ report = {
     "fps": scene.render.fps / scene.render.fps_base,
     "frame_range": [scene.frame_start, scene.frame_end],
     "camera": scene.camera.name if scene.camera else None,
+    "resolution": [scene.render.resolution_x, scene.render.resolution_y],
     "keyed_frames": sorted({k.co.x for c in action.fcurves for k in c.keyframe_points}),
     "modifiers": [[m.type, getattr(m, "subdivision_type", None), getattr(m, "levels", None)] for m in face.modifiers],
     "skin_vertices": sum(1 for v in face.data.vertices if any(g.group == group for g in v.groups)),
@@ -59,6 +62,14 @@ for frame in frames:
     keep = numpy.arange(len(moved)) % 16 == 0
     report["frames"][str(frame)] = {"location": list(face.matrix_world.translation),
                                     "moved_mm": moved[keep].tolist(), "uv": uv[keep].tolist()}
+
+scene.render.engine = "CYCLES"
+scene.cycles.samples = 1
+scene.cycles.use_denoising = False
+scene.render.resolution_percentage = 25
+scene.render.image_settings.file_format = "PNG"
+scene.render.filepath = render_png
+bpy.ops.render.render(write_still=True)
 
 with open(out_json, "w") as f:
     json.dump(report, f)
