@@ -1,6 +1,7 @@
 #include "facecap/core/temp_dir.hpp"
 
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include "facecap/core/error.hpp"
@@ -15,7 +16,20 @@ TempDir::TempDir(const std::string& prefix) {
   path_ = buf.data();
 }
 
-TempDir::~TempDir() {
+TempDir::~TempDir() { remove(); }
+
+TempDir::TempDir(TempDir&& other) noexcept : path_(std::exchange(other.path_, {})) {}
+
+TempDir& TempDir::operator=(TempDir&& other) noexcept {
+  if (this != &other) {
+    remove();
+    path_ = std::exchange(other.path_, {});
+  }
+  return *this;
+}
+
+void TempDir::remove() noexcept {
+  if (path_.empty()) return;
   std::error_code ec;
   std::filesystem::remove_all(path_, ec);
 }

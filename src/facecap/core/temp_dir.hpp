@@ -1,5 +1,6 @@
 #pragma once
-// A fresh temporary folder, removed with its contents on destruction.
+// A fresh temporary folder, removed with its contents on destruction (by
+// whichever TempDir holds it then).
 #include <filesystem>
 #include <string>
 
@@ -11,9 +12,13 @@ class TempDir {
   ~TempDir();
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
+  // The folder goes with the move; the moved-from one owns none.
+  TempDir(TempDir&& other) noexcept;
+  TempDir& operator=(TempDir&& other) noexcept;
   const std::filesystem::path& path() const { return path_; }
 
  private:
+  void remove() noexcept;
   std::filesystem::path path_;
 };
 

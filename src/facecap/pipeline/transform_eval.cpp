@@ -69,20 +69,30 @@ Eigen::VectorXd mean_intensities(const ActionUnitReader& reader, const std::vect
   return weights.empty() ? sum : Eigen::VectorXd(sum / double(weights.size()));
 }
 
-// Runs the job into `output` (a temporary file in `temp` when empty) and
-// measures what every edit is measured by: frames, the lips, smoothness, the
-// rise over `shapes`, the audio and the marks.
-TransformEval run_and_measure(const FaceModel& model, const std::string& video, const TransformJobOptions& o,
-                              std::filesystem::path& output, std::optional<TempDir>& temp,
-                              const std::vector<int>& shapes, TransformSummary& s) {
-  if (output.empty()) {
-    temp.emplace("facecap-eval-transform");
-    output = temp->path() / "transformed.mp4";
+// A run of the job and what every edit is measured by.
+struct MeasuredRun {
+  std::optional<TempDir> temp;  // holds the output when none was asked for
+  std::filesystem::path output;
+  TransformSummary summary;
+  TransformEval eval;
+};
+
+// Runs the job into `output` (a temporary file when empty) and measures
+// what every edit is measured by: frames, the lips, smoothness, the rise
+// over `shapes`, the audio and the marks.
+MeasuredRun run_and_measure(const FaceModel& model, const std::string& video, const TransformJobOptions& o,
+                            const std::filesystem::path& output, const std::vector<int>& shapes) {
+  MeasuredRun run;
+  run.output = output;
+  if (run.output.empty()) {
+    run.temp.emplace("facecap-eval-transform");
+    run.output = run.temp->path() / "transformed.mp4";
   }
-  s = run_transform(model, video, output, o);
+  run.summary = run_transform(model, video, run.output, o);
+  const TransformSummary& s = run.summary;
   const TransformMetrics m = measure_transform(model, s.frames, shapes);
 
-  TransformEval r;
+  TransformEval& r = run.eval;
   r.frames = static_cast<int>(s.frames.size());
   r.valid_frames = m.valid_frames;
   r.lip_error_mm = m.lip_error_mm;
@@ -95,7 +105,7 @@ TransformEval run_and_measure(const FaceModel& model, const std::string& video, 
 
   const InputInfo in = probe_video_file(video);
   r.input_audio = in.audio;
-  const InputInfo result = probe_video_file(output);
+  const InputInfo result = probe_video_file(run.output);
   const double fps = in.fps > 0 ? in.fps : 25.0;
   // The input's audio (ending with the output's last frame when --max-frames
   // stopped the run early), against the output's.
@@ -106,8 +116,8 @@ TransformEval run_and_measure(const FaceModel& model, const std::string& video, 
   r.audio_seconds_out = result.audio ? result.audio_duration : 0;
   // One frame of slack: AAC frames are 1024 samples (21-23 ms) and the encoder pads.
   r.audio_ok = in.audio && result.audio && std::abs(r.audio_seconds_out - r.audio_seconds_in) <= 1.0 / fps + 0.05;
-  r.marked_synthetic = carries_synthetic_marks(output);
-  return r;
+  r.marked_synthetic = carries_synthetic_marks(run.output);
+  return run;
 }
 
 }  // namespace
@@ -162,13 +172,11 @@ TransformEval evaluate_transform(const FaceModel& model, const std::string& vide
                                  const TransformJobOptions& options, const std::filesystem::path& output) {
   TransformJobOptions o = options;
   o.transform.schedule = ExpressionSchedule::constant(target, 1.0);
-  std::optional<TempDir> temp;
-  std::filesystem::path out = output;
-  TransformSummary s;
-  TransformEval r = run_and_measure(model, video, o, out, temp, defining_indices(model, target), s);
-  const std::vector<Eigen::VectorXf> before = tracked_input(s);
+  MeasuredRun run = run_and_measure(model, video, o, output, defining_indices(model, target));
+  TransformEval& r = run.eval;
+  const std::vector<Eigen::VectorXf> before = tracked_input(run.summary);
   if (!before.empty()) {
-    const TrackedWeights after = retrack(model, s, out, o.capture);
+    const TrackedWeights after = retrack(model, run.summary, run.output, o.capture);
     if (!after.weights.empty())
       r.retracked_rise = defining_mean(model, after.weights, target) - defining_mean(model, before, target);
   }
@@ -182,17 +190,16 @@ TransformEval evaluate_unit_edit(const FaceModel& model, const std::string& vide
   const ActionUnitReader reader(model.expression_names);
   TransformJobOptions o = options;
   o.transform.shape_targets = reader.shape_weights(units);
-  std::optional<TempDir> temp;
-  std::filesystem::path out = output;
-  TransformSummary s;
-  TransformEval r = run_and_measure(model, video, o, out, temp, {}, s);
+  MeasuredRun run = run_and_measure(model, video, o, output, {});
+  TransformEval& r = run.eval;
   std::vector<Eigen::VectorXf> edited;
-  for (const TransformedFrame& f : s.frames)
+  for (const TransformedFrame& f : run.summary.frames)
     if (f.valid) edited.push_back(f.weights);
-  const std::vector<Eigen::VectorXf> before = tracked_input(s);
+  const std::vector<Eigen::VectorXf> before = tracked_input(run.summary);
   const Eigen::VectorXd input = mean_intensities(reader, before), result = mean_intensities(reader, edited);
-  const Eigen::VectorXd again = before.empty() ? Eigen::VectorXd::Zero(reader.size())
-                                               : mean_intensities(reader, retrack(model, s, out, o.capture).weights);
+  const Eigen::VectorXd again =
+      before.empty() ? Eigen::VectorXd::Zero(reader.size())
+                     : mean_intensities(reader, retrack(model, run.summary, run.output, o.capture).weights);
   for (const ActionUnitTarget& unit : units) {
     const int u = action_unit_index(unit.number);
     r.units.push_back({unit, input[u], result[u], again[u]});
