@@ -5,10 +5,12 @@
 #
 # - imports DIR/animation.glb (`track --gltf`) with Blender's own glTF importer: the face
 #   with its shape keys and their keys, the head's keys and the fitted camera, which
-#   becomes the scene's camera, the render the input's size (DIR/identity.json);
-# - plays it at the input's frame rate (read from DIR/frames.csv; 29.97 fps as 30 / 1.001)
-#   with each video frame on the Blender frame of the same number (the glTF importer keys
-#   at whole frames per second only, so its keys are retimed), the scene's range the keys';
+#   becomes the scene's camera, the render the input's size (DIR/identity.json, else the
+#   video's); `transform --gltf` and `swap --gltf` files come in alike with --glb FILE;
+# - plays it at the input's frame rate (read from DIR/frames.csv, else from the keys'
+#   spacing; 29.97 fps as 30 / 1.001) with each video frame on the Blender frame of the
+#   same number (the glTF importer keys at whole frames per second only, so its keys are
+#   retimed), the scene's range the keys';
 # - with DIR/detail (`track --refine --detail-maps`), adds the refinement's per-frame
 #   detail: a Subdivision Surface modifier (Simple, N levels, 1 by default: four faces a
 #   face, about the refinement's finest level on a 720p face) and a Displace
@@ -46,9 +48,10 @@ def parse_arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(prog="blender --python import_facecap.py --",
                                      description="Bring a facecap track folder into Blender.")
-    parser.add_argument("dir", help="the folder `facecap track ... -o DIR --gltf` wrote")
-    parser.add_argument("--glb", help="the animation to import (default DIR/animation.glb; a later shot's "
-                        "DIR/animation_shot<N>.glb)")
+    parser.add_argument("dir", nargs="?", help="the folder `facecap track ... -o DIR --gltf` wrote")
+    parser.add_argument("--glb", help="the animation to import (default DIR/animation.glb): a later shot's "
+                        "DIR/animation_shot<N>.glb, or the file of `transform --gltf` or `swap --gltf` (then "
+                        "DIR may be left out)")
     parser.add_argument("--subdivisions", type=int, default=1,
                         help="Simple subdivision levels under the detail maps (default 1, about the "
                         "refinement's finest level on a 720p face; 0 displaces the model's own vertices)")
@@ -63,17 +66,30 @@ def fail(message):
     sys.exit(1)
 
 
-def frame_rate(frames_csv):
-    """The input's frames per second from frames.csv's frame numbers and times,
-    as Blender's fps and fps_base (29.97 as 30 / 1.001)."""
-    with open(frames_csv, newline="") as f:
-        rows = [(int(r["frame"]), float(r["time"])) for r in csv.DictReader(f) if r.get("time")]
-    if len(rows) < 2 or rows[-1][1] <= rows[0][1]:
-        return 30, 1.0  # a photo or a single frame: nothing moves
-    rate = (rows[-1][0] - rows[0][0]) / (rows[-1][1] - rows[0][1])
+def blender_rate(rate):
+    """Frames per second as Blender's fps and fps_base (29.97 as 30 / 1.001)."""
     fps = max(1, round(rate))
     base = fps / rate
     return fps, 1.0 if abs(base - 1.0) < 1e-4 else base
+
+
+def csv_frame_rate(frames_csv):
+    """The input's frames per second from frames.csv's frame numbers and
+    times; None for a photo or a single frame."""
+    with open(frames_csv, newline="") as f:
+        rows = [(int(r["frame"]), float(r["time"])) for r in csv.DictReader(f) if r.get("time")]
+    if len(rows) < 2 or rows[-1][1] <= rows[0][1]:
+        return None
+    return (rows[-1][0] - rows[0][0]) / (rows[-1][1] - rows[0][1])
+
+
+def key_frame_rate(actions, keyed_at):
+    """Frames per second from the keys' spacing (one key a video frame; a
+    lost frame's missing key leaves a double step, which the median ignores),
+    the keys having been put at `keyed_at` frames per second; None without two keys."""
+    frames = sorted({round(k.co.x, 4) for a in actions for c in a.fcurves for k in c.keyframe_points})
+    steps = sorted(b - a for a, b in zip(frames, frames[1:]))
+    return keyed_at / steps[len(steps) // 2] if steps else None
 
 
 def retime(actions, factor):
@@ -209,48 +225,56 @@ def add_plate(scene, camera, video):
     tree.links.new(layers.outputs["Image"], over.inputs[2])
     tree.links.new(over.outputs["Image"], composite.inputs["Image"])
     print("import_facecap: %s behind the face (%d frames)" % (os.path.basename(video), clip.frame_duration))
+    return clip
 
 
 def main():
     args = parse_arguments()
     if not 0 <= args.subdivisions <= 6:
         fail("--subdivisions must be 0 to 6 (each level has four times the faces of the one before)")
+    if not args.dir and not args.glb:
+        fail("give the track folder (DIR) or the animation (--glb FILE)")
     glb = args.glb or os.path.join(args.dir, "animation.glb")
     if not os.path.isfile(glb):
         fail(glb + " not found (run `facecap track ... --gltf`)")
+    folder = args.dir or os.path.dirname(os.path.abspath(glb))
     # An empty scene (Blender's startup cube would sit around the camera, at
     # the origin), lit evenly by a white world so that the face shows its albedo.
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     scene.world = bpy.data.worlds.new("facecap")
     scene.world.color = (1.0, 1.0, 1.0)
-    fps, fps_base = frame_rate(os.path.join(args.dir, "frames.csv")) \
-        if os.path.isfile(os.path.join(args.dir, "frames.csv")) else (30, 1.0)
-    scene.render.fps, scene.render.fps_base = fps, 1.0  # what the importer keys at
+    keyed_at = 30
+    scene.render.fps, scene.render.fps_base = keyed_at, 1.0  # what the importer keys at
     before = set(bpy.data.objects)
     bpy.ops.import_scene.gltf(filepath=glb)
     objects = [o for o in bpy.data.objects if o not in before]
     actions = imported_actions(objects)
-    scene.render.fps_base = fps_base
-    if fps_base != 1.0:
-        retime(actions, 1.0 / fps_base)
+    # The input's rate: frames.csv's where the folder is a track's, else the keys'.
+    frames_csv = os.path.join(folder, "frames.csv")
+    rate = csv_frame_rate(frames_csv) if os.path.isfile(frames_csv) else key_frame_rate(actions, keyed_at)
+    fps, fps_base = blender_rate(rate) if rate else (keyed_at, 1.0)
+    scene.render.fps, scene.render.fps_base = fps, fps_base
+    if fps / fps_base != keyed_at:
+        retime(actions, fps / fps_base / keyed_at)
     scene.frame_start, scene.frame_end = key_range(actions)
     scene.frame_set(scene.frame_start)
     cameras = [o for o in objects if o.type == "CAMERA"]
     if cameras:
         scene.camera = cameras[0]
-    size = image_size(args.dir)
-    if size:  # the camera sees what the video frame shows
-        scene.render.resolution_x, scene.render.resolution_y = size
-        scene.render.resolution_percentage = 100
+    clip = None
     if args.video:
         if not os.path.isfile(args.video):
             fail(args.video + " not found")
-        add_plate(scene, cameras[0] if cameras else None, args.video)
+        clip = add_plate(scene, cameras[0] if cameras else None, args.video)
+    size = image_size(folder) or (tuple(clip.size) if clip else None)
+    if size:  # the camera sees what the video frame shows
+        scene.render.resolution_x, scene.render.resolution_y = size
+        scene.render.resolution_percentage = 100
     faces = [o for o in objects if o.type == "MESH"]
     if not faces:
         fail(glb + " holds no mesh")
-    detail_dir = os.path.join(args.dir, "detail")
+    detail_dir = os.path.join(folder, "detail")
     if os.path.isdir(detail_dir):
         add_detail(faces[0], detail_dir, args.subdivisions)
     print("import_facecap: %s at %.3f fps, frames %d-%d" % (os.path.basename(glb), fps / fps_base,

@@ -9,6 +9,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -98,6 +99,26 @@ double detail_at(const cv::Mat& mm, double u, double v) {
   cv::Mat sample;
   cv::getRectSubPix(mm, cv::Size(1, 1), cv::Point2f(float(u * mm.cols - 0.5), float((1 - v) * mm.rows - 0.5)), sample);
   return sample.at<float>(0, 0);
+}
+
+// A 320 x 180 plate of 20 frames at 29.97 fps whose frame k is a flat grey
+// of 40 + 10 k: a render over it shows which of its frames is behind.
+void write_grey_plate(const fs::path& file) {
+  VideoWriterOptions o;
+  o.width = 320;
+  o.height = 180;
+  o.fps = 30000.0 / 1001.0;
+  VideoWriter writer(file, o);
+  for (int k = 0; k < 20; ++k) writer.write(cv::Mat(180, 320, CV_8UC3, cv::Scalar::all(40 + 10 * k)));
+  writer.finish();
+}
+
+// frames.csv's translation (cm) of `frame` in Blender's axes (z up), metres:
+// glTF's (the camera frame turned half a turn about x) are (tx, -ty, -tz).
+std::array<double, 3> blender_location(const fs::path& frames_csv, int frame) {
+  const std::vector<std::string> row = split_csv_line(test::read_lines(frames_csv).at(size_t(frame) + 1));
+  const double tx = std::stod(row[6]), ty = std::stod(row[7]), tz = std::stod(row[8]);
+  return {tx / 100, tz / 100, -ty / 100};
 }
 
 double srgb_to_linear(double byte) {
@@ -345,16 +366,8 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
                         " --max-frames 20 --refine --gltf --detail-maps --detail-map-size 512 2>&1");
   ASSERT_EQ(tracked.code, 0) << tracked.out;
   const fs::path scene = dir.path() / "scene.blend", report_path = dir.path() / "blender.json";
-  const fs::path plate = dir.path() / "plate.mp4";  // frame k a flat grey of 40 + 10 k, at the input's rate
-  {
-    VideoWriterOptions o;
-    o.width = 320;
-    o.height = 180;
-    o.fps = 30000.0 / 1001.0;
-    VideoWriter writer(plate, o);
-    for (int k = 0; k < 20; ++k) writer.write(cv::Mat(180, 320, CV_8UC3, cv::Scalar::all(40 + 10 * k)));
-    writer.finish();
-  }
+  const fs::path plate = dir.path() / "plate.mp4";
+  write_grey_plate(plate);
   const test::CommandResult imported =
       test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
                         std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- " + dir.path().string() + " --video " +
@@ -379,8 +392,6 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   EXPECT_EQ(report["modifiers"], nlohmann::json::parse(R"([["SUBSURF", "SIMPLE", 1], ["DISPLACE", null, null]])"));
   EXPECT_GT(int(report["skin_vertices"]), 5000);
 
-  const std::vector<std::string> csv = test::read_lines(dir.path() / "frames.csv");
-  ASSERT_EQ(csv.size(), 21u);
   const fs::path detail = dir.path() / "detail";
   const cv::Mat maps[2] = {read_detail_mm(detail / "frame_000003.png", detail / "detail.json"),
                            read_detail_mm(detail / "frame_000017.png", detail / "detail.json")};
@@ -389,13 +400,9 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   for (int which = 0; which < 2; ++which) {
     const int frame = which == 0 ? 3 : 17;
     const nlohmann::json& at = report["frames"][std::to_string(frame)];
-    // glTF's axes (the camera frame turned half a turn about x), in Blender's
-    // (z up): (tx, tz, -ty), metres; frames.csv keeps 6 digits (5e-6 m here).
-    const std::vector<std::string> row = split_csv_line(csv[size_t(frame) + 1]);
-    const double tx = std::stod(row[6]), ty = std::stod(row[7]), tz = std::stod(row[8]);
-    EXPECT_NEAR(double(at["location"][0]), tx / 100, 1e-5) << frame;
-    EXPECT_NEAR(double(at["location"][1]), tz / 100, 1e-5) << frame;
-    EXPECT_NEAR(double(at["location"][2]), -ty / 100, 1e-5) << frame;
+    // frames.csv keeps 6 digits (5e-6 m here).
+    const std::array<double, 3> location = blender_location(dir.path() / "frames.csv", frame);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(double(at["location"][c]), location[size_t(c)], 1e-5) << frame;
     std::vector<double> own_error, other_error;
     for (size_t v = 0; v < at["moved_mm"].size(); ++v) {
       const double moved = at["moved_mm"][v];
@@ -440,6 +447,49 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   std::printf("render of frame 17 away from the face: grey %.0f-%.0f (the plate's frame 17: 210)\n", lowest, highest);
   EXPECT_GE(lowest, 206);
   EXPECT_LE(highest, 214);
+}
+
+// import_facecap.py given an animation alone (--glb, as `transform --gltf`
+// and `swap --gltf` write them: no frames.csv, no identity.json beside it)
+// and a plate: the frame rate comes from the keys' spacing, the render size
+// from the plate, and video frame N still plays on Blender frame N.
+TEST(BlenderInterop, TheImportScriptTakesAnAnimationAlone) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  FACECAP_REQUIRE_BLENDER("blender/import_facecap.py");
+  TempDir dir;
+  const test::CommandResult tracked = test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() +
+                                                        " -o " + dir.path().string() + " --max-frames 20 --gltf 2>&1");
+  ASSERT_EQ(tracked.code, 0) << tracked.out;
+  const fs::path alone = dir.path() / "alone";
+  fs::create_directories(alone);
+  fs::copy_file(dir.path() / "animation.glb", alone / "performance.glb");
+  const fs::path plate = dir.path() / "plate.mp4", scene = dir.path() / "scene.blend",
+                 report_path = dir.path() / "blender.json";
+  write_grey_plate(plate);
+  const test::CommandResult imported = test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
+                                                         std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- --glb " +
+                                                         (alone / "performance.glb").string() + " --video " +
+                                                         plate.string() + " --save " + scene.string() + " 2>&1");
+  ASSERT_EQ(imported.code, 0) << imported.out;
+  const test::CommandResult probed =
+      test::run_command("blender -b " + scene.string() + " --python-exit-code 1 --python " +
+                        std::string(FACECAP_BLENDER_SCENE_PROBE) + " -- " + report_path.string() + " - 3 17 2>&1");
+  ASSERT_EQ(probed.code, 0) << probed.out;
+  std::ifstream in(report_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_NEAR(double(report["fps"]), 30000.0 / 1001.0, 1e-3);
+  EXPECT_EQ(report["frame_range"], nlohmann::json({0, 19}));
+  const std::vector<double> keyed = report["keyed_frames"];
+  ASSERT_EQ(keyed.size(), 20u);
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(keyed[size_t(k)], double(k));
+  EXPECT_EQ(report["resolution"], nlohmann::json({320, 180}));  // the plate's
+  EXPECT_EQ(report["modifiers"], nlohmann::json::array());      // no detail maps
+  for (int frame : {3, 17}) {
+    const std::array<double, 3> location = blender_location(dir.path() / "frames.csv", frame);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(double(report["frames"][std::to_string(frame)]["location"][c]), location[size_t(c)], 1e-5) << frame;
+  }
 }
 
 }  // namespace facecap

@@ -3,10 +3,10 @@
 # and writes to OUT.json its frame rate and range, render size, the face's
 # keyed frames, its modifiers and, at each FRAME, where the face sits and how
 # far the detail modifier moves each vertex of the subdivided mesh along its
-# normal, with the vertex's UV; then renders the last FRAME at a quarter of
-# the size, one Cycles sample, into RENDER.png. blender_interop_test.cpp
-# compares these with the track folder's frames.csv, its detail maps and
-# the input's frames.
+# normal, with the vertex's UV (where there is a detail modifier); then
+# renders the last FRAME at a quarter of the size, one Cycles sample, into
+# RENDER.png (none for "-"). blender_interop_test.cpp compares these with
+# the track folder's frames.csv and detail maps, and the plate's frames.
 import json
 import sys
 
@@ -16,9 +16,9 @@ import numpy
 out_json, render_png = sys.argv[sys.argv.index("--") + 1:][:2]
 frames = [int(f) for f in sys.argv[sys.argv.index("--") + 3:]]
 scene = bpy.context.scene
-face = next(o for o in scene.objects if "facecap detail" in o.modifiers)
-detail = face.modifiers["facecap detail"]
-group = face.vertex_groups["facecap_detail"].index
+face = next(o for o in scene.objects if o.type == "MESH" and o.data.shape_keys)
+detail = face.modifiers.get("facecap detail")
+group = face.vertex_groups["facecap_detail"].index if detail else -1
 action = face.animation_data.action
 report = {
     "fps": scene.render.fps / scene.render.fps_base,
@@ -47,6 +47,9 @@ def coordinates(mesh):
 
 for frame in frames:
     scene.frame_set(frame)
+    report["frames"][str(frame)] = {"location": list(face.matrix_world.translation)}
+    if not detail:
+        continue
     plain, displaced = evaluated(False), evaluated(True)
     normals = numpy.empty(3 * len(plain.vertices))
     plain.vertices.foreach_get("normal", normals)
@@ -60,16 +63,16 @@ for frame in frames:
     uv[corner_vertex] = corner_uv.reshape(-1, 2)
     # Every 16th vertex (a sample spread over the whole mesh).
     keep = numpy.arange(len(moved)) % 16 == 0
-    report["frames"][str(frame)] = {"location": list(face.matrix_world.translation),
-                                    "moved_mm": moved[keep].tolist(), "uv": uv[keep].tolist()}
+    report["frames"][str(frame)].update({"moved_mm": moved[keep].tolist(), "uv": uv[keep].tolist()})
 
-scene.render.engine = "CYCLES"
-scene.cycles.samples = 1
-scene.cycles.use_denoising = False
-scene.render.resolution_percentage = 25
-scene.render.image_settings.file_format = "PNG"
-scene.render.filepath = render_png
-bpy.ops.render.render(write_still=True)
+if render_png != "-":  # the last frame, at a quarter of the size
+    scene.render.engine = "CYCLES"
+    scene.cycles.samples = 1
+    scene.cycles.use_denoising = False
+    scene.render.resolution_percentage = 25
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.filepath = render_png
+    bpy.ops.render.render(write_still=True)
 
 with open(out_json, "w") as f:
     json.dump(report, f)
