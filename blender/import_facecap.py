@@ -18,12 +18,16 @@
 #   midlevel and strength as DIR/detail/detail.json says, in the file's metres), over the
 #   face's skin only (the vertex group "facecap_detail": the mouth's and eyes' part has no
 #   map), so that frame N shows DIR/detail/frame_N.png;
+# - where DIR/frames.csv has the refinement's lighting (`track --refine`), lights the world
+#   as the footage was lit, keyed frame by frame (add_footage_light; --even-light keeps a
+#   white world), with the albedo and footage read as raw data and the view transform Raw,
+#   so that the render is albedo x shading as facecap's own renders are;
 # - with --video (the tracked input), puts the footage behind the face: the camera's
 #   background in the viewport and, in the compositor, under the render (whose background
 #   is then transparent, its view transform Standard), video frame N on frame N.
 #
 # It starts from an empty scene (run it from the command line: what Blender opened with
-# is let go), lit evenly by a white world. With --save (and `blender -b`), it writes the
+# is let go). With --save (and `blender -b`), it writes the
 # scene to a .blend file and Blender can quit.
 # Checked with Debian 12's Blender 3.4 (tests/app/blender_interop_test.cpp).
 import argparse
@@ -57,6 +61,9 @@ def parse_arguments():
                         "refinement's finest level on a 720p face; 0 displaces the model's own vertices)")
     parser.add_argument("--video", help="the tracked input: seen behind the face through the camera (viewport) "
                         "and composited under it in renders, frame N under frame N")
+    parser.add_argument("--even-light", action="store_true",
+                        help="light the face evenly (a white world) even where DIR/frames.csv has the "
+                        "refinement's lighting")
     parser.add_argument("--save", help="write the scene to this .blend file")
     return parser.parse_args(argv)
 
@@ -194,6 +201,79 @@ def image_size(folder):
     return None
 
 
+def csv_lighting(frames_csv):
+    """Each refined frame's 9 lighting coefficients (frames.csv's l0..l8), by frame."""
+    with open(frames_csv, newline="") as f:
+        reader = csv.DictReader(f)
+        if "l0" not in (reader.fieldnames or []):
+            return {}
+        return {int(r["frame"]): [float(r["l%d" % i]) for i in range(9)]
+                for r in reader if all(r.get("l%d" % i) for i in range(9))}
+
+
+def add_footage_light(scene, lighting):
+    """The world as the refinement found the footage lit, keyed frame by frame.
+
+    facecap shades a surface of normal n, in the viewer's frame (x right, y up,
+    z toward the camera), by l^T SH(n), SH(n) = (1, x, y, z, xy, xz, yz,
+    x^2 - y^2, 3 z^2 - 1) (eq. 4.9): an irradiance over pi. A world whose
+    radiance is L(w) = l0 + 3/2 (l1 x + l2 y + l3 z) + 4 (l4 xy + ... + l8 (3 z^2
+    - 1)) gives a Lambertian surface that shading: each SH band of the radiance
+    is scaled by the cosine lobe's A_l / pi = 1, 2/3, 1/4 (Ramamoorthi and
+    Hanrahan 2001), which undoes it. Blender's world directions are glTF's
+    camera frame turned to z up: x = X, y = Z, z = -Y (the camera at the origin
+    looking along +Y). facecap's albedo and shading multiply pixel values, so
+    the albedo and the footage are read as raw data and the view transform is
+    Raw: the render is albedo x shading, as facecap's own renders are."""
+    world = scene.world
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    background = next(n for n in nodes if n.type == "BACKGROUND")
+
+    def node(kind, operation=None, *inputs):
+        n = nodes.new(kind)
+        if operation:
+            n.operation = operation
+        for i, value in enumerate(inputs):
+            if isinstance(value, (int, float)):
+                n.inputs[i].default_value = value
+            else:
+                links.new(value, n.inputs[i])
+        return n.outputs[0]
+
+    def math(operation, a, b):
+        return node("ShaderNodeMath", operation, a, b)
+
+    direction = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(nodes.new("ShaderNodeTexCoord").outputs["Generated"], direction.inputs[0])
+    x, y, z = direction.outputs[0], direction.outputs[2], math("MULTIPLY", direction.outputs[1], -1.0)
+    terms = [x, y, z, math("MULTIPLY", x, y), math("MULTIPLY", x, z), math("MULTIPLY", y, z),
+             math("SUBTRACT", math("MULTIPLY", x, x), math("MULTIPLY", y, y)),
+             math("SUBTRACT", math("MULTIPLY", math("MULTIPLY", z, z), 3.0), 1.0)]
+    band_scale = [1.0] + [1.5] * 3 + [4.0] * 5
+    coefficients = [nodes.new("ShaderNodeValue") for _ in range(9)]
+    radiance = coefficients[0].outputs[0]
+    for k in range(1, 9):
+        radiance = math("ADD", radiance, math("MULTIPLY", coefficients[k].outputs[0], terms[k - 1]))
+    links.new(math("MAXIMUM", radiance, 0.0), background.inputs["Strength"])
+    background.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    for frame, l in sorted(lighting.items()):
+        for k in range(9):
+            socket = coefficients[k].outputs[0]
+            socket.default_value = band_scale[k] * l[k]
+            socket.keyframe_insert("default_value", frame=frame)
+    if world.node_tree.animation_data and world.node_tree.animation_data.action:
+        for curve in world.node_tree.animation_data.action.fcurves:
+            for key in curve.keyframe_points:
+                key.interpolation = "LINEAR"
+    for image in bpy.data.images:  # the albedo (the detail maps are already)
+        image.colorspace_settings.name = "Non-Color"
+    for clip in bpy.data.movieclips:
+        clip.colorspace_settings.name = "Non-Color"
+    scene.view_settings.view_transform = "Raw"
+    print("import_facecap: the world lit as the footage was (%d frames of lighting)" % len(lighting))
+
+
 def add_plate(scene, camera, video):
     """The footage behind the face: the camera's background in the viewport,
     and under the render in the compositor (the render's background
@@ -274,6 +354,9 @@ def main():
     faces = [o for o in objects if o.type == "MESH"]
     if not faces:
         fail(glb + " holds no mesh")
+    lighting = csv_lighting(frames_csv) if os.path.isfile(frames_csv) else {}
+    if lighting and not args.even_light:
+        add_footage_light(scene, lighting)
     detail_dir = os.path.join(folder, "detail")
     if os.path.isdir(detail_dir):
         add_detail(faces[0], detail_dir, args.subdivisions)
