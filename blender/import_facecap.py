@@ -1,12 +1,13 @@
 # Brings a `facecap track` output folder into Blender as one animated scene:
 #
 #   blender --python blender/import_facecap.py -- DIR [--video INPUT] [--glb FILE] [--subdivisions N]
-#                                                       [--save FILE.blend]
+#                                                       [--even-light] [--save FILE.blend]
 #
 # - imports DIR/animation.glb (`track --gltf`) with Blender's own glTF importer: the face
 #   with its shape keys and their keys, the head's keys and the fitted camera, which
 #   becomes the scene's camera, the render the input's size (DIR/identity.json, else the
-#   video's); `transform --gltf` and `swap --gltf` files come in alike with --glb FILE;
+#   video's); `transform --gltf` and `swap --gltf` files come in alike with --glb FILE and
+#   no DIR (then nothing but the file and the video is read);
 # - plays it at the input's frame rate (read from DIR/frames.csv, else from the keys'
 #   spacing; 29.97 fps as 30 / 1.001) with each video frame on the Blender frame of the
 #   same number (the glTF importer keys at whole frames per second only, so its keys are
@@ -24,11 +25,11 @@
 #   so that the render is albedo x shading as facecap's own renders are;
 # - with --video (the tracked input), puts the footage behind the face: the camera's
 #   background in the viewport and, in the compositor, under the render (whose background
-#   is then transparent, its view transform Standard), video frame N on frame N.
+#   is then transparent), video frame N on frame N.
 #
 # It starts from an empty scene (run it from the command line: what Blender opened with
-# is let go). With --save (and `blender -b`), it writes the
-# scene to a .blend file and Blender can quit.
+# is let go). With --save (and `blender -b`), it writes the scene to a .blend file and
+# Blender can quit.
 # Checked with Debian 12's Blender 3.4 (tests/app/blender_interop_test.cpp).
 import argparse
 import csv
@@ -277,8 +278,9 @@ def add_footage_light(scene, lighting):
 def add_plate(scene, camera, video):
     """The footage behind the face: the camera's background in the viewport,
     and under the render in the compositor (the render's background
-    transparent, the view transform Standard so the plate keeps its colours).
-    Clip frame 1, the video's first, plays on scene frame 0."""
+    transparent, the view transform Standard so that the plate keeps its
+    colours; add_footage_light makes both raw). Clip frame 1, the video's
+    first, plays on scene frame 0."""
     clip = bpy.data.movieclips.load(os.path.abspath(video))
     clip.frame_start = 0
     scene.active_clip = clip
@@ -314,10 +316,16 @@ def main():
         fail("--subdivisions must be 0 to 6 (each level has four times the faces of the one before)")
     if not args.dir and not args.glb:
         fail("give the track folder (DIR) or the animation (--glb FILE)")
+    if args.dir and not os.path.isdir(args.dir):
+        fail(args.dir + " is not a folder")
     glb = args.glb or os.path.join(args.dir, "animation.glb")
     if not os.path.isfile(glb):
         fail(glb + " not found (run `facecap track ... --gltf`)")
-    folder = args.dir or os.path.dirname(os.path.abspath(glb))
+    # The track folder's files, where one is given.
+    def in_folder(name):
+        path = os.path.join(args.dir, name) if args.dir else None
+        return path if path and os.path.exists(path) else None
+
     # An empty scene (Blender's startup cube would sit around the camera, at
     # the origin), lit evenly by a white world so that the face shows its albedo.
     bpy.ops.wm.read_homefile(use_empty=True)
@@ -331,8 +339,8 @@ def main():
     objects = [o for o in bpy.data.objects if o not in before]
     actions = imported_actions(objects)
     # The input's rate: frames.csv's where the folder is a track's, else the keys'.
-    frames_csv = os.path.join(folder, "frames.csv")
-    rate = csv_frame_rate(frames_csv) if os.path.isfile(frames_csv) else key_frame_rate(actions, keyed_at)
+    frames_csv = in_folder("frames.csv")
+    rate = csv_frame_rate(frames_csv) if frames_csv else key_frame_rate(actions, keyed_at)
     fps, fps_base = blender_rate(rate) if rate else (keyed_at, 1.0)
     scene.render.fps, scene.render.fps_base = fps, fps_base
     if fps / fps_base != keyed_at:
@@ -347,18 +355,18 @@ def main():
         if not os.path.isfile(args.video):
             fail(args.video + " not found")
         clip = add_plate(scene, cameras[0] if cameras else None, args.video)
-    size = image_size(folder) or (tuple(clip.size) if clip else None)
+    size = (image_size(args.dir) if args.dir else None) or (tuple(clip.size) if clip else None)
     if size:  # the camera sees what the video frame shows
         scene.render.resolution_x, scene.render.resolution_y = size
         scene.render.resolution_percentage = 100
     faces = [o for o in objects if o.type == "MESH"]
     if not faces:
         fail(glb + " holds no mesh")
-    lighting = csv_lighting(frames_csv) if os.path.isfile(frames_csv) else {}
+    lighting = csv_lighting(frames_csv) if frames_csv else {}
     if lighting and not args.even_light:
-        add_footage_light(scene, lighting)
-    detail_dir = os.path.join(folder, "detail")
-    if os.path.isdir(detail_dir):
+        add_footage_light(scene, lighting)  # after add_plate: the plate too is read raw
+    detail_dir = in_folder("detail")
+    if detail_dir:
         add_detail(faces[0], detail_dir, args.subdivisions)
     print("import_facecap: %s at %.3f fps, frames %d-%d" % (os.path.basename(glb), fps / fps_base,
                                                              scene.frame_start, scene.frame_end))
