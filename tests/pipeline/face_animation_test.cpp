@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "facecap/core/error.hpp"
@@ -131,6 +133,49 @@ TEST(FaceAnimation, TheEyeTurnTargetsPlayTheGaze) {
       // where the turns would compose: 1.1-1.2 degrees off here, 0 at rest.
       EXPECT_LT(angle_between_deg(played_axis, true_axis), k == 3 ? 1e-3 : 1.5) << "key " << k << " eye " << eye;
     }
+  }
+}
+
+// The eyeballs are coloured white with a dark iris and pupil round each
+// eye's axis at rest (so the turned eyes show where they look): the pupil
+// vertex black, the dark vertices centred on the axis within the iris's
+// radius, everything farther round white.
+TEST(FaceAnimation, EachEyeHasAnIrisRoundItsAxis) {
+  FACECAP_REQUIRE_MODEL(model);
+  const Eigen::VectorXd identity = Eigen::VectorXd::Constant(20, 0.5);
+  FaceAnimationKey key;
+  key.expression = Eigen::VectorXf::Zero(model->num_expressions());
+  const GltfAnimatedMesh m = face_animation(*model, identity, {key}, {900.0, 1280, 720});
+  ASSERT_EQ(m.primitives.size(), 2u);
+  const Positions& colours = m.primitives[1].colours;
+  const std::vector<int> source = face_animation_source_vertices(*model)[1];
+  ASSERT_EQ(colours.cols(), Eigen::Index(source.size()));
+  const EyeballGeometry eyes = eyeball_geometry(*model, identity);
+  const Positions rest = model->evaluate(identity.cast<float>(), Eigen::VectorXf());
+  for (int eye = 0; eye < 2; ++eye) {
+    const Region& r = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+    const double iris_deg = std::asin(kIrisRadiusCm / eyes.radius[eye]) * 180 / M_PI;
+    Vec3d dark_sum = Vec3d::Zero();
+    int dark = 0;
+    for (size_t i = 0; i < source.size(); ++i) {
+      if (source[i] < r.first_vertex || source[i] > r.last_vertex) continue;
+      const Vec3d direction = (rest.col(source[i]).cast<double>() - eyes.centre[eye]).normalized();
+      const double off_axis_deg = angle_between_deg(direction, eyes.rest_axis[eye]);
+      const float brightness = colours.col(Eigen::Index(i)).mean();
+      if (source[i] == eyes.pupil_vertex[eye]) {
+        EXPECT_LT(brightness, 0.05f) << "eye " << eye;
+      }
+      if (brightness < 0.5f) {
+        ++dark;
+        dark_sum += direction;
+        EXPECT_LT(off_axis_deg, iris_deg + 0.5) << "eye " << eye << " vertex " << source[i];
+      } else if (off_axis_deg < iris_deg - 5) {
+        ADD_FAILURE() << "eye " << eye << " vertex " << source[i] << " inside the iris is white";
+      }
+    }
+    std::printf("eye %d: %d dark vertices, iris %.1f deg round the axis\n", eye, dark, iris_deg);
+    EXPECT_GT(dark, 20) << "eye " << eye;
+    EXPECT_LT(angle_between_deg(dark_sum, eyes.rest_axis[eye]), 2.0) << "eye " << eye;
   }
 }
 

@@ -76,14 +76,25 @@ Part interior_part(const FaceModel& model) {
   return split_at_uv_seams(triangulate(chosen, model.uvs, model.num_vertices), 0, false);
 }
 
-// Linear RGB of the interior by region: eyeballs and teeth pale, the rest
-// of the mouth pink to dark, where it joins the face a skin tone.
-Eigen::Vector3f interior_colour(int v) {
+// Linear RGB of the interior by region: teeth pale, the rest of the mouth
+// pink to dark, where it joins the face a skin tone; the eyeballs white
+// with a dark brown iris (kIrisRadiusCm) and a black pupil (2 mm) round
+// each eye's axis at rest, so that the eyes show where they look.
+Eigen::Vector3f interior_colour(int v, const EyeballGeometry& eyes, const Positions& head) {
   if (v <= regions::kFace.last_vertex) return {0.55f, 0.38f, 0.32f};
   if (v <= regions::kMouthSocket.last_vertex) return {0.30f, 0.08f, 0.08f};
   if (v <= regions::kEyeSocketRight.last_vertex) return {0.25f, 0.12f, 0.12f};
   if (v <= regions::kGumsAndTongue.last_vertex) return {0.60f, 0.22f, 0.22f};
   if (v <= regions::kTeeth.last_vertex) return {0.85f, 0.82f, 0.72f};
+  const Vec3d p = head.col(v).cast<double>();
+  const int eye = (p - eyes.centre[0]).norm() <= (p - eyes.centre[1]).norm() ? 0 : 1;
+  // The sine of the angle off the axis, as seen from the eyeball's centre.
+  const Vec3d from_centre = (p - eyes.centre[eye]).normalized();
+  const double off_axis = from_centre.cross(eyes.rest_axis[eye]).norm() * eyes.radius[eye];
+  const bool front = from_centre.dot(eyes.rest_axis[eye]) > 0;
+  constexpr double kPupilRadiusCm = 0.2;
+  if (front && off_axis < kPupilRadiusCm) return {0.02f, 0.02f, 0.02f};
+  if (front && off_axis < kIrisRadiusCm) return {0.10f, 0.05f, 0.025f};
   return {0.85f, 0.85f, 0.82f};
 }
 
@@ -186,7 +197,12 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
   mouth_and_eyes.name = "mouth and eyes";
   mouth_and_eyes.base_colour = Eigen::Vector3f::Ones();
   mouth_and_eyes.colours.resize(3, Eigen::Index(inner.source.size()));
-  for (size_t i = 0; i < inner.source.size(); ++i) mouth_and_eyes.colours.col(i) = interior_colour(inner.source[i]);
+  {
+    const Positions head = Eigen::Map<const Positions>(rest.head.data(), 3, model.num_vertices);
+    const EyeballGeometry eyes = head_eyeball_geometry(model, head);
+    for (size_t i = 0; i < inner.source.size(); ++i)
+      mouth_and_eyes.colours.col(i) = interior_colour(inner.source[i], eyes, head);
+  }
   out.primitives.push_back(std::move(mouth_and_eyes));
   out.morph_target_names = model.expression_names;
   out.morph_target_names.insert(out.morph_target_names.end(), kEyeTurnTargetNames.begin(), kEyeTurnTargetNames.end());
