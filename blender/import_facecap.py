@@ -321,6 +321,8 @@ def main():
     glb = args.glb or os.path.join(args.dir, "animation.glb")
     if not os.path.isfile(glb):
         fail(glb + " not found (run `facecap track ... --gltf`)")
+    if args.video and not os.path.isfile(args.video):
+        fail(args.video + " not found")
     # The track folder's files, where one is given.
     def in_folder(name):
         path = os.path.join(args.dir, name) if args.dir else None
@@ -335,7 +337,10 @@ def main():
     keyed_at = 30
     scene.render.fps, scene.render.fps_base = keyed_at, 1.0  # what the importer keys at
     before = set(bpy.data.objects)
-    bpy.ops.import_scene.gltf(filepath=glb)
+    try:
+        bpy.ops.import_scene.gltf(filepath=glb)
+    except RuntimeError as e:  # the importer's own message, on one line
+        fail("cannot read %s: %s" % (glb, " ".join(str(e).split())))
     objects = [o for o in bpy.data.objects if o not in before]
     actions = imported_actions(objects)
     # The input's rate: frames.csv's where the folder is a track's, else the keys'.
@@ -350,11 +355,7 @@ def main():
     cameras = [o for o in objects if o.type == "CAMERA"]
     if cameras:
         scene.camera = cameras[0]
-    clip = None
-    if args.video:
-        if not os.path.isfile(args.video):
-            fail(args.video + " not found")
-        clip = add_plate(scene, cameras[0] if cameras else None, args.video)
+    clip = add_plate(scene, cameras[0] if cameras else None, args.video) if args.video else None
     size = (image_size(args.dir) if args.dir else None) or (tuple(clip.size) if clip else None)
     if size:  # the camera sees what the video frame shows
         scene.render.resolution_x, scene.render.resolution_y = size

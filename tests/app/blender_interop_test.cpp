@@ -571,23 +571,26 @@ TEST(BlenderInterop, TheImportScriptLightsTheFaceAsTheFootageIs) {
   EXPECT_LT(error[0], 0.8 * error[1]);
 }
 
-// import_facecap.py on a folder that is not there, or without its
-// animation: Blender exits non-zero with one line naming what is missing.
-TEST(BlenderInterop, TheImportScriptNamesWhatIsMissing) {
+// import_facecap.py on a folder that is not there, one without its
+// animation or with a corrupt one, or with a video that is not there:
+// Blender exits non-zero with one line naming what is wrong.
+TEST(BlenderInterop, TheImportScriptNamesWhatIsWrongInOneLine) {
   FACECAP_REQUIRE_BLENDER("blender/import_facecap.py");
   TempDir dir;
   const std::string script = "blender -b --factory-startup --python-exit-code 1 --python " +
                              std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- ";
-  const fs::path missing = dir.path() / "nowhere";
-  const test::CommandResult no_folder = test::run_command(script + missing.string() + " 2>&1");
-  EXPECT_NE(no_folder.code, 0);
-  EXPECT_NE(no_folder.out.find("import_facecap: " + missing.string() + " is not a folder\n"), std::string::npos)
-      << no_folder.out;
-  const test::CommandResult no_animation = test::run_command(script + dir.path().string() + " 2>&1");
-  EXPECT_NE(no_animation.code, 0);
-  EXPECT_NE(no_animation.out.find("import_facecap: " + (dir.path() / "animation.glb").string() + " not found"),
-            std::string::npos)
-      << no_animation.out;
+  const fs::path missing = dir.path() / "nowhere", animation = dir.path() / "animation.glb";
+  const auto refused = [&](const std::string& arguments, const std::string& line) {
+    const test::CommandResult r = test::run_command(script + arguments + " 2>&1");
+    EXPECT_NE(r.code, 0) << arguments;
+    EXPECT_NE(r.out.find("import_facecap: " + line), std::string::npos) << r.out;
+  };
+  refused(missing.string(), missing.string() + " is not a folder\n");
+  refused(dir.path().string(), animation.string() + " not found");
+  std::ofstream(animation) << "not a glTF";
+  refused(dir.path().string() + " --video " + (dir.path() / "take.mp4").string(),
+          (dir.path() / "take.mp4").string() + " not found\n");
+  refused(dir.path().string(), "cannot read " + animation.string() + ": ");
 }
 
 }  // namespace facecap
