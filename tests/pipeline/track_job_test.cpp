@@ -22,6 +22,7 @@
 #include "facecap/io/livelink_face.hpp"
 #include "facecap/io/png16.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 #include "io/glb_reader.hpp"
 #include "io/livelink_receiver.hpp"
@@ -382,8 +383,7 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   // A crop for each tracked frame, none for the lost one.
   int crops = 0;
   for (int frame = 0; frame < 36; ++frame) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+    const std::string name = frame_file_name(frame, "png");
     const fs::path crop = out.path() / "aligned" / name;
     const bool tracked = csv[frame + 1].find(",lost,") == std::string::npos;
     ASSERT_EQ(fs::exists(crop), tracked) << name;
@@ -396,8 +396,7 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   // the tracked ones' showing the face.
   EXPECT_EQ(s.uv_passes, 36);
   for (int frame : {30, 31, 34}) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+    const std::string name = frame_file_name(frame, "png");
     const cv::Mat pass = read_png16(out.path() / "uv" / name);
     ASSERT_EQ(pass.type(), CV_16UC4) << name;
     ASSERT_EQ(pass.size(), cv::Size(400, 300)) << name;
@@ -458,8 +457,7 @@ TEST(TrackJob, TheUvPassShowsEachLandmarksUvWhereTheFitPutsIt) {
     std::vector<double> error_px;
     int uncovered = 0;
     for (const auto& [frame, landmarks] : fitted) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+      const std::string name = frame_file_name(frame, "png");
       const cv::Mat pass = read_png16(dir.path() / "uv" / name);
       ASSERT_EQ(pass.type(), CV_16UC4) << name;
       // The UV a pixel spans here: the outer eye corners' UV distance over their pixel distance.
@@ -576,8 +574,7 @@ TEST(TrackJob, ALostFrameGetsAFlatDetailMap) {
   EXPECT_EQ(s.capture.lost, 1);
   EXPECT_EQ(s.detail_maps, 14);
   for (int frame = 0; frame < 14; ++frame) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "frame_%06d.png", frame);
+    const std::string name = frame_file_name(frame, "png");
     const cv::Mat map = read_png16(out.path() / "detail" / name);
     ASSERT_EQ(map.type(), CV_16UC1) << name;
     const int off_zero = cv::countNonZero(map != 32768);
