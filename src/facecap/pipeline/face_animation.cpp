@@ -88,7 +88,7 @@ Eigen::Vector3f interior_colour(int v, const EyeballGeometry& eyes, const Positi
   if (v <= regions::kTeeth.last_vertex) return {0.85f, 0.82f, 0.72f};
   const Vec3d p = head.col(v).cast<double>();
   const int eye = (p - eyes.centre[0]).norm() <= (p - eyes.centre[1]).norm() ? 0 : 1;
-  // The sine of the angle off the axis, as seen from the eyeball's centre.
+  // How far the vertex lies from the eye's axis (cm), on the front half.
   const Vec3d from_centre = (p - eyes.centre[eye]).normalized();
   const double off_axis = from_centre.cross(eyes.rest_axis[eye]).norm() * eyes.radius[eye];
   const bool front = from_centre.dot(eyes.rest_axis[eye]) > 0;
