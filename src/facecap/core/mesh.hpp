@@ -47,4 +47,12 @@ std::vector<bool> boundary_vertices(const std::vector<Triangle>& triangles, int 
 // One UV per vertex (the first corner that uses it), for per-vertex lookups.
 std::vector<Vec2f> per_vertex_uvs(const TriangleMesh& mesh);
 
+// The UV at barycentric weights `bary` (of corners 1 and 2; corner 0 has the
+// rest) in triangle `triangle` of a mesh with UVs.
+inline Vec2f uv_at(const TriangleMesh& mesh, int triangle, const Vec2f& bary) {
+  const Triangle& corner = mesh.triangle_uvs[triangle];
+  return (1 - bary.x() - bary.y()) * mesh.uvs[corner[0]] + bary.x() * mesh.uvs[corner[1]] +
+         bary.y() * mesh.uvs[corner[2]];
+}
+
 }  // namespace facecap

@@ -22,10 +22,7 @@ cv::Mat uv_pass(const TriangleMesh& mesh, const Positions& camera_points, const 
       const size_t i = size_t(y) * size.width + x;
       const int t = buffers.triangle[i];
       if (t < 0) continue;
-      const Vec2f& b = buffers.bary[i];
-      const Triangle& corner = mesh.triangle_uvs[t];
-      const Vec2f uv =
-          (1 - b.x() - b.y()) * mesh.uvs[corner[0]] + b.x() * mesh.uvs[corner[1]] + b.y() * mesh.uvs[corner[2]];
+      const Vec2f uv = uv_at(mesh, t, buffers.bary[i]);
       out[x] = {0, unit_to_16(uv.y()), unit_to_16(uv.x()), 65535};
     }
   }

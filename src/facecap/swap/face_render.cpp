@@ -36,11 +36,7 @@ cv::Mat render_swapped_face(const TriangleMesh& skin, const TextureLevels& textu
   const cv::Mat& ratio_gains = light.expression_gains;
   const Vec3f tint = light.tint;
   // The UV of the pixel at buffer index i (drawn).
-  const auto uv_at = [&](size_t i) {
-    const Vec2f b = buffers.bary[i];
-    const Triangle& uv = skin.triangle_uvs[buffers.triangle[i]];
-    return Vec2f((1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]]);
-  };
+  const auto pixel_uv = [&](size_t i) { return uv_at(skin, buffers.triangle[i], buffers.bary[i]); };
   constexpr int kPixelsAhead = 8;
   parallel_for(
       size.height,
@@ -55,12 +51,12 @@ cv::Mat render_swapped_face(const TriangleMesh& skin, const TextureLevels& textu
             const size_t i = row + x;
             // The texture a few pixels on, asked for now (TextureLevels::prefetch).
             if (x + kPixelsAhead < size.width && buffers.triangle[i + kPixelsAhead] >= 0) {
-              const Vec2f ahead = uv_to_texel(uv_at(i + kPixelsAhead), texture_size);
+              const Vec2f ahead = uv_to_texel(pixel_uv(i + kPixelsAhead), texture_size);
               texture.prefetch(lod, ahead.x(), ahead.y());
             }
             const int tri = buffers.triangle[i];
             if (tri < 0) continue;
-            const Vec2f coord = uv_at(i);
+            const Vec2f coord = pixel_uv(i);
             const Vec2f texel = uv_to_texel(coord, texture_size);
             const cv::Vec4f s = texture.sample<4>(lod, texel.x(), texel.y());
             const Vec3f normal = interpolate(buffers, skin.triangles, normals, i).normalized();

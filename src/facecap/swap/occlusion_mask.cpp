@@ -53,11 +53,7 @@ cv::Mat cover_in_image(const TriangleMesh& skin, const Positions& points, const 
             const size_t i = size_t(y) * size.width + x;
             const int tri = buffers.triangle[i];
             if (tri < 0) continue;
-            const Vec2f b = buffers.bary[i];
-            const Triangle& uv = skin.triangle_uvs[tri];
-            const Vec2f coord =
-                (1 - b.x() - b.y()) * skin.uvs[uv[0]] + b.x() * skin.uvs[uv[1]] + b.y() * skin.uvs[uv[2]];
-            o[x] = cover_at(cover, coord);
+            o[x] = cover_at(cover, uv_at(skin, tri, buffers.bary[i]));
           }
         }
       },
