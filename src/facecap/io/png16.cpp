@@ -90,10 +90,10 @@ std::vector<unsigned char> encode_png16(const cv::Mat& image) {
     return true;
   };
   RowDeflater deflater;
-  size_t dirty_begin = 0, dirty_end = 0;  // the bytes of `row` the last row set
+  size_t dirty = 0;  // the bytes of `row` the last row set: [0, dirty)
   for (int y = 0; y < height; ++y) {
-    std::fill(row.begin() + std::ptrdiff_t(dirty_begin), row.begin() + std::ptrdiff_t(dirty_end), 0);
-    dirty_begin = dirty_end = 0;
+    std::fill_n(row.begin(), std::ptrdiff_t(dirty), 0);
+    dirty = 0;
     const uint16_t* in = image.ptr<uint16_t>(y);
     int first = 0, last = width - 1;
     while (first < width && empty(in + size_t(first) * channels)) ++first;
@@ -113,8 +113,7 @@ std::vector<unsigned char> encode_png16(const cv::Mat& image) {
       std::copy_n(big_endian, pixel_bytes, out);  // the pixel before the first is 0
       for (size_t i = pixel_bytes; i < span; ++i)
         out[i] = static_cast<unsigned char>(big_endian[i] - big_endian[i - pixel_bytes]);
-      dirty_begin = 0;
-      dirty_end = 1 + size_t(first) * pixel_bytes + span;
+      dirty = 1 + size_t(first) * pixel_bytes + span;
     }
     deflater.add(row.data(), row.size());
   }
