@@ -91,11 +91,16 @@ def csv_frame_rate(frames_csv):
     return (rows[-1][0] - rows[0][0]) / (rows[-1][1] - rows[0][1])
 
 
+def keyed_frames(actions):
+    """The frames the actions have keys on, each once, in order."""
+    return sorted({round(k.co.x, 4) for a in actions for c in a.fcurves for k in c.keyframe_points})
+
+
 def key_frame_rate(actions, keyed_at):
     """Frames per second from the keys' spacing (one key a video frame; a
     lost frame's missing key leaves a double step, which the median ignores),
     the keys having been put at `keyed_at` frames per second; None without two keys."""
-    frames = sorted({round(k.co.x, 4) for a in actions for c in a.fcurves for k in c.keyframe_points})
+    frames = keyed_frames(actions)
     steps = sorted(b - a for a, b in zip(frames, frames[1:]))
     return keyed_at / steps[len(steps) // 2] if steps else None
 
@@ -128,8 +133,8 @@ def imported_actions(objects):
 
 
 def key_range(actions):
-    frames = [k.co.x for a in actions for c in a.fcurves for k in c.keyframe_points]
-    return (int(round(min(frames))), int(round(max(frames)))) if frames else (0, 0)
+    frames = keyed_frames(actions)
+    return (int(round(frames[0])), int(round(frames[-1]))) if frames else (0, 0)
 
 
 def detail_sequence(detail_dir):
