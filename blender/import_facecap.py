@@ -1,7 +1,7 @@
 # Brings a `facecap track` output folder into Blender as one animated scene:
 #
 #   blender --python blender/import_facecap.py -- DIR [--video INPUT] [--glb FILE] [--subdivisions N]
-#                                                       [--even-light] [--save FILE.blend]
+#                                                       [--even-light] [--whole-face] [--save FILE.blend]
 #
 # - imports DIR/animation.glb (`track --gltf`) with Blender's own glTF importer: the face
 #   with its shape keys and their keys, the head's keys and the fitted camera, which
@@ -23,6 +23,9 @@
 #   as the footage was lit, keyed frame by frame (add_footage_light; --even-light keeps a
 #   white world), with the albedo and footage read as raw data and the view transform Raw,
 #   so that the render is albedo x shading as facecap's own renders are;
+# - with DIR/face_matte.png (`track --gltf`), holds the skin out where the matte is 0 (the
+#   scalp, ears and neck of the model's face region), so that the footage's own hair, ears,
+#   neck and collar show there (add_face_matte; --whole-face renders the whole region);
 # - with --video (the tracked input), puts the footage behind the face: the camera's
 #   background in the viewport and, in the compositor, under the render (whose background
 #   is then transparent), video frame N on frame N.
@@ -65,6 +68,9 @@ def parse_arguments():
     parser.add_argument("--even-light", action="store_true",
                         help="light the face evenly (a white world) even where DIR/frames.csv has the "
                         "refinement's lighting")
+    parser.add_argument("--whole-face", action="store_true",
+                        help="render the whole face region (scalp to neck) even where DIR/face_matte.png "
+                        "would leave all but the narrow face to the footage")
     parser.add_argument("--save", help="write the scene to this .blend file")
     return parser.parse_args(argv)
 
@@ -192,6 +198,37 @@ def add_detail(face, detail_dir, subdivisions):
     displace.vertex_group = DETAIL_GROUP
     print("import_facecap: detail maps %06d-%06d on %d vertices of the face" % (first, first + count - 1,
                                                                               len(vertices)))
+
+
+def add_face_matte(face, matte_png):
+    """Holds out the face's skin by DIR/face_matte.png (`track --gltf`): where
+    the matte is 0 (the scalp, ears and neck of the model's face region) the
+    render is transparent and the footage under it shows, with a soft edge on
+    the narrow face. A Holdout shader mixed into each skin material by the
+    matte, read through the skin's UVs (the mouth and eyes keep theirs)."""
+    image = bpy.data.images.load(os.path.abspath(matte_png))
+    image.colorspace_settings.name = "Non-Color"
+    materials = [m for m in face.data.materials if m and m.name.startswith("face") and m.use_nodes]
+    for material in materials:
+        nodes, links = material.node_tree.nodes, material.node_tree.links
+        output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output)
+        surface = output.inputs["Surface"]
+        if not surface.is_linked:
+            continue
+        shader = surface.links[0].from_socket
+        matte = nodes.new("ShaderNodeTexImage")
+        matte.image = image
+        matte.extension = "EXTEND"
+        uv = nodes.new("ShaderNodeUVMap")
+        uv.uv_map = face.data.uv_layers[0].name
+        links.new(uv.outputs["UV"], matte.inputs["Vector"])
+        mix = nodes.new("ShaderNodeMixShader")
+        links.new(matte.outputs["Color"], mix.inputs["Fac"])
+        links.new(nodes.new("ShaderNodeHoldout").outputs[0], mix.inputs[1])  # Fac 0: the footage
+        links.new(shader, mix.inputs[2])  # Fac 1: the face
+        links.new(mix.outputs[0], surface)
+    print("import_facecap: the face held out by %s (%d material(s))" % (os.path.basename(matte_png),
+                                                                      len(materials)))
 
 
 def image_size(folder):
@@ -371,6 +408,9 @@ def main():
     lighting = csv_lighting(frames_csv) if frames_csv else {}
     if lighting and not args.even_light:
         add_footage_light(scene, lighting)  # after add_plate: the plate too is read raw
+    matte = in_folder("face_matte.png")
+    if matte and not args.whole_face:
+        add_face_matte(faces[0], matte)
     detail_dir = in_folder("detail")
     if detail_dir:
         add_detail(faces[0], detail_dir, args.subdivisions)

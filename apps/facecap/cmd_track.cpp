@@ -93,6 +93,7 @@ void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& opt
   if (options.aligned_faces) std::fprintf(out, "%s\n", (s.output_dir / "aligned").string().c_str());
   if (options.detail_maps) std::fprintf(out, "%s\n", (s.output_dir / "detail").string().c_str());
   if (options.uv_pass) std::fprintf(out, "%s\n", (s.output_dir / "uv").string().c_str());
+  if (!s.face_matte.empty()) std::fprintf(out, "%s\n", s.face_matte.string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
@@ -142,7 +143,9 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "Write DIR/animation.glb: the face with its 53 blend shapes as morph targets, head pose and weights "
                 "keyed per frame, and the fitted camera, for Blender, three.js and other glTF tools (with --refine, "
                 "textured with the albedo). A video that cuts gets one per shot: DIR/animation_shot<N>.glb after the "
-                "first");
+                "first. Also DIR/face_matte.png, in the same UV layout: 255 on the face itself (brows to chin, cheek "
+                "to cheek), 0 on the region's scalp, ears and neck, feathered between, so that a render over the "
+                "footage leaves the person's own hair, ears and neck in view (blender/import_facecap.py uses it)");
   CLI::Option* texture =
       cmd->add_flag("--texture", a->options.texture,
                     "Write DIR/texture.png: the face's skin over its first --texture-frames frames (a photo: the "
@@ -179,7 +182,8 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "u and green v of the face's surface point each pixel shows, in the ICT UV layout of albedo.png and "
                 "texture.png, alpha where the face region covers the pixel (with --refine, the refined surface's); "
                 "an empty pass for a frame without a face. Nuke's STMap node (or another compositor's UV map) puts a "
-                "texture painted in that layout onto the face in every frame");
+                "texture painted in that layout onto the face in every frame; DIR/face_matte.png put through it is "
+                "the matte of the face itself");
   cmd->add_flag("--livelink", a->options.livelink,
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "

@@ -51,26 +51,73 @@ cv::Mat read_png_bgra(const fs::path& file) {
   return bgra;
 }
 
-// Where the file's primitives cover the image at `key`, seen through its
-// camera (looking down -z, y up; pixel centres at integers).
+constexpr int kSubPixelBits = 4;  // for fillConvexPoly
+
+// Where the file's camera sees each vertex of primitive `part` at `key`
+// (looking down -z, y up; pixel centres at integers), in pixels times
+// 2^kSubPixelBits.
+std::vector<cv::Point> projected_part(const test::Glb& g, int part, int key, int width, int height) {
+  const Eigen::Matrix3Xf world = g.played_part(part, key);
+  std::vector<cv::Point> px(size_t(world.cols()));
+  for (Eigen::Index i = 0; i < world.cols(); ++i) {
+    const Eigen::Vector2d p = g.camera_pixel(world.col(i), width, height);
+    px[size_t(i)] =
+        cv::Point(int(std::lround(p.x() * (1 << kSubPixelBits))), int(std::lround(p.y() * (1 << kSubPixelBits))));
+  }
+  return px;
+}
+
+void fill_triangle(cv::Mat& mask, const std::vector<cv::Point>& px, const std::vector<uint32_t>& tris, size_t k) {
+  const cv::Point tri[3] = {px[tris[k]], px[tris[k + 1]], px[tris[k + 2]]};
+  cv::fillConvexPoly(mask, tri, 3, cv::Scalar(255), cv::LINE_8, kSubPixelBits);
+}
+
+// Where the file's primitives cover the image at `key`, seen through its camera.
 cv::Mat expected_coverage(const test::Glb& g, int key, int width, int height) {
-  constexpr int kShift = 4;  // sub-pixel bits for fillConvexPoly
   cv::Mat mask(height, width, CV_8U, cv::Scalar(0));
   const auto& prims = g.doc.at("meshes").at(0).at("primitives");
   for (size_t part = 0; part < prims.size(); ++part) {
-    const Eigen::Matrix3Xf world = g.played_part(int(part), key);
-    std::vector<cv::Point> px(size_t(world.cols()));
-    for (Eigen::Index i = 0; i < world.cols(); ++i) {
-      const Eigen::Vector2d p = g.camera_pixel(world.col(i), width, height);
-      px[size_t(i)] = cv::Point(int(std::lround(p.x() * (1 << kShift))), int(std::lround(p.y() * (1 << kShift))));
-    }
+    const std::vector<cv::Point> px = projected_part(g, int(part), key, width, height);
     const std::vector<uint32_t> tris = g.indices(prims.at(part).at("indices"));
-    for (size_t k = 0; k + 2 < tris.size(); k += 3) {
-      const cv::Point tri[3] = {px[tris[k]], px[tris[k + 1]], px[tris[k + 2]]};
-      cv::fillConvexPoly(mask, tri, 3, cv::Scalar(255), cv::LINE_8, kShift);
-    }
+    for (size_t k = 0; k + 2 < tris.size(); k += 3) fill_triangle(mask, px, tris, k);
   }
   return mask;
+}
+
+// The pixels at `key` that only the face's triangles held out whole by
+// `matte` (face_matte.png, read at each corner's UV) cover, and those that
+// only its triangles shown whole cover; each shrunk by a pixel.
+struct MattedCoverage {
+  cv::Mat held_out, shown;
+};
+MattedCoverage matted_coverage(const test::Glb& g, const cv::Mat& matte, int key, int width, int height) {
+  cv::Mat held_out(height, width, CV_8U, cv::Scalar(0)), shown = held_out.clone(), other = held_out.clone();
+  const auto& prims = g.doc.at("meshes").at(0).at("primitives");
+  for (size_t part = 0; part < prims.size(); ++part) {
+    const std::vector<cv::Point> px = projected_part(g, int(part), key, width, height);
+    const std::vector<uint32_t> tris = g.indices(prims.at(part).at("indices"));
+    std::vector<float> value(px.size(), -1.0f);  // the mouth and eyes: no matte
+    if (part == 0) {
+      const std::vector<float> uv = g.floats(prims.at(0).at("attributes").at("TEXCOORD_0"));
+      for (size_t i = 0; i < value.size(); ++i) {  // glTF's v runs down the image
+        cv::Mat sample;
+        cv::getRectSubPix(matte, cv::Size(1, 1),
+                          cv::Point2f(uv[2 * i] * float(matte.cols) - 0.5f, uv[2 * i + 1] * float(matte.rows) - 0.5f),
+                          sample, CV_32F);
+        value[i] = sample.at<float>(0, 0);
+      }
+    }
+    for (size_t k = 0; k + 2 < tris.size(); k += 3) {
+      const float low = std::min({value[tris[k]], value[tris[k + 1]], value[tris[k + 2]]});
+      const float high = std::max({value[tris[k]], value[tris[k + 1]], value[tris[k + 2]]});
+      fill_triangle(low >= 0 && high <= 1 ? held_out : low >= 254 ? shown : other, px, tris, k);
+    }
+  }
+  const cv::Mat shrink = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+  MattedCoverage out;
+  cv::erode(held_out & ~(shown | other), out.held_out, shrink);
+  cv::erode(shown & ~(held_out | other), out.shown, shrink);
+  return out;
 }
 
 bool have_blender() { return test::run_command("command -v blender >/dev/null 2>&1").code == 0; }
@@ -484,6 +531,30 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   std::printf("render of frame 17 away from the face: grey %.0f-%.0f (the plate's frame 17: 210)\n", lowest, highest);
   EXPECT_GE(lowest, 206);
   EXPECT_LE(highest, 214);
+
+  // The face matte holds out the scalp, ears and neck of the model's face
+  // region: where only they cover the frame, the render shows the plate;
+  // where only the narrow face does, the face.
+  const cv::Mat matte = read_image((dir.path() / "face_matte.png").string());
+  ASSERT_FALSE(matte.empty());
+  cv::Mat matte_grey;
+  cv::extractChannel(matte, matte_grey, 0);
+  const MattedCoverage covered =
+      matted_coverage(test::Glb::read(dir.path() / "animation.glb"), matte_grey, 17, 320, 180);
+  const int held_out = cv::countNonZero(covered.held_out), shown = cv::countNonZero(covered.shown);
+  double held_low = 0, held_high = 0;
+  cv::minMaxLoc(grey, &held_low, &held_high, nullptr, nullptr, covered.held_out);
+  cv::Mat off_the_plate;
+  cv::absdiff(grey, cv::Scalar(210), off_the_plate);
+  const double face_off_the_plate = cv::mean(off_the_plate, covered.shown)[0];
+  std::printf("held out: %d px, grey %.0f-%.0f; shown: %d px, %.1f grey levels from the plate on average\n", held_out,
+              held_low, held_high, shown, face_off_the_plate);
+  EXPECT_GT(held_out, 300);
+  EXPECT_GT(shown, 1000);
+  EXPECT_GE(held_low, 206);
+  EXPECT_LE(held_high, 214);
+  EXPECT_GT(face_off_the_plate, 40);
+  EXPECT_NE(log.find("the face held out by face_matte.png (1 material(s))"), std::string::npos) << log;
 }
 
 // import_facecap.py given an animation alone (--glb, as `transform --gltf`

@@ -111,6 +111,7 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
   std::filesystem::create_directories(dir.path() / "out");
   std::ofstream(dir.path() / "out" / "identity.json") << "{}";    // an earlier run's
   std::ofstream(dir.path() / "out" / "animation.glb") << "glTF";  // an earlier run's
+  std::ofstream(dir.path() / "out" / "face_matte.png") << "PNG";  // an earlier run's
   const RunResult r = run("track " + image.string() + " -o " + (dir.path() / "out").string() + " --gltf");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(lines(r.out), 1) << r.out;
@@ -120,8 +121,9 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
   std::string header, row;
   ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
   EXPECT_EQ(row.rfind("0,0,lost,", 0), 0u) << row;
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "identity.json"));  // no identity was seen here
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "animation.glb"));  // nor a face to animate
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "identity.json"));   // no identity was seen here
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "animation.glb"));   // nor a face to animate
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "face_matte.png"));  // nor to matte
 }
 
 // track --each-image: a folder where no image shows a face is an error that

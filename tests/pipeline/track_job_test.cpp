@@ -22,6 +22,7 @@
 #include "facecap/io/livelink_face.hpp"
 #include "facecap/io/png16.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/face_matte.hpp"
 #include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 #include "io/glb_reader.hpp"
@@ -427,6 +428,44 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   EXPECT_NEAR(times.back(), 35 / 30.0, 1e-6);
   EXPECT_EQ(g.doc["meshes"][0]["primitives"][0]["targets"].size(), 53u + 4u);  // + the eye turns
   EXPECT_FALSE(g.doc.contains("images"));                                      // no albedo without --refine
+  // Beside them, the face matte (face_matte.hpp), listed in the summary.
+  EXPECT_EQ(s.face_matte, out.path() / "face_matte.png");
+  const cv::Mat matte = read_image((out.path() / "face_matte.png").string());
+  ASSERT_EQ(matte.size(), cv::Size(1024, 1024));
+  cv::Mat grey;
+  cv::extractChannel(matte, grey, 0);
+  EXPECT_EQ(cv::countNonZero(grey != face_matte_image(*model)), 0);
+  // Put through a frame's UV pass as a compositor's STMap does (u right, v
+  // up, texel centres at (i + 0.5) / size), it is the face's matte in that
+  // frame: whole at the fitted inner landmarks, and none on part of what the
+  // pass covers (the scalp, ears and neck).
+  const cv::Mat pass = read_png16(out.path() / "uv" / frame_file_name(30, "png"));
+  cv::Mat map_x(pass.size(), CV_32F), map_y(pass.size(), CV_32F), in_frame;
+  for (int y = 0; y < pass.rows; ++y)
+    for (int x = 0; x < pass.cols; ++x) {
+      const cv::Vec<uint16_t, 4> p = pass.at<cv::Vec<uint16_t, 4>>(y, x);
+      const bool covered = p[3] > 0;
+      map_x.at<float>(y, x) = covered ? p[2] / 65535.0f * grey.cols - 0.5f : -10.0f;
+      map_y.at<float>(y, x) = covered ? (1 - p[1] / 65535.0f) * grey.rows - 0.5f : -10.0f;
+    }
+  cv::remap(grey, in_frame, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::Mat pass_alpha;
+  cv::extractChannel(pass, pass_alpha, 3);
+  const int region_px = cv::countNonZero(pass_alpha),
+            held_out_px = cv::countNonZero((pass_alpha > 0) & (in_frame == 0));
+  int whole = 0, landmarks_on_the_face = 0;
+  const nlohmann::json fitted = nlohmann::json::parse(jsonl[30])["fitted_landmarks"];
+  for (size_t i = 17; i < 68; ++i) {
+    const cv::Point px(int(std::lround(double(fitted[i][0]))), int(std::lround(double(fitted[i][1]))));
+    if (pass_alpha.at<uint16_t>(px) == 0) continue;  // the inner lips' rim
+    ++landmarks_on_the_face;
+    whole += in_frame.at<uint8_t>(px) >= 250;
+  }
+  std::printf("face matte through the UV pass: %d of %d landmarks whole; %d of the region's %d px held out\n", whole,
+              landmarks_on_the_face, held_out_px, region_px);
+  EXPECT_GE(landmarks_on_the_face, 40);  // measured 43 (the lips' inner points on the mouth's rim are not)
+  EXPECT_EQ(whole, landmarks_on_the_face);
+  EXPECT_GT(held_out_px, region_px / 5);  // measured 35 %
 }
 
 // --uv-pass on real footage: where the fit puts each inner landmark (iBUG

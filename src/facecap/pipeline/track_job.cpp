@@ -20,6 +20,7 @@
 #include "facecap/pipeline/action_unit_table.hpp"
 #include "facecap/pipeline/detail_maps.hpp"
 #include "facecap/pipeline/face_animation.hpp"
+#include "facecap/pipeline/face_matte.hpp"
 #include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/landmark_table.hpp"
 #include "facecap/pipeline/livelink_streamer.hpp"
@@ -43,6 +44,7 @@ constexpr const char* kLandmarkTable = "landmarks.csv";
 constexpr const char* kActionUnitTable = "action_units.csv";
 constexpr const char* kAlignedFaces = "aligned";  // a folder
 constexpr const char* kAlbedoImage = "albedo.png";
+constexpr const char* kFaceMatteImage = "face_matte.png";
 constexpr const char* kTextureImage = "texture.png";
 
 // A text output written through a temporary file and renamed at the end.
@@ -285,6 +287,7 @@ class FrameWriter {
     // Like identity.json: no tracked frame, no face to animate (an earlier
     // run's animation.glb is removed, and so are its later shots' files).
     if (animations_) animation_files_ = animations_->finish();
+    if (options_.gltf || options_.uv_pass) stage_face_matte(id.frames_used > 0);
     staged_images_.commit();
     if (options_.refine) remove_other_shot_files(dir_ / kAlbedoImage, albedo_files_, /*remove_first_when_none=*/false);
     if (options_.texture)
@@ -301,6 +304,7 @@ class FrameWriter {
     meshes_.finish();
   }
 
+  const fs::path& face_matte_file() const { return face_matte_file_; }
   int meshes_written() const { return meshes_.meshes_written(); }
   int detail_maps_written() const { return detail_maps_ ? detail_maps_->maps_written() : 0; }
   int uv_passes_written() const { return uv_passes_ ? uv_passes_->passes_written() : 0; }
@@ -323,6 +327,20 @@ class FrameWriter {
     write_binary_file(staged_images_.stage(file), png.data(), png.size());
     files.push_back(file);
     return &files.back();
+  }
+
+  // --gltf, --uv-pass: the face matte (face_matte.hpp), the same for every
+  // shot; where no face was tracked, none (an earlier run's is removed).
+  void stage_face_matte(bool any_face) {
+    const fs::path file = dir_ / kFaceMatteImage;
+    if (!any_face) {
+      std::error_code ec;
+      fs::remove(file, ec);
+      return;
+    }
+    const std::vector<uint8_t> png = encode_png(face_matte_image(model_));
+    write_binary_file(staged_images_.stage(file), png.data(), png.size());
+    face_matte_file_ = file;
   }
 
   // --livelink, --livelink-udp: the frame's weights, head angles and each
@@ -437,7 +455,9 @@ class FrameWriter {
   std::optional<FaceTextureGatherer> texture_;  // --texture: the shot's first frames with a face
   std::vector<uint8_t> shot_texture_png_;
   std::vector<fs::path> texture_files_;
-  StagedFiles staged_images_;  // each shot's albedo.png and texture.png, in place when the capture completes
+  StagedFiles staged_images_;  // each shot's albedo.png and texture.png, and face_matte.png, in place when the
+                               // capture completes
+  fs::path face_matte_file_;   // where one was written
   int shot_first_frame_ = -1;  // the index of the current shot's first frame
   TrackMeshes meshes_;         // --meshes, --point-cache
 };
@@ -514,6 +534,7 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
   summary.meshes_written = impl_->writer.meshes_written();
   summary.detail_maps = impl_->writer.detail_maps_written();
   summary.uv_passes = impl_->writer.uv_passes_written();
+  summary.face_matte = impl_->writer.face_matte_file();
   summary.gaze_frames = impl_->writer.gaze_frames();
   if (const LiveLinkStreamer* stream = impl_->writer.livelink_stream()) {
     summary.livelink_sent = stream->sent();

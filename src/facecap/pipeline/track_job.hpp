@@ -125,9 +125,10 @@ struct TrackSummary {
   std::string livelink_address;                          // ...to this address, as resolved
   std::string livelink_error;                            // why the first datagram that failed did ("" where none did)
   int refined_frames = 0;
-  int detail_maps = 0;   // TrackOptions::detail_maps: the maps written
-  int uv_passes = 0;     // TrackOptions::uv_pass: the passes written
-  double refine_ms = 0;  // total, on the refinement thread
+  int detail_maps = 0;               // TrackOptions::detail_maps: the maps written
+  int uv_passes = 0;                 // TrackOptions::uv_pass: the passes written
+  std::filesystem::path face_matte;  // --gltf or --uv-pass: DIR/face_matte.png (pipeline/face_matte.hpp), if written
+  double refine_ms = 0;              // total, on the refinement thread
 };
 
 TrackSummary run_track(const FaceModel& model, const std::string& input, const std::filesystem::path& output_dir,
