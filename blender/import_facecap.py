@@ -420,4 +420,5 @@ def main():
         bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.save))
 
 
-main()
+if __name__ == "__main__":  # run by Blender (--python); a probe may import the functions
+    main()
