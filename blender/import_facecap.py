@@ -97,6 +97,15 @@ def csv_frame_rate(frames_csv):
     return (rows[-1][0] - rows[0][0]) / (rows[-1][1] - rows[0][1])
 
 
+def load_image(path):
+    """An image Blender can read, as non-colour data; fails naming the file where it cannot."""
+    image = bpy.data.images.load(os.path.abspath(path))
+    if image.size[0] == 0 or image.size[1] == 0:  # Blender loads what it cannot decode as an empty image
+        fail("cannot read %s: not an image Blender can decode (cut short or damaged?)" % path)
+    image.colorspace_settings.name = "Non-Color"
+    return image
+
+
 def keyed_frames(actions):
     """The frames the actions have keys on, each once, in order."""
     return sorted({round(k.co.x, 4) for a in actions for c in a.fcurves for k in c.keyframe_points})
@@ -170,9 +179,8 @@ def add_detail(face, detail_dir, subdivisions):
     vertices = {v for p in mesh.polygons if p.material_index in skin for v in p.vertices}
     group.add(sorted(vertices), 1.0, "REPLACE")
 
-    image = bpy.data.images.load(os.path.join(detail_dir, "frame_%06d.png" % first))
+    image = load_image(os.path.join(detail_dir, "frame_%06d.png" % first))
     image.source = "SEQUENCE"
-    image.colorspace_settings.name = "Non-Color"
     texture = bpy.data.textures.new("facecap detail", type="IMAGE")
     texture.image = image
     texture.extension = "EXTEND"
@@ -206,8 +214,7 @@ def add_face_matte(face, matte_png):
     render is transparent and the footage under it shows, with a soft edge on
     the narrow face. A Holdout shader mixed into each skin material by the
     matte, read through the skin's UVs (the mouth and eyes keep theirs)."""
-    image = bpy.data.images.load(os.path.abspath(matte_png))
-    image.colorspace_settings.name = "Non-Color"
+    image = load_image(matte_png)
     materials = [m for m in face.data.materials if m and m.name.startswith("face") and m.use_nodes]
     for material in materials:
         nodes, links = material.node_tree.nodes, material.node_tree.links
@@ -324,6 +331,8 @@ def add_plate(scene, camera, video):
     colours; add_footage_light makes both raw). Clip frame 1, the video's
     first, plays on scene frame 0."""
     clip = bpy.data.movieclips.load(os.path.abspath(video))
+    if clip.frame_duration == 0:
+        fail("cannot read %s: no frames Blender can decode" % video)
     clip.frame_start = 0
     scene.active_clip = clip
     if camera:

@@ -24,6 +24,7 @@
 #include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/core/statistics.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/input.hpp"
 #include "facecap/io/png16.hpp"
@@ -714,6 +715,39 @@ TEST(BlenderInterop, TheImportScriptNamesWhatIsWrongInOneLine) {
   refused(dir.path().string() + " --video " + (dir.path() / "take.mp4").string(),
           (dir.path() / "take.mp4").string() + " not found\n");
   refused(dir.path().string(), "cannot read " + animation.string() + ": ");
+
+  // A good animation (one textured triangle before the camera, two keys),
+  // with a face matte cut short, or a video that is no video.
+  {
+    GltfAnimatedMesh m;
+    m.name = "face";
+    GltfPrimitive triangle;
+    triangle.name = "face";
+    triangle.positions = (Positions(3, 3) << -0.1f, 0.1f, 0.0f, -0.1f, -0.1f, 0.1f, -1, -1, -1).finished();
+    triangle.uvs = (Eigen::Matrix2Xf(2, 3) << 0, 1, 0, 1, 1, 0).finished();
+    triangle.triangles = {{0, 1, 2}};
+    triangle.morph_targets = {Positions::Zero(3, 3)};
+    m.primitives = {triangle};
+    m.morph_target_names = {"jawOpen"};
+    m.times = {0.0f, 1 / 30.0f};
+    m.translations = {Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero()};
+    m.rotations = {Eigen::Quaternionf::Identity(), Eigen::Quaternionf::Identity()};
+    m.weights = Eigen::MatrixXf::Zero(1, 2);
+    m.camera = GltfCamera{};
+    write_glb(animation, m);
+  }
+  const std::string bytes = test::read_file(FACECAP_BLENDER_IMPORT_SCRIPT);  // any file that is not a PNG
+  std::ofstream(dir.path() / "face_matte.png", std::ios::binary) << "\x89PNG\r\n\x1a\n" << bytes.substr(0, 100);
+  refused(dir.path().string(), "cannot read " + (dir.path() / "face_matte.png").string() + ": not an image");
+  {  // the animation itself is good: left alone, the matte is not read
+    const test::CommandResult whole = test::run_command(script + dir.path().string() + " --whole-face 2>&1");
+    EXPECT_EQ(whole.code, 0) << whole.out;
+    EXPECT_NE(whole.out.find("import_facecap: animation.glb at 30.000 fps, frames 0-1"), std::string::npos)
+        << whole.out;
+  }
+  std::ofstream(dir.path() / "take.mp4", std::ios::binary) << std::string(5000, '\0');
+  refused(dir.path().string() + " --whole-face --video " + (dir.path() / "take.mp4").string(),
+          "cannot read " + (dir.path() / "take.mp4").string() + ": no frames");
 }
 
 }  // namespace facecap
