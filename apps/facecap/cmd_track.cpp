@@ -95,6 +95,9 @@ void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& opt
   if (options.uv_pass) std::fprintf(out, "%s\n", (s.output_dir / "uv").string().c_str());
   if (!s.face_matte.empty()) std::fprintf(out, "%s\n", s.face_matte.string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
+  if (options.chan && s.capture.identity.frames_used > 0)
+    for (const char* name : {"head.chan", "camera.chan"})
+      std::fprintf(out, "%s\n", (s.output_dir / name).string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
 }
@@ -184,6 +187,19 @@ void register_track(CLI::App& app, GlobalOptions& global) {
                 "an empty pass for a frame without a face. Nuke's STMap node (or another compositor's UV map) puts a "
                 "texture painted in that layout onto the face in every frame; DIR/face_matte.png put through it is "
                 "the matte of the face itself");
+  CLI::Option* chan = cmd->add_flag(
+      "--chan", a->options.chan,
+      "Write DIR/head.chan and DIR/camera.chan: each tracked frame's head pose and the camera's vertical field of "
+      "view as Nuke .chan files (frame tx ty tz rx ry rz [vfov]; centimetres, degrees, rotation order ZXY, Nuke's "
+      "y-up space with the camera at the origin looking down -z), for Nuke's Axis and Camera nodes (Import chan "
+      "file), Houdini and Blender's Nuke .chan add-on. Put the --meshes (model space, the default) under the head's "
+      "Axis and they sit on the face through the camera; give the camera the plate's aspect (e.g. apertures 36 x "
+      "20.25 mm for 16:9)");
+  cmd->add_option("--chan-first-frame", a->options.chan_first_frame,
+                  "--chan: the frame number the input's first frame takes in the .chan files (Nuke numbers a "
+                  "movie's frames from 1; an image sequence keeps its own numbers)")
+      ->needs(chan)
+      ->capture_default_str();
   cmd->add_flag("--livelink", a->options.livelink,
                 "Write DIR/livelink_face.csv: the 52 ARKit blend shapes, head rotation and gaze per frame as a Live "
                 "Link Face take (Timecode, BlendShapeCount, EyeBlinkLeft ... RightEyeRoll; angles in radians), for "

@@ -29,6 +29,7 @@
 #include "facecap/io/input.hpp"
 #include "facecap/io/png16.hpp"
 #include "facecap/io/video_writer.hpp"
+#include "facecap/model/obj_reader.hpp"
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
@@ -648,6 +649,66 @@ TEST(BlenderInterop, TheImportScriptLightsTheFaceAsTheFootageIs) {
   // is what matches: TheFootageLightShadesASphereAsFacecapsShadingDoes).
   EXPECT_LT(error[0], 11.5);
   EXPECT_LT(error[0], 0.8 * error[1]);
+}
+
+// track --chan: Blender's Nuke .chan add-on, reading head.chan onto an Axis
+// (an empty) and camera.chan onto a camera as Nuke's defaults say (rotation
+// order ZXY), sees the model-space meshes under the head where the fit put
+// the landmarks: the inner landmark vertices of frames 3 and 17 project onto
+// frames.jsonl's fitted landmarks, half a pixel up and left (the frame's
+// centre against facecap's principal point). Read in another order, they
+// do not.
+TEST(BlenderInterop, TheChanFilesPutTheMeshesWhereTheFitSawThem) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  FACECAP_REQUIRE_BLENDER("the .chan files");
+  TempDir dir;
+  const test::CommandResult tracked = track_20_frames(video, dir.path(), "--chan --meshes");
+  ASSERT_EQ(tracked.code, 0) << tracked.out;
+  nlohmann::json points;
+  for (const int frame : {3, 17}) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.obj", frame);
+    const ObjData mesh = read_obj(dir.path() / "meshes" / name, {.read_topology = false});
+    nlohmann::json& at = points[std::to_string(frame + 1)];  // Nuke's frame numbers start at 1
+    for (int i = 17; i < 68; ++i) {
+      const size_t v = size_t(model->landmarks.vertices[size_t(i)]);
+      at.push_back({mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]});
+    }
+  }
+  const fs::path points_path = dir.path() / "points.json";
+  std::ofstream(points_path) << points.dump();
+  double worst[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const fs::path report_path = dir.path() / "pixels.json";
+    const test::CommandResult probed =
+        test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
+                          std::string(FACECAP_BLENDER_CHAN_PROBE) + " -- " + report_path.string() + " " +
+                          (dir.path() / "head.chan").string() + " " + (dir.path() / "camera.chan").string() +
+                          " 1280 720 " + points_path.string() + (k == 0 ? " ZXY" : " XYZ") + " 2>&1");
+    ASSERT_EQ(probed.code, 0) << probed.out;
+    std::ifstream in(report_path);
+    const nlohmann::json pixels = nlohmann::json::parse(in);
+    for (const int frame : {3, 17}) {
+      const std::vector<cv::Point2f> fitted = fitted_landmarks(dir.path() / "frames.jsonl", frame, 1.0f);
+      const nlohmann::json& seen = pixels.at(std::to_string(frame + 1));
+      ASSERT_EQ(seen.size(), 51u);
+      for (size_t i = 0; i < 51; ++i) {
+        // facecap's principal point is (W / 2, H / 2) with pixel centres at
+        // integers, half a pixel right of and below the frame's centre,
+        // where Blender's (and Nuke's) camera puts it.
+        const cv::Point2f p(float(seen[i][0]) + 0.5f, float(seen[i][1]) + 0.5f);
+        worst[k] = std::max(worst[k], double(cv::norm(p - fitted[17 + i])));
+      }
+    }
+  }
+  std::printf(
+      "inner landmarks through the .chan camera: at most %.3f px from the fit's (order ZXY), %.2f px read "
+      "as XYZ\n",
+      worst[0], worst[1]);
+  // Measured: 0.007 px (the files' 6 decimals); 3.6 px in the wrong order.
+  EXPECT_LT(worst[0], 0.02);
+  EXPECT_GT(worst[1], 1.0);
 }
 
 // The footage light (add_footage_light) is what facecap's shading assumes:

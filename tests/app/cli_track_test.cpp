@@ -109,10 +109,11 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
     f << "P6 320 240 255\n" << std::string(320 * 240 * 3, char(128));
   }
   std::filesystem::create_directories(dir.path() / "out");
-  std::ofstream(dir.path() / "out" / "identity.json") << "{}";    // an earlier run's
-  std::ofstream(dir.path() / "out" / "animation.glb") << "glTF";  // an earlier run's
-  std::ofstream(dir.path() / "out" / "face_matte.png") << "PNG";  // an earlier run's
-  const RunResult r = run("track " + image.string() + " -o " + (dir.path() / "out").string() + " --gltf");
+  std::ofstream(dir.path() / "out" / "identity.json") << "{}";         // an earlier run's
+  std::ofstream(dir.path() / "out" / "animation.glb") << "glTF";       // an earlier run's
+  std::ofstream(dir.path() / "out" / "face_matte.png") << "PNG";       // an earlier run's
+  std::ofstream(dir.path() / "out" / "head.chan") << "1 0 0 0 0 0 0";  // an earlier run's
+  const RunResult r = run("track " + image.string() + " -o " + (dir.path() / "out").string() + " --gltf --chan");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("no face found in " + image.string()), std::string::npos) << r.out;
@@ -124,6 +125,8 @@ TEST(Cli, TrackOfAnImageWithNoFaceIsAnErrorThatSaysSo) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "identity.json"));   // no identity was seen here
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "animation.glb"));   // nor a face to animate
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "face_matte.png"));  // nor to matte
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "head.chan"));       // nor a motion to key
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "camera.chan"));
 }
 
 // track --each-image: a folder where no image shows a face is an error that

@@ -1,8 +1,10 @@
 #include "facecap/pipeline/track_job.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <unordered_set>
@@ -15,6 +17,7 @@
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/image_file.hpp"
 #include "facecap/io/livelink_csv.hpp"
+#include "facecap/io/nuke_chan.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/face_shape_cache.hpp"
 #include "facecap/pipeline/action_unit_table.hpp"
@@ -46,6 +49,8 @@ constexpr const char* kAlignedFaces = "aligned";  // a folder
 constexpr const char* kAlbedoImage = "albedo.png";
 constexpr const char* kFaceMatteImage = "face_matte.png";
 constexpr const char* kTextureImage = "texture.png";
+constexpr const char* kHeadChan = "head.chan";
+constexpr const char* kCameraChan = "camera.chan";
 
 // A text output written through a temporary file and renamed at the end.
 class StagedText {
@@ -113,6 +118,10 @@ class FrameWriter {
       detail_maps_.emplace(model, dir, options.detail_map_size);
     }
     if (options.uv_pass) uv_passes_.emplace(model, dir, cv::Size(info.width, info.height));
+    if (options.chan) {
+      head_chan_.emplace(dir / kHeadChan);
+      camera_chan_.emplace(dir / kCameraChan);
+    }
     if (options.livelink) {
       livelink_.emplace(dir / kLiveLinkCsv);
       livelink_csv_.emplace(info.fps);
@@ -190,6 +199,7 @@ class FrameWriter {
                                                          unit_intensities ? &*unit_intensities : nullptr)
                               << '\n';
     if (livelink_face_) write_livelink(f);
+    if (ok && head_chan_) write_chan(f);
     const std::string line = row.dump();
     jsonl_.stream() << line << '\n';
     if (options_.on_row) options_.on_row(line);
@@ -300,6 +310,16 @@ class FrameWriter {
     if (detail_maps_) detail_maps_->finish();
     if (uv_passes_) uv_passes_->finish();
     if (livelink_) livelink_->commit();
+    if (head_chan_) {
+      // Like identity.json: no tracked frame, no motion to key.
+      for (auto* chan : {&*head_chan_, &*camera_chan_})
+        if (id.frames_used > 0) chan->commit();
+      if (id.frames_used == 0) {
+        std::error_code ec;
+        fs::remove(dir_ / kHeadChan, ec);
+        fs::remove(dir_ / kCameraChan, ec);
+      }
+    }
     if (videos_) videos_->finish();
     meshes_.finish();
   }
@@ -352,6 +372,21 @@ class FrameWriter {
     const std::string name = frame_file_name(f.index, "png");
     write_image(dir_ / kAlignedFaces / name, aligned_face(f.image, f.fit.fitted, options_.aligned_face_size));
     aligned_written_.insert(name);
+  }
+
+  // --chan: the head's pose as a Nuke Axis node takes it, in Nuke's space (y
+  // up, the camera at the origin looking down -z: OpenCV's camera frame
+  // turned half a turn about x, F = diag(1, -1, -1)): rotation F R F (the
+  // model's own axes are y up already), translation F t in centimetres; and
+  // the camera's vertical field of view.
+  void write_chan(const CapturedFrame& f) {
+    const Mat3d flip = Vec3d(1, -1, -1).asDiagonal();
+    const HeadPose& pose = f.fit.pose;
+    const int frame = f.index + options_.chan_first_frame;
+    head_chan_->stream() << chan_line(frame, flip * pose.translation,
+                                      euler_zxy_degrees(flip * pose.model_to_camera_rotation()));
+    const double vfov_deg = 2 * std::atan(0.5 * info_.height / f.fit.focal) * 180 / std::numbers::pi;
+    camera_chan_->stream() << chan_line(frame, Vec3d::Zero(), Vec3d::Zero(), vfov_deg);
   }
 
   // --uv-pass: the refined surface where the frame was refined, else the
@@ -442,6 +477,7 @@ class FrameWriter {
   LiveLinkFace::Values livelink_values_{};
   std::optional<StagedText> livelink_;
   std::optional<LiveLinkCsv> livelink_csv_;
+  std::optional<StagedText> head_chan_, camera_chan_;  // --chan
   std::optional<LiveLinkStreamer> livelink_stream_;
   std::optional<TrackVideos> videos_;  // --overlay
   int gaze_frames_ = 0;

@@ -106,6 +106,12 @@ struct TrackOptions {
   // DIR/uv/frame_NNNNNN.png: each frame's UV pass (an ST map) at the input's
   // size, of the refined surface with refine (uv_passes.hpp).
   bool uv_pass = false;
+  // DIR/head.chan and DIR/camera.chan: each tracked frame's head pose and the
+  // camera's field of view as Nuke's .chan files (io/nuke_chan.hpp), the
+  // input's frame k on line frame k + chan_first_frame (Nuke numbers a
+  // movie's frames from 1).
+  bool chan = false;
+  int chan_first_frame = 1;
   FrameSink on_frame;  // optional: also called with each frame (e.g. to compare against ground truth)
   // Whether the outputs draw on the frames' images (CaptureOptions::keep_images).
   bool needs_images() const { return overlay || refine || texture || aligned_faces; }
