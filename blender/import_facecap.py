@@ -6,7 +6,8 @@
 # - imports DIR/animation.glb (`track --gltf`) with Blender's own glTF importer: the face
 #   with its shape keys and their keys, the head's keys and the fitted camera, which
 #   becomes the scene's camera, the render the input's size (DIR/identity.json, else the
-#   video's); `transform --gltf` and `swap --gltf` files come in alike with --glb FILE and
+#   video's) with the lens shifted half a pixel onto facecap's principal point (W/2, H/2 in
+#   pixel-centre coordinates); `transform --gltf` and `swap --gltf` files come in alike with --glb FILE and
 #   no DIR (then nothing but the file and the video is read);
 # - plays it at the input's frame rate (read from DIR/frames.csv, else from the keys'
 #   spacing; 29.97 fps as 30 / 1.001) with each video frame on the Blender frame of the
@@ -238,6 +239,19 @@ def add_face_matte(face, matte_png):
                                                                       len(materials)))
 
 
+def centre_on_principal_point(camera, size):
+    """facecap's principal point is (W/2, H/2) with pixel centres at integers
+    (identity.json's principal_point_px), half a pixel right of and below the
+    frame's centre, where a glTF camera looks; Blender's lens shift moves the
+    view by that half pixel, so that the face lands where the fit put it. The
+    shift's unit is the side the sensor fits (the glTF importer's: the
+    height), or the larger side."""
+    fit = camera.data.sensor_fit
+    unit = size[1] if fit == "VERTICAL" else size[0] if fit == "HORIZONTAL" else max(size)
+    camera.data.shift_x = -0.5 / unit
+    camera.data.shift_y = 0.5 / unit
+
+
 def image_size(folder):
     """The input's width and height from identity.json (any shot's)."""
     names = ["identity.json"] + sorted(n for n in os.listdir(folder) if n.startswith("identity_shot"))
@@ -411,6 +425,8 @@ def main():
     if size:  # the camera sees what the video frame shows
         scene.render.resolution_x, scene.render.resolution_y = size
         scene.render.resolution_percentage = 100
+        if scene.camera:
+            centre_on_principal_point(scene.camera, size)
     faces = [o for o in objects if o.type == "MESH"]
     if not faces:
         fail(glb + " holds no mesh")

@@ -1,6 +1,7 @@
 # Reads the scene blender/import_facecap.py saved (run as `blender -b
 # SCENE.blend --python blender_scene_probe.py -- OUT.json RENDER.png FRAME...`)
-# and writes to OUT.json its frame rate and range, render size, the face's
+# and writes to OUT.json its frame rate and range, render size, where it shows
+# a point on the camera's axis, the face's
 # keyed frames, its modifiers and, at each FRAME, where the face sits and how
 # far the detail modifier moves each vertex of the subdivided mesh along its
 # normal, with the vertex's UV (where there is a detail modifier); then
@@ -12,6 +13,8 @@ import sys
 
 import bpy
 import numpy
+from bpy_extras.object_utils import world_to_camera_view
+from mathutils import Vector
 
 out_json, render_png = sys.argv[sys.argv.index("--") + 1:][:2]
 frames = [int(f) for f in sys.argv[sys.argv.index("--") + 3:]]
@@ -30,6 +33,9 @@ report = {
     "skin_vertices": sum(1 for v in face.data.vertices if any(g.group == group for g in v.groups)),
     "frames": {},
 }
+# Where the render shows a point on the camera's axis (pixel centres at integers).
+axis = world_to_camera_view(scene, scene.camera, scene.camera.matrix_world @ Vector((0.0, 0.0, -10.0)))
+report["axis_pixel"] = [axis.x * scene.render.resolution_x - 0.5, (1 - axis.y) * scene.render.resolution_y - 0.5]
 
 
 def evaluated(show_detail):
