@@ -95,9 +95,7 @@ void print_track_files(const TrackSummary& s, FILE* out, const TrackOptions& opt
   if (options.uv_pass) std::fprintf(out, "%s\n", (s.output_dir / "uv").string().c_str());
   if (!s.face_matte.empty()) std::fprintf(out, "%s\n", s.face_matte.string().c_str());
   if (options.livelink) std::fprintf(out, "%s\n", (s.output_dir / "livelink_face.csv").string().c_str());
-  if (options.chan && s.capture.identity.frames_used > 0)
-    for (const char* name : {"head.chan", "camera.chan"})
-      std::fprintf(out, "%s\n", (s.output_dir / name).string().c_str());
+  for (const std::filesystem::path& file : s.chan_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.animation_files) std::fprintf(out, "%s\n", file.string().c_str());
   for (const std::filesystem::path& file : s.point_cache_files) std::fprintf(out, "%s\n", file.string().c_str());
 }

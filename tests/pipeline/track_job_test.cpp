@@ -336,6 +336,7 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   o.aligned_faces = true;
   o.aligned_face_size = 96;
   o.uv_pass = true;
+  o.chan = true;
   // An earlier run's crops of frames this one loses or does not reach go;
   // other files stay. So do its UV passes past this run's end.
   fs::create_directories(out.path() / "aligned");
@@ -463,6 +464,18 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   }
   std::printf("face matte through the UV pass: %d of %d landmarks whole; %d of the region's %d px held out\n", whole,
               landmarks_on_the_face, held_out_px, region_px);
+  // The .chan files key the tracked frames only, numbered from 1.
+  ASSERT_EQ(s.chan_files, (std::vector<fs::path>{out.path() / "head.chan", out.path() / "camera.chan"}));
+  for (const fs::path& chan : s.chan_files) {
+    const auto keyed = lines(chan);
+    ASSERT_EQ(int(keyed.size()), 36 - s.capture.lost) << chan;
+    EXPECT_EQ(keyed.front().rfind("1 ", 0), 0u) << keyed.front();
+    for (const std::string& line : keyed) {
+      EXPECT_NE(line.rfind("32 ", 0), 0u) << line;  // the lost frame 31
+      // frame, translation, rotation, and the camera's field of view
+      EXPECT_EQ(std::count(line.begin(), line.end(), ' '), chan == s.chan_files[0] ? 6 : 7) << line;
+    }
+  }
   EXPECT_GE(landmarks_on_the_face, 40);  // measured 43 (the lips' inner points on the mouth's rim are not)
   EXPECT_EQ(whole, landmarks_on_the_face);
   EXPECT_GT(held_out_px, region_px / 5);  // measured 35 %

@@ -310,21 +310,21 @@ class FrameWriter {
     if (detail_maps_) detail_maps_->finish();
     if (uv_passes_) uv_passes_->finish();
     if (livelink_) livelink_->commit();
-    if (head_chan_) {
-      // Like identity.json: no tracked frame, no motion to key.
-      for (auto* chan : {&*head_chan_, &*camera_chan_})
-        if (id.frames_used > 0) chan->commit();
-      if (id.frames_used == 0) {
-        std::error_code ec;
-        fs::remove(dir_ / kHeadChan, ec);
-        fs::remove(dir_ / kCameraChan, ec);
-      }
+    if (head_chan_ && id.frames_used > 0) {
+      head_chan_->commit();
+      camera_chan_->commit();
+      chan_files_ = {dir_ / kHeadChan, dir_ / kCameraChan};
+    } else if (head_chan_) {  // like identity.json: no tracked frame, no motion to key
+      std::error_code ec;
+      fs::remove(dir_ / kHeadChan, ec);
+      fs::remove(dir_ / kCameraChan, ec);
     }
     if (videos_) videos_->finish();
     meshes_.finish();
   }
 
   const fs::path& face_matte_file() const { return face_matte_file_; }
+  const std::vector<fs::path>& chan_files() const { return chan_files_; }
   int meshes_written() const { return meshes_.meshes_written(); }
   int detail_maps_written() const { return detail_maps_ ? detail_maps_->maps_written() : 0; }
   int uv_passes_written() const { return uv_passes_ ? uv_passes_->passes_written() : 0; }
@@ -478,6 +478,7 @@ class FrameWriter {
   std::optional<StagedText> livelink_;
   std::optional<LiveLinkCsv> livelink_csv_;
   std::optional<StagedText> head_chan_, camera_chan_;  // --chan
+  std::vector<fs::path> chan_files_;                   // ...where they were written
   std::optional<LiveLinkStreamer> livelink_stream_;
   std::optional<TrackVideos> videos_;  // --overlay
   int gaze_frames_ = 0;
@@ -571,6 +572,7 @@ TrackSummary TrackOutput::finish(const CaptureSummary& capture) {
   summary.detail_maps = impl_->writer.detail_maps_written();
   summary.uv_passes = impl_->writer.uv_passes_written();
   summary.face_matte = impl_->writer.face_matte_file();
+  summary.chan_files = impl_->writer.chan_files();
   summary.gaze_frames = impl_->writer.gaze_frames();
   if (const LiveLinkStreamer* stream = impl_->writer.livelink_stream()) {
     summary.livelink_sent = stream->sent();

@@ -134,7 +134,8 @@ struct TrackSummary {
   int detail_maps = 0;               // TrackOptions::detail_maps: the maps written
   int uv_passes = 0;                 // TrackOptions::uv_pass: the passes written
   std::filesystem::path face_matte;  // --gltf or --uv-pass: DIR/face_matte.png (pipeline/face_matte.hpp), if written
-  double refine_ms = 0;              // total, on the refinement thread
+  std::vector<std::filesystem::path> chan_files;  // --chan: head.chan and camera.chan, if written
+  double refine_ms = 0;                           // total, on the refinement thread
 };
 
 TrackSummary run_track(const FaceModel& model, const std::string& input, const std::filesystem::path& output_dir,
