@@ -123,6 +123,10 @@ MattedCoverage matted_coverage(const test::Glb& g, const cv::Mat& matte, int key
   return out;
 }
 
+// Headless Blender with factory settings running a script (then its
+// arguments after " -- "), exiting non-zero where the script fails.
+const std::string kBlenderScript = "blender -b --factory-startup --python-exit-code 1 --python ";
+
 bool have_blender() { return test::run_command("command -v blender >/dev/null 2>&1").code == 0; }
 
 // Skips the test where Blender cannot run, saying which import goes
@@ -208,9 +212,8 @@ std::vector<cv::Point2f> fitted_landmarks(const fs::path& frames_jsonl, int fram
 nlohmann::json import_and_probe(const fs::path& dir, const std::string& name, const std::string& arguments,
                                 const std::string& render, const std::string& frames, std::string* log = nullptr) {
   const fs::path scene = dir / (name + ".blend"), report = dir / (name + ".json");
-  const test::CommandResult imported = test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
-                                                         std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- " +
-                                                         arguments + " --save " + scene.string() + " 2>&1");
+  const test::CommandResult imported = test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_IMPORT_SCRIPT) +
+                                                         " -- " + arguments + " --save " + scene.string() + " 2>&1");
   if (log != nullptr) *log = imported.out;
   if (imported.code != 0) {
     ADD_FAILURE() << imported.out;
@@ -259,10 +262,10 @@ TEST(BlenderInterop, TheTrackedGltfOpensWithShapeKeysTextureKeysAndTheCameraView
   const int key = 12;
   const int width = 400, height = 300;
   const fs::path report_path = dir.path() / "blender.json", render_path = dir.path() / "blender.png";
-  const test::CommandResult blender = test::run_command(
-      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_PROBE) + " -- " +
-      glb.string() + " " + report_path.string() + " " + render_path.string() + " " + std::to_string(width) + " " +
-      std::to_string(height) + " " + std::to_string(times[key]) + " 2>&1");
+  const test::CommandResult blender =
+      test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_PROBE) + " -- " + glb.string() + " " +
+                        report_path.string() + " " + render_path.string() + " " + std::to_string(width) + " " +
+                        std::to_string(height) + " " + std::to_string(times[key]) + " 2>&1");
   ASSERT_EQ(blender.code, 0) << blender.out;
 
   std::ifstream in(report_path);
@@ -315,9 +318,9 @@ TEST(BlenderInterop, TheRefinedPlyMeshOpensWithItsUvsAndColours) {
   const fs::path ply_path = dir.path() / "meshes" / "frame_000031.ply";
   const test::Ply ply = test::Ply::read(ply_path);
   const fs::path report_path = dir.path() / "blender.json";
-  const test::CommandResult blender = test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
-                                                        std::string(FACECAP_BLENDER_PLY_PROBE) + " -- " +
-                                                        ply_path.string() + " " + report_path.string() + " 2>&1");
+  const test::CommandResult blender =
+      test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_PLY_PROBE) + " -- " + ply_path.string() + " " +
+                        report_path.string() + " 2>&1");
   ASSERT_EQ(blender.code, 0) << blender.out;
   std::ifstream in(report_path);
   const nlohmann::json report = nlohmann::json::parse(in);
@@ -348,9 +351,9 @@ TEST(BlenderInterop, TheRefinedObjMeshOpensTexturedWithTheAlbedo) {
                         " --max-frames 20 --refine --meshes 2>&1");
   ASSERT_EQ(tracked.code, 0) << tracked.out;
   const fs::path report_path = dir.path() / "blender.json";
-  const test::CommandResult blender = test::run_command(
-      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_OBJ_PROBE) + " -- " +
-      (dir.path() / "meshes" / "frame_000019.obj").string() + " " + report_path.string() + " 2>&1");
+  const test::CommandResult blender =
+      test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_OBJ_PROBE) + " -- " +
+                        (dir.path() / "meshes" / "frame_000019.obj").string() + " " + report_path.string() + " 2>&1");
   ASSERT_EQ(blender.code, 0) << blender.out;
   std::ifstream in(report_path);
   const nlohmann::json report = nlohmann::json::parse(in);
@@ -387,9 +390,8 @@ TEST(BlenderInterop, ThePointCachePlaysOnItsRestMeshInBlender) {
   const std::vector<int> frames = {0, 9, 23}, vertices = {0, 1234, 5000, int(points) - 1};
   const fs::path report_path = dir.path() / "blender.json";
   const test::CommandResult blender = test::run_command(
-      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_PC2_PROBE) + " -- " +
-      (dir.path() / "face_rest.ply").string() + " " + cache.string() + " " + report_path.string() +
-      " 0,9,23 0,1234,5000," + std::to_string(points - 1) + " 2>&1");
+      kBlenderScript + std::string(FACECAP_BLENDER_PC2_PROBE) + " -- " + (dir.path() / "face_rest.ply").string() + " " +
+      cache.string() + " " + report_path.string() + " 0,9,23 0,1234,5000," + std::to_string(points - 1) + " 2>&1");
   ASSERT_EQ(blender.code, 0) << blender.out;
   // The samples differ, so a sample played at another frame would show.
   const auto sample_x = [&](int frame, int vertex) {
@@ -428,10 +430,10 @@ TEST(BlenderInterop, ADetailMapDisplacesTheRefinedMeshAsDetailJsonSays) {
   ASSERT_EQ(tracked.code, 0) << tracked.out;
   const fs::path map_file = dir.path() / "detail" / "frame_000019.png", info = dir.path() / "detail" / "detail.json";
   const fs::path report_path = dir.path() / "blender.json";
-  const test::CommandResult blender = test::run_command(
-      "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_DISPLACE_PROBE) +
-      " -- " + (dir.path() / "meshes" / "frame_000019.obj").string() + " " + map_file.string() + " " + info.string() +
-      " " + report_path.string() + " 2>&1");
+  const test::CommandResult blender =
+      test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_DISPLACE_PROBE) + " -- " +
+                        (dir.path() / "meshes" / "frame_000019.obj").string() + " " + map_file.string() + " " +
+                        info.string() + " " + report_path.string() + " 2>&1");
   ASSERT_EQ(blender.code, 0) << blender.out;
   std::ifstream in(report_path);
   const nlohmann::json report = nlohmann::json::parse(in);
@@ -689,9 +691,8 @@ TEST(BlenderInterop, TheChanFilesPutTheMeshesWhereTheFitSawThem) {
   for (int k = 0; k < 2; ++k) {
     const fs::path report_path = dir.path() / "pixels.json";
     const test::CommandResult probed =
-        test::run_command("blender -b --factory-startup --python-exit-code 1 --python " +
-                          std::string(FACECAP_BLENDER_CHAN_PROBE) + " -- " + report_path.string() + " " +
-                          (dir.path() / "head.chan").string() + " " + (dir.path() / "camera.chan").string() +
+        test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_CHAN_PROBE) + " -- " + report_path.string() +
+                          " " + (dir.path() / "head.chan").string() + " " + (dir.path() / "camera.chan").string() +
                           " 1280 720 " + points_path.string() + (k == 0 ? " ZXY" : " XYZ") + " 2>&1");
     ASSERT_EQ(probed.code, 0) << probed.out;
     std::ifstream in(report_path);
@@ -739,9 +740,9 @@ TEST(BlenderInterop, TheFootageLightShadesASphereAsFacecapsShadingDoes) {
     const fs::path report_path = dir.path() / ("sphere" + std::to_string(k) + ".json");
     std::string arguments;
     for (int i = 0; i < 9; ++i) arguments += " " + std::to_string(world[i]);
-    const test::CommandResult probed = test::run_command(
-        "blender -b --factory-startup --python-exit-code 1 --python " + std::string(FACECAP_BLENDER_LIGHT_PROBE) +
-        " -- " + std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " " + report_path.string() + arguments + " 2>&1");
+    const test::CommandResult probed = test::run_command(kBlenderScript + std::string(FACECAP_BLENDER_LIGHT_PROBE) +
+                                                         " -- " + std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " " +
+                                                         report_path.string() + arguments + " 2>&1");
     ASSERT_EQ(probed.code, 0) << probed.out;
     std::ifstream in(report_path);
     const nlohmann::json samples = nlohmann::json::parse(in)["samples"];
@@ -769,8 +770,7 @@ TEST(BlenderInterop, TheFootageLightShadesASphereAsFacecapsShadingDoes) {
 TEST(BlenderInterop, TheImportScriptNamesWhatIsWrongInOneLine) {
   FACECAP_REQUIRE_BLENDER("blender/import_facecap.py");
   TempDir dir;
-  const std::string script = "blender -b --factory-startup --python-exit-code 1 --python " +
-                             std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- ";
+  const std::string script = kBlenderScript + std::string(FACECAP_BLENDER_IMPORT_SCRIPT) + " -- ";
   const fs::path missing = dir.path() / "nowhere", animation = dir.path() / "animation.glb";
   const auto refused = [&](const std::string& arguments, const std::string& line) {
     const test::CommandResult r = test::run_command(script + arguments + " 2>&1");
