@@ -24,9 +24,10 @@
 #   as the footage was lit, keyed frame by frame (add_footage_light; --even-light keeps a
 #   white world), with the albedo and footage read as raw data and the view transform Raw,
 #   so that the render is albedo x shading as facecap's own renders are;
-# - with DIR/face_matte.png (`track --gltf`), holds the skin out where the matte is 0 (the
-#   scalp, ears and neck of the model's face region), so that the footage's own hair, ears,
-#   neck and collar show there (add_face_matte; --whole-face renders the whole region);
+# - with DIR/face_matte.png (`track --gltf`) and --video, holds the skin out where the matte
+#   is 0 (the scalp, ears and neck of the model's face region), so that the footage's own
+#   hair, ears, neck and collar show there (add_face_matte; --whole-face renders the whole
+#   region, as does a scene without footage);
 # - with --video (the tracked input), puts the footage behind the face: the camera's
 #   background in the viewport and, in the compositor, under the render (whose background
 #   is then transparent), video frame N on frame N.
@@ -71,7 +72,7 @@ def parse_arguments():
                         "refinement's lighting")
     parser.add_argument("--whole-face", action="store_true",
                         help="render the whole face region (scalp to neck) even where DIR/face_matte.png "
-                        "would leave all but the narrow face to the footage")
+                        "would leave all but the narrow face to the footage (--video)")
     parser.add_argument("--save", help="write the scene to this .blend file")
     return parser.parse_args(argv)
 
@@ -434,7 +435,7 @@ def main():
     if lighting and not args.even_light:
         add_footage_light(scene, lighting)  # after add_plate: the plate too is read raw
     matte = in_folder("face_matte.png")
-    if matte and not args.whole_face:
+    if matte and clip and not args.whole_face:  # with no footage behind, a held-out neck would render black
         add_face_matte(faces[0], matte)
     detail_dir = in_folder("detail")
     if detail_dir:

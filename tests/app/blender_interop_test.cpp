@@ -607,6 +607,7 @@ TEST(BlenderInterop, TheImportScriptLightsTheFaceAsTheFootageIs) {
   std::string log;
   ASSERT_FALSE(import_and_probe(dir.path(), "lit", dir.path().string(), lit.string(), "17", &log).is_null());
   EXPECT_NE(log.find("the world lit as the footage was (20 frames"), std::string::npos) << log;
+  EXPECT_EQ(log.find("held out"), std::string::npos) << log;  // no footage behind: the whole region shows
   ASSERT_FALSE(
       import_and_probe(dir.path(), "even", dir.path().string() + " --even-light", even.string(), "17").is_null());
 
@@ -806,9 +807,13 @@ TEST(BlenderInterop, TheImportScriptNamesWhatIsWrongInOneLine) {
   }
   const std::string bytes = test::read_file(FACECAP_BLENDER_IMPORT_SCRIPT);  // any file that is not a PNG
   std::ofstream(dir.path() / "face_matte.png", std::ios::binary) << "\x89PNG\r\n\x1a\n" << bytes.substr(0, 100);
-  refused(dir.path().string(), "cannot read " + (dir.path() / "face_matte.png").string() + ": not an image");
-  {  // the animation itself is good: left alone, the matte is not read
-    const test::CommandResult whole = test::run_command(script + dir.path().string() + " --whole-face 2>&1");
+  const fs::path plate = dir.path() / "plate.mp4";  // the matte is read where there is footage behind
+  write_grey_plate(plate);
+  refused(dir.path().string() + " --video " + plate.string(),
+          "cannot read " + (dir.path() / "face_matte.png").string() + ": not an image");
+  {  // the animation and the plate are good: left alone, the matte is not read
+    const test::CommandResult whole =
+        test::run_command(script + dir.path().string() + " --video " + plate.string() + " --whole-face 2>&1");
     EXPECT_EQ(whole.code, 0) << whole.out;
     EXPECT_NE(whole.out.find("import_facecap: animation.glb at 30.000 fps, frames 0-1"), std::string::npos)
         << whole.out;
