@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/view_frame.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/regions.hpp"
 
@@ -207,8 +208,7 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
   out.morph_target_names = model.expression_names;
   out.morph_target_names.insert(out.morph_target_names.end(), kEyeTurnTargetNames.begin(), kEyeTurnTargetNames.end());
 
-  // Keys: the node's transform is F R F and F t (the header's axes).
-  const Eigen::Matrix3d flip = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  // Keys: the node's transform is the pose in the view frame (the header's axes).
   const int ne = model.num_expressions();
   out.weights = Eigen::MatrixXf::Zero(ne + 4, Eigen::Index(keys.size()));
   Eigen::Vector4f eye_turn = Eigen::Vector4f::Zero();  // held through keys with no gaze (blinks)
@@ -217,8 +217,9 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
     if (key.expression.size() > model.num_expressions())
       throw Error("an animation key has more expression weights than the model");
     out.times.push_back(float(key.time));
-    out.translations.push_back((flip * key.pose.translation).cast<float>() * kMetresPerCentimetre);
-    Eigen::Quaternionf q(Eigen::Matrix3f((flip * key.pose.model_to_camera_rotation()).cast<float>()));  // F (R F)
+    const ViewPose view = pose_in_view_frame(key.pose);
+    out.translations.push_back(view.translation.cast<float>() * kMetresPerCentimetre);
+    Eigen::Quaternionf q(Eigen::Matrix3f(view.rotation.cast<float>()));
     q.normalize();
     // The shorter way round from the previous key, so that players
     // interpolating linearly do not spin the head.

@@ -11,9 +11,11 @@
 
 namespace facecap {
 
-Eigen::VectorXf narrow_face_matte(const FaceModel& model, float feather_mm) {
+namespace {
+
+// narrow_face_matte on `mesh`, the model's face region.
+Eigen::VectorXf matte_on(const FaceModel& model, const TriangleMesh& mesh, float feather_mm) {
   if (!(feather_mm > 0)) throw Error("the face matte's feather must be positive");
-  const TriangleMesh mesh = model.region_mesh(regions::kFace);
   const Eigen::VectorXf mean_face = model.identity_shape(Eigen::VectorXf(), regions::kFace);
   const Positions mm = 10.0f * Eigen::Map<const Positions>(mean_face.data(), 3, mesh.num_vertices);
   // The face region's vertices are the model's first; the narrow face's are
@@ -31,10 +33,16 @@ Eigen::VectorXf narrow_face_matte(const FaceModel& model, float feather_mm) {
   return matte;
 }
 
+}  // namespace
+
+Eigen::VectorXf narrow_face_matte(const FaceModel& model, float feather_mm) {
+  return matte_on(model, model.region_mesh(regions::kFace), feather_mm);
+}
+
 cv::Mat face_matte_image(const FaceModel& model, int size, float feather_mm) {
   const TriangleMesh mesh = model.region_mesh(regions::kFace);
   const cv::Mat matte =
-      UvBaker(mesh.triangles, rasterize_uv(mesh, size)).bake(narrow_face_matte(model, feather_mm).transpose());
+      UvBaker(mesh.triangles, rasterize_uv(mesh, size)).bake(matte_on(model, mesh, feather_mm).transpose());
   cv::Mat grey;
   matte.convertTo(grey, CV_8U, 255.0);
   return grey;

@@ -13,6 +13,7 @@
 #include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/version.hpp"
+#include "facecap/core/view_frame.hpp"
 #include "facecap/detect/aligned_face.hpp"
 #include "facecap/io/gltf_writer.hpp"
 #include "facecap/io/image_file.hpp"
@@ -374,17 +375,13 @@ class FrameWriter {
     aligned_written_.insert(name);
   }
 
-  // --chan: the head's pose as a Nuke Axis node takes it, in Nuke's space (y
-  // up, the camera at the origin looking down -z: OpenCV's camera frame
-  // turned half a turn about x, F = diag(1, -1, -1)): rotation F R F (the
-  // model's own axes are y up already), translation F t in centimetres; and
-  // the camera's vertical field of view.
+  // --chan: the head's pose as a Nuke Axis node takes it, in Nuke's space
+  // (core/view_frame.hpp: y up, the camera at the origin looking down -z),
+  // in centimetres; and the camera's vertical field of view.
   void write_chan(const CapturedFrame& f) {
-    const Mat3d flip = Vec3d(1, -1, -1).asDiagonal();
-    const HeadPose& pose = f.fit.pose;
+    const ViewPose view = pose_in_view_frame(f.fit.pose);
     const int frame = f.index + options_.chan_first_frame;
-    head_chan_->stream() << chan_line(frame, flip * pose.translation,
-                                      euler_zxy_degrees(flip * pose.model_to_camera_rotation()));
+    head_chan_->stream() << chan_line(frame, view.translation, euler_zxy_degrees(view.rotation));
     const double vfov_deg = 2 * std::atan(0.5 * info_.height / f.fit.focal) * 180 / std::numbers::pi;
     camera_chan_->stream() << chan_line(frame, Vec3d::Zero(), Vec3d::Zero(), vfov_deg);
   }
