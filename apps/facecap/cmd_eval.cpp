@@ -228,6 +228,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"iris_error_px", r.iris_error_px},
                 {"iris_found", r.iris_found},
                 {"gaze_error_deg", r.gaze_error_deg},
+                {"gaze_bias_yaw_pitch_deg", {r.gaze_bias_deg.x(), r.gaze_bias_deg.y()}},
                 {"gaze_frames", r.gaze_frames}});
   });
 }

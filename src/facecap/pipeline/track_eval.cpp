@@ -211,9 +211,13 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
       const Vec3d true_gaze = turned_axis(renderer.eyeballs(), 0, truth.gaze_deg.x(), truth.gaze_deg.y()) +
                               turned_axis(renderer.eyeballs(), 1, truth.gaze_deg.x(), truth.gaze_deg.y());
       r.gaze_error_deg += angle_between_deg(true_gaze, fit.gaze.direction());
+      r.gaze_bias_deg += fit.gaze.angles_deg() - gaze_angles_deg(true_gaze);
     }
   }
-  if (gaze_frames > 0) r.gaze_error_deg /= gaze_frames;
+  if (gaze_frames > 0) {
+    r.gaze_error_deg /= gaze_frames;
+    r.gaze_bias_deg /= gaze_frames;
+  }
   r.gaze_frames = gaze_frames;
   r.iris_error_px = median(iris_errors);
   r.iris_found = open_eyes > 0 ? double(found_open) / open_eyes : 0.0;

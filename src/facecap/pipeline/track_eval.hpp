@@ -82,10 +82,12 @@ struct TrackEvalResult {
   // Gaze: the iris centres against the projected true pupils (median, pixels),
   // the share of open eyes (frames not mid-blink) where an iris was found,
   // and the mean angle between the estimated and the true head-relative gaze
-  // over the frames that have one.
+  // over the frames that have one, and its mean signed part: estimated
+  // minus true (yaw, pitch), head-relative, degrees (gaze_angles_deg).
   double iris_error_px = 0;
   double iris_found = 0;
   double gaze_error_deg = 0;
+  Vec2d gaze_bias_deg = Vec2d::Zero();
   int gaze_frames = 0;
 };
 
