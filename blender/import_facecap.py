@@ -24,10 +24,12 @@
 #   as the footage was lit, keyed frame by frame (add_footage_light; --even-light keeps a
 #   white world), with the albedo and footage read as raw data and the view transform Raw,
 #   so that the render is albedo x shading as facecap's own renders are;
-# - with DIR/face_matte.png (`track --gltf`) and --video, holds the skin out where the matte
-#   is 0 (the scalp, ears and neck of the model's face region), so that the footage's own
-#   hair, ears, neck and collar show there (add_face_matte; --whole-face renders the whole
-#   region, as does a scene without footage);
+# - with --video, holds the skin out where the face matte is 0 (the scalp, ears and neck of
+#   the model's face region), so that the footage's own hair, ears, neck and collar show
+#   there (add_face_matte; --whole-face renders the whole region, as does a scene without
+#   footage); the matte is the image named "face_matte" in the file (every `track`,
+#   `transform` and `swap --gltf` file carries one, used by no material), else
+#   DIR/face_matte.png;
 # - with --video (the tracked input), puts the footage behind the face: the camera's
 #   background in the viewport and, in the compositor, under the render (whose background
 #   is then transparent), video frame N on frame N.
@@ -40,7 +42,9 @@ import argparse
 import csv
 import json
 import os
+import struct
 import sys
+import tempfile
 
 import numpy
 
@@ -99,12 +103,54 @@ def csv_frame_rate(frames_csv):
     return (rows[-1][0] - rows[0][0]) / (rows[-1][1] - rows[0][1])
 
 
-def load_image(path):
-    """An image Blender can read, as non-colour data; fails naming the file where it cannot."""
+def load_image(path, what=None):
+    """An image Blender can read, as non-colour data; fails naming it (`what`,
+    else the file) where it cannot."""
     image = bpy.data.images.load(os.path.abspath(path))
     if image.size[0] == 0 or image.size[1] == 0:  # Blender loads what it cannot decode as an empty image
-        fail("cannot read %s: not an image Blender can decode (cut short or damaged?)" % path)
+        fail("cannot read %s: not an image Blender can decode (cut short or damaged?)" % (what or path))
     image.colorspace_settings.name = "Non-Color"
+    return image
+
+
+def glb_image_bytes(glb, name):
+    """The encoded bytes of the image called `name` in a .glb file (stored in
+    a buffer view of its binary chunk), or None where it has none."""
+    with open(glb, "rb") as f:
+        data = f.read()
+    try:
+        magic, _, _ = struct.unpack_from("<III", data, 0)
+        json_length, json_type = struct.unpack_from("<II", data, 12)
+        if magic != 0x46546C67 or json_type != 0x4E4F534A:
+            return None
+        doc = json.loads(data[20:20 + json_length])
+        bin_at = 20 + json_length
+        bin_length, bin_type = struct.unpack_from("<II", data, bin_at)
+        if bin_type != 0x004E4942:
+            return None
+        for image in doc.get("images", []):
+            if image.get("name") == name and "bufferView" in image:
+                view = doc["bufferViews"][image["bufferView"]]
+                start = bin_at + 8 + view.get("byteOffset", 0)
+                if start + view["byteLength"] > bin_at + 8 + bin_length:
+                    return None
+                return data[start:start + view["byteLength"]]
+    except (struct.error, ValueError, KeyError, IndexError, TypeError):
+        return None  # the glTF importer has read the file: what is odd here is the matte's alone
+    return None
+
+
+def load_image_bytes(data, name, what):
+    """An image from its encoded bytes, packed into the scene (so a saved
+    .blend holds it), as non-colour data; fails naming it (`what`) where
+    Blender cannot decode it."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, name)
+        with open(path, "wb") as f:
+            f.write(data)
+        image = load_image(path, what)
+        image.pack()
+    image.name = name
     return image
 
 
@@ -210,13 +256,13 @@ def add_detail(face, detail_dir, subdivisions):
                                                                               len(vertices)))
 
 
-def add_face_matte(face, matte_png):
-    """Holds out the face's skin by DIR/face_matte.png (`track --gltf`): where
-    the matte is 0 (the scalp, ears and neck of the model's face region) the
-    render is transparent and the footage under it shows, with a soft edge on
-    the narrow face. A Holdout shader mixed into each skin material by the
-    matte, read through the skin's UVs (the mouth and eyes keep theirs)."""
-    image = load_image(matte_png)
+def add_face_matte(face, image):
+    """Holds out the face's skin by the face matte (a Blender image: the
+    file's, or DIR/face_matte.png): where the matte is 0 (the scalp, ears and
+    neck of the model's face region) the render is transparent and the
+    footage under it shows, with a soft edge on the narrow face. A Holdout
+    shader mixed into each skin material by the matte, read through the
+    skin's UVs (the mouth and eyes keep theirs)."""
     materials = [m for m in face.data.materials if m and m.name.startswith("face") and m.use_nodes]
     for material in materials:
         nodes, links = material.node_tree.nodes, material.node_tree.links
@@ -236,8 +282,7 @@ def add_face_matte(face, matte_png):
         links.new(nodes.new("ShaderNodeHoldout").outputs[0], mix.inputs[1])  # Fac 0: the footage
         links.new(shader, mix.inputs[2])  # Fac 1: the face
         links.new(mix.outputs[0], surface)
-    print("import_facecap: the face held out by %s (%d material(s))" % (os.path.basename(matte_png),
-                                                                      len(materials)))
+    print("import_facecap: the face held out by %s (%d material(s))" % (image.name, len(materials)))
 
 
 def centre_on_principal_point(camera, size):
@@ -434,9 +479,13 @@ def main():
     lighting = csv_lighting(frames_csv) if frames_csv else {}
     if lighting and not args.even_light:
         add_footage_light(scene, lighting)  # after add_plate: the plate too is read raw
-    matte = in_folder("face_matte.png")
-    if matte and clip and not args.whole_face:  # with no footage behind, a held-out neck would render black
-        add_face_matte(faces[0], matte)
+    if clip and not args.whole_face:  # with no footage behind, a held-out neck would render black
+        embedded = glb_image_bytes(glb, "face_matte")
+        matte_png = in_folder("face_matte.png")
+        if embedded:
+            add_face_matte(faces[0], load_image_bytes(embedded, "face_matte.png", "the face matte in " + glb))
+        elif matte_png:  # a file written before the matte travelled in it
+            add_face_matte(faces[0], load_image(matte_png))
     detail_dir = in_folder("detail")
     if detail_dir:
         add_detail(faces[0], detail_dir, args.subdivisions)

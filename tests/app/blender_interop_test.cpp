@@ -123,6 +123,44 @@ MattedCoverage matted_coverage(const test::Glb& g, const cv::Mat& matte, int key
   return out;
 }
 
+// A render (grey, 320x180) of key 17 of `glb` over a plate whose frame 17
+// is grey 210: where only the face triangles `matte_png` holds out whole
+// cover the frame (the scalp, ears and neck), it shows the plate; where only
+// the narrow face does, the face, on average at least `face_off_plate` grey
+// levels from the plate. An empty `matte_png`: the file's own matte (the
+// image named face_matte).
+void expect_held_out_by_matte(const cv::Mat& grey, const fs::path& glb, double face_off_plate,
+                              const fs::path& matte_png = {}) {
+  const test::Glb g = test::Glb::read(glb);
+  cv::Mat matte;
+  if (matte_png.empty()) {
+    for (size_t i = 0; i < g.doc["images"].size(); ++i)
+      if (g.doc["images"][i].value("name", "") == "face_matte") {
+        const std::string bytes = g.image_bytes(int(i));
+        matte = decode_image({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()});
+      }
+  } else {
+    matte = read_image(matte_png);
+  }
+  ASSERT_FALSE(matte.empty());
+  cv::Mat matte_grey;
+  cv::extractChannel(matte, matte_grey, 0);
+  const MattedCoverage covered = matted_coverage(g, matte_grey, 17, grey.cols, grey.rows);
+  const int held_out = cv::countNonZero(covered.held_out), shown = cv::countNonZero(covered.shown);
+  double held_low = 0, held_high = 0;
+  cv::minMaxLoc(grey, &held_low, &held_high, nullptr, nullptr, covered.held_out);
+  cv::Mat off_the_plate;
+  cv::absdiff(grey, cv::Scalar(210), off_the_plate);
+  const double face_off_the_plate = cv::mean(off_the_plate, covered.shown)[0];
+  std::printf("held out: %d px, grey %.0f-%.0f; shown: %d px, %.1f grey levels from the plate on average\n", held_out,
+              held_low, held_high, shown, face_off_the_plate);
+  EXPECT_GT(held_out, 300);
+  EXPECT_GT(shown, 1000);
+  EXPECT_GE(held_low, 206);
+  EXPECT_LE(held_high, 214);
+  EXPECT_GT(face_off_the_plate, face_off_plate);
+}
+
 // Headless Blender with factory settings running a script (then its
 // arguments after " -- "), exiting non-zero where the script fails.
 const std::string kBlenderScript = "blender -b --factory-startup --python-exit-code 1 --python ";
@@ -542,34 +580,17 @@ TEST(BlenderInterop, TheImportScriptPlaysTheCaptureWithEachFramesDetail) {
   EXPECT_LE(highest, 214);
 
   // The face matte holds out the scalp, ears and neck of the model's face
-  // region: where only they cover the frame, the render shows the plate;
-  // where only the narrow face does, the face.
-  const cv::Mat matte = read_image((dir.path() / "face_matte.png").string());
-  ASSERT_FALSE(matte.empty());
-  cv::Mat matte_grey;
-  cv::extractChannel(matte, matte_grey, 0);
-  const MattedCoverage covered =
-      matted_coverage(test::Glb::read(dir.path() / "animation.glb"), matte_grey, 17, 320, 180);
-  const int held_out = cv::countNonZero(covered.held_out), shown = cv::countNonZero(covered.shown);
-  double held_low = 0, held_high = 0;
-  cv::minMaxLoc(grey, &held_low, &held_high, nullptr, nullptr, covered.held_out);
-  cv::Mat off_the_plate;
-  cv::absdiff(grey, cv::Scalar(210), off_the_plate);
-  const double face_off_the_plate = cv::mean(off_the_plate, covered.shown)[0];
-  std::printf("held out: %d px, grey %.0f-%.0f; shown: %d px, %.1f grey levels from the plate on average\n", held_out,
-              held_low, held_high, shown, face_off_the_plate);
-  EXPECT_GT(held_out, 300);
-  EXPECT_GT(shown, 1000);
-  EXPECT_GE(held_low, 206);
-  EXPECT_LE(held_high, 214);
-  EXPECT_GT(face_off_the_plate, 40);
+  // region (the file's matte: face_matte.png beside it is the same).
+  expect_held_out_by_matte(grey, dir.path() / "animation.glb", 40, dir.path() / "face_matte.png");
   EXPECT_NE(log.find("the face held out by face_matte.png (1 material(s))"), std::string::npos) << log;
 }
 
 // import_facecap.py given an animation alone (--glb, as `transform --gltf`
-// and `swap --gltf` write them: no frames.csv, no identity.json beside it)
-// and a plate: the frame rate comes from the keys' spacing, the render size
-// from the plate, and video frame N still plays on Blender frame N.
+// and `swap --gltf` write them: no frames.csv, no identity.json, no
+// face_matte.png beside it) and a plate: the frame rate comes from the keys'
+// spacing, the render size from the plate, video frame N still plays on
+// Blender frame N, and the matte the file carries holds the face out (in
+// the saved scene, reopened to render: the matte is packed into it).
 TEST(BlenderInterop, TheImportScriptTakesAnAnimationAlone) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
@@ -582,14 +603,25 @@ TEST(BlenderInterop, TheImportScriptTakesAnAnimationAlone) {
   fs::copy_file(dir.path() / "animation.glb", alone / "performance.glb");
   const fs::path plate = dir.path() / "plate.mp4";
   write_grey_plate(plate);
+  const fs::path render = dir.path() / "render.png";
+  std::string log;
   const nlohmann::json report = import_and_probe(
-      dir.path(), "scene", "--glb " + (alone / "performance.glb").string() + " --video " + plate.string(), "-", "3 17");
+      dir.path(), "scene", "--glb " + (alone / "performance.glb").string() + " --video " + plate.string(),
+      render.string(), "3 17", &log);
   ASSERT_FALSE(report.is_null());
   expect_plays_the_video_frame_by_frame(report, dir.path() / "frames.csv");
   EXPECT_EQ(report["resolution"], nlohmann::json({320, 180}));  // the plate's
   EXPECT_NEAR(double(report["axis_pixel"][0]), 160.0, 1e-3);
   EXPECT_NEAR(double(report["axis_pixel"][1]), 90.0, 1e-3);
   EXPECT_EQ(report["modifiers"], nlohmann::json::array());  // no detail maps
+  EXPECT_NE(log.find("the face held out by face_matte.png (1 material(s))"), std::string::npos) << log;
+  const cv::Mat rendered = read_image(render);
+  ASSERT_EQ(rendered.size(), cv::Size(320, 180));
+  cv::Mat grey;
+  cv::cvtColor(rendered, grey, cv::COLOR_BGR2GRAY);
+  // Not refined, the face is its base colour (0.8, grey 231 under the white
+  // world) with its shading, 27.9 levels from the plate's 210 on average.
+  expect_held_out_by_matte(grey, alone / "performance.glb", 15);
 }
 
 // import_facecap.py on a refined track folder lights the world as the
@@ -786,9 +818,9 @@ TEST(BlenderInterop, TheImportScriptNamesWhatIsWrongInOneLine) {
   refused(dir.path().string(), "cannot read " + animation.string() + ": ");
 
   // A good animation (one textured triangle before the camera, two keys),
-  // with a face matte cut short, or a video that is no video.
+  // with a face matte cut short (beside it, or in it), or a video that is no video.
+  GltfAnimatedMesh m;
   {
-    GltfAnimatedMesh m;
     m.name = "face";
     GltfPrimitive triangle;
     triangle.name = "face";
@@ -806,11 +838,20 @@ TEST(BlenderInterop, TheImportScriptNamesWhatIsWrongInOneLine) {
     write_glb(animation, m);
   }
   const std::string bytes = test::read_file(FACECAP_BLENDER_IMPORT_SCRIPT);  // any file that is not a PNG
-  std::ofstream(dir.path() / "face_matte.png", std::ios::binary) << "\x89PNG\r\n\x1a\n" << bytes.substr(0, 100);
+  const std::string cut_png = "\x89PNG\r\n\x1a\n" + bytes.substr(0, 100);
+  std::ofstream(dir.path() / "face_matte.png", std::ios::binary) << cut_png;
   const fs::path plate = dir.path() / "plate.mp4";  // the matte is read where there is footage behind
   write_grey_plate(plate);
   refused(dir.path().string() + " --video " + plate.string(),
           "cannot read " + (dir.path() / "face_matte.png").string() + ": not an image");
+  {
+    const fs::path carrying = dir.path() / "carrying.glb";
+    GltfAnimatedMesh with_matte = m;
+    with_matte.images = {{"face_matte", std::vector<uint8_t>(cut_png.begin(), cut_png.end())}};
+    write_glb(carrying, with_matte);
+    refused("--glb " + carrying.string() + " --video " + plate.string(),
+            "cannot read the face matte in " + carrying.string() + ": not an image");
+  }
   {  // the animation and the plate are good: left alone, the matte is not read
     const test::CommandResult whole =
         test::run_command(script + dir.path().string() + " --video " + plate.string() + " --whole-face 2>&1");

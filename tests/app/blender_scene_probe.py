@@ -5,7 +5,7 @@
 # keyed frames, its modifiers and, at each FRAME, where the face sits and how
 # far the detail modifier moves each vertex of the subdivided mesh along its
 # normal, with the vertex's UV (where there is a detail modifier); then
-# renders the last FRAME at a quarter of the size, 16 Cycles samples, its
+# renders the last FRAME 320 px wide (a quarter of 1280x720), 16 Cycles samples, its
 # background transparent, into RENDER.png (none for "-"). blender_interop_test.cpp compares these with
 # the track folder's frames.csv and detail maps, and the plate's frames.
 import json
@@ -71,11 +71,11 @@ for frame in frames:
     keep = numpy.arange(len(moved)) % 16 == 0
     report["frames"][str(frame)].update({"moved_mm": moved[keep].tolist(), "uv": uv[keep].tolist()})
 
-if render_png != "-":  # the last frame, at a quarter of the size, the background transparent
+if render_png != "-":  # the last frame, 320 px wide, the background transparent
     scene.render.engine = "CYCLES"
     scene.cycles.samples = 16
     scene.cycles.use_denoising = False
-    scene.render.resolution_percentage = 25
+    scene.render.resolution_percentage = round(100 * 320 / scene.render.resolution_x)
     scene.render.film_transparent = True
     scene.render.image_settings.file_format = "PNG"
     scene.render.image_settings.color_mode = "RGBA"

@@ -192,6 +192,9 @@ TEST(GltfWriter, InconsistentInputIsAnErrorAndLeavesTheOldFile) {
   m = square();
   m.primitives[0].uvs.resize(2, 3);
   expect_rejected(m, "UVs short");
+  m = square();
+  m.images.push_back({"face_matte", {}});
+  expect_rejected(m, "an image with no bytes");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);  // no temporaries left
 }
 

@@ -8,8 +8,10 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/face_matte.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
@@ -177,6 +179,32 @@ TEST(FaceAnimation, EachEyeHasAnIrisRoundItsAxis) {
     EXPECT_GT(dark, 20) << "eye " << eye;
     EXPECT_LT(angle_between_deg(dark_sum, eyes.rest_axis[eye]), 2.0) << "eye " << eye;
   }
+}
+
+// The face matte travels in the file (as an image no material uses, which
+// renderers ignore), so that a transform's or a swap's glTF, which has no
+// track folder beside it, can be held out over the footage too.
+TEST(FaceAnimation, TheFileCarriesTheFaceMatte) {
+  FACECAP_REQUIRE_MODEL(model);
+  FaceAnimationKey key;
+  key.expression = Eigen::VectorXf::Zero(model->num_expressions());
+  GltfAnimatedMesh m = face_animation(*model, Eigen::VectorXd::Zero(10), {key}, {900.0, 1280, 720});
+  m.primitives[0].base_colour_png = encode_png(cv::Mat(8, 8, CV_8UC3, cv::Scalar(90, 120, 200)));  // an albedo
+  TempDir dir;
+  write_glb(dir.path() / "a.glb", m);
+  const test::Glb g = test::Glb::read(dir.path() / "a.glb");
+  ASSERT_EQ(g.doc["images"].size(), 2u);
+  ASSERT_EQ(g.doc["textures"].size(), 1u);
+  EXPECT_EQ(g.doc["textures"][0]["source"], 0);  // the albedo; nothing samples the matte
+  EXPECT_EQ(g.doc["images"][1]["name"], kFaceMatteImageName);
+  EXPECT_EQ(g.doc["images"][1]["mimeType"], "image/png");
+  const std::string bytes = g.image_bytes(1);
+  const cv::Mat matte = decode_image({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()});
+  ASSERT_EQ(matte.size(), cv::Size(1024, 1024));
+  cv::Mat grey;  // decoded as BGR, its channels equal
+  cv::extractChannel(matte, grey, 0);
+  EXPECT_EQ(cv::countNonZero(grey != face_matte_image(*model)), 0);
+  EXPECT_NE(std::string(g.doc["asset"]["extras"]["face_matte"]).find("face_matte"), std::string::npos);
 }
 
 TEST(FaceAnimation, TooManyWeightsIsAnError) {

@@ -501,6 +501,7 @@ TEST(SwapJob, TheGltfIsTheSourceFacePerformingTheTargetsKeys) {
   EXPECT_EQ(g.doc["asset"]["extras"]["facecap_edit"], "face-swap");
   EXPECT_TRUE(fs::exists(o.gltf.string() + ".json"));
   ASSERT_EQ(g.channel("translation").size(), 3 * tracked.size());
+  EXPECT_EQ(g.doc["images"].back()["name"], kFaceMatteImageName);  // held out over the target in Blender
 
   // What the swap renders: the source's identity shape with the frame's
   // expression, scaled onto the target's neutral face, under the frame's pose.

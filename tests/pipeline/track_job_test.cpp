@@ -22,6 +22,7 @@
 #include "facecap/io/livelink_face.hpp"
 #include "facecap/io/png16.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/face_animation.hpp"
 #include "facecap/pipeline/face_matte.hpp"
 #include "facecap/pipeline/frame_files.hpp"
 #include "facecap/pipeline/identity_file.hpp"
@@ -428,7 +429,9 @@ TEST(TrackJob, LostFramesHaveEmptyFieldsAndTrackingResumes) {
   for (float t : times) EXPECT_GT(std::abs(t - 31 / 30.0), 1e-4);
   EXPECT_NEAR(times.back(), 35 / 30.0, 1e-6);
   EXPECT_EQ(g.doc["meshes"][0]["primitives"][0]["targets"].size(), 53u + 4u);  // + the eye turns
-  EXPECT_FALSE(g.doc.contains("images"));                                      // no albedo without --refine
+  EXPECT_FALSE(g.doc.contains("textures"));  // no albedo without --refine: the one image is the matte
+  ASSERT_EQ(g.doc["images"].size(), 1u);
+  EXPECT_EQ(g.doc["images"][0]["name"], kFaceMatteImageName);
   // Beside them, the face matte (face_matte.hpp), listed in the summary.
   EXPECT_EQ(s.face_matte, out.path() / "face_matte.png");
   const cv::Mat matte = read_image((out.path() / "face_matte.png").string());

@@ -13,6 +13,7 @@
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/pipeline/capture_session.hpp"
+#include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
 #include "test_support.hpp"
 
@@ -97,6 +98,7 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   EXPECT_EQ(g.doc["materials"][int(g.doc["meshes"][0]["primitives"][0]["material"])]["pbrMetallicRoughness"]
                  ["baseColorTexture"]["index"],
             0);
+  EXPECT_EQ(g.doc["images"].back()["name"], kFaceMatteImageName);  // held out over the footage in Blender
 }
 
 TEST(TransformEval, AddressKeepsItsAudio) {

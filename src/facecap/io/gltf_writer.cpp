@@ -179,6 +179,7 @@ void validate(const GltfAnimatedMesh& m) {
     require(std::isfinite(m.times[k]) && (k == 0 || m.times[k] > m.times[k - 1]), "key times must increase");
     require(m.translations[k].allFinite() && m.rotations[k].coeffs().allFinite(), "a key's transform is not finite");
   }
+  for (const GltfImage& image : m.images) require(!image.png.empty(), "image " + image.name + " is empty");
 }
 
 // The part's accessors and its material (appended to the document).
@@ -238,6 +239,10 @@ void write_glb(const std::filesystem::path& path, const GltfAnimatedMesh& m) {
     mesh["extras"] = {{"targetNames", m.morph_target_names}};  // read by Blender and three.js
   }
   doc["meshes"] = json::array({mesh});
+  for (const GltfImage& image : m.images) {
+    const int v = b.view(image.png.data(), image.png.size());
+    doc["images"].push_back({{"name", image.name}, {"bufferView", v}, {"mimeType", "image/png"}});
+  }
 
   json node = {{"name", m.name}, {"mesh", 0}};
   if (!m.times.empty()) node.update(node_transform(m.translations[0], m.rotations[0]));

@@ -40,6 +40,14 @@ struct GltfPrimitive {
   std::vector<uint8_t> base_colour_png;           // embedded as the base colour texture (empty: none)
 };
 
+// A PNG carried in the file that no material uses (renderers ignore it),
+// found by its name (images[].name): a matte, say, that a compositing step
+// applies where it wants one.
+struct GltfImage {
+  std::string name;
+  std::vector<uint8_t> png;
+};
+
 struct GltfAnimatedMesh {
   std::string name = "mesh";
   std::vector<GltfPrimitive> primitives;
@@ -55,6 +63,7 @@ struct GltfAnimatedMesh {
 
   std::optional<GltfCamera> camera;
   std::map<std::string, std::string> asset_extras;  // written as asset.extras
+  std::vector<GltfImage> images;                    // after the parts' textures
 };
 
 // Throws facecap::Error when the parts disagree in size, a time does not

@@ -7,8 +7,10 @@
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/view_frame.hpp"
+#include "facecap/io/image_file.hpp"
 #include "facecap/model/eyeballs.hpp"
 #include "facecap/model/regions.hpp"
+#include "facecap/pipeline/face_matte.hpp"
 
 namespace facecap {
 
@@ -241,7 +243,11 @@ GltfAnimatedMesh face_animation(const FaceModel& model, const FaceAnimationRest&
        "the 53 ICT expression blend shapes under their ARKit names, then eyesTurnLeft/Right/Up/Down: both eyeballs "
        "turned 30 degrees (the subject's left, right, up, down), weighted by the measured gaze angle / 30"},
       {"units", "metres"},
-      {"camera", "the fitted pinhole camera at the origin, principal point at the image centre"}};
+      {"camera", "the fitted pinhole camera at the origin, principal point at the image centre"},
+      {"face_matte",
+       "the image named face_matte, used by no material: where a render over the footage shows the face part, in its "
+       "UV layout (255: the narrow face, feathered at its outer edge; 0: scalp, ears and neck, the footage's own)"}};
+  out.images.push_back({std::string(kFaceMatteImageName), encode_png(face_matte_image(model))});
   return out;
 }
 

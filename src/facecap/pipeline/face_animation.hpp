@@ -9,6 +9,10 @@
 // the origin, so that looking through it reproduces the video's view. Lost
 // frames have no key; players interpolate across them.
 //
+// The file also carries the face matte (face_matte.hpp) as an image named
+// kFaceMatteImageName that no material uses: what of the face part a render
+// over the footage shows (blender/import_facecap.py holds the rest out).
+//
 // Axes: glTF's world is the OpenCV camera frame turned half a turn about x
 // (F = diag(1, -1, -1): y up, the camera looking down -z), in metres. With
 // the pose's X_camera = R F X_model + t, the node carries rotation F R F and
@@ -24,6 +28,8 @@
 #include "facecap/model/face_model.hpp"
 
 namespace facecap {
+
+inline constexpr const char* kFaceMatteImageName = "face_matte";
 
 struct FaceAnimationKey {
   double time = 0;  // seconds
