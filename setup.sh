@@ -19,6 +19,12 @@ PACKAGES=(
   blender python3-numpy  # tests only: Blender's own importer opens the animated glTF output
 )
 
+# Tests only: three.js's own glTF loader (from npm, below) reads the animated
+# glTF under node. Debian's nodejs and npm where the machine has no node of its own.
+if ! command -v node > /dev/null || ! command -v npm > /dev/null; then
+  PACKAGES+=(nodejs npm)
+fi
+
 step "Checking Debian packages"
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -39,6 +45,18 @@ else
 fi
 [ -f /usr/share/dlib/shape_predictor_68_face_landmarks.dat ] ||
   fail "dlib's landmark model is missing (package libdlib-data)"
+
+step "three.js for the tests (npm, into tests/app/threejs)"
+threejs_dir=tests/app/threejs
+if [ -f "$threejs_dir/node_modules/three/package.json" ]; then
+  echo "three.js present"
+elif (cd "$threejs_dir" && npm ci --no-audit --no-fund --loglevel=error); then
+  echo "three.js installed"
+elif [ "${CI:-}" = "true" ]; then
+  fail "npm could not install three.js into $threejs_dir (CI runs its test)"
+else
+  echo "npm could not install three.js (no registry?): its test will be skipped"
+fi
 
 step "Configuring (Release) into build/"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release || fail "cmake configure failed"

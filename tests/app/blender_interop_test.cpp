@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/command.hpp"
+#include "app/tracked_clip.hpp"
 #include "facecap/core/csv_line.hpp"
 #include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/core/statistics.hpp"
@@ -39,6 +40,8 @@
 namespace facecap {
 
 namespace fs = std::filesystem;
+using test::fitted_landmarks;
+using test::track_20_frames;
 
 namespace {
 
@@ -206,12 +209,6 @@ void write_grey_plate(const fs::path& file) {
   writer.finish();
 }
 
-// The first 20 frames of `video` tracked into `dir` by facecap with `flags`.
-test::CommandResult track_20_frames(const fs::path& video, const fs::path& dir, const std::string& flags) {
-  return test::run_command(std::string(FACECAP_BINARY) + " -q track " + video.string() + " -o " + dir.string() +
-                           " --max-frames 20 " + flags + " 2>&1");
-}
-
 // A scene of those 20 frames plays at the video's 29.97 fps over frames
 // 0-19, each key on a whole frame (not k * 1.001, where the glTF importer
 // put them), and at each probed frame the head is where frames.csv puts it
@@ -232,15 +229,6 @@ void expect_plays_the_video_frame_by_frame(const nlohmann::json& report, const f
     EXPECT_NEAR(double(at["location"][1]), tz / 100, 1e-5) << frame;
     EXPECT_NEAR(double(at["location"][2]), -ty / 100, 1e-5) << frame;
   }
-}
-
-// The fitted landmarks of `frame` (frames.jsonl), in pixels times `scale`.
-std::vector<cv::Point2f> fitted_landmarks(const fs::path& frames_jsonl, int frame, float scale) {
-  const nlohmann::json row = nlohmann::json::parse(test::read_lines(frames_jsonl).at(size_t(frame)));
-  std::vector<cv::Point2f> points;
-  for (const auto& p : row["fitted_landmarks"])
-    points.emplace_back(p[0].get<float>() * scale, p[1].get<float>() * scale);
-  return points;
 }
 
 // blender/import_facecap.py run with `arguments`, its scene saved as
