@@ -226,6 +226,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 {"shape_sd_fixed_size_mm", r.shape_sd_fixed_size_mm},
                 {"fit_ms_per_frame", r.fit_ms_per_frame},
                 {"iris_error_px", r.iris_error_px},
+                {"iris_bias_xy_px", {r.iris_bias_px.x(), r.iris_bias_px.y()}},
                 {"iris_found", r.iris_found},
                 {"gaze_error_deg", r.gaze_error_deg},
                 {"gaze_bias_yaw_pitch_deg", {r.gaze_bias_deg.x(), r.gaze_bias_deg.y()}},

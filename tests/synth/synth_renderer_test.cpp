@@ -117,6 +117,54 @@ TEST(SynthRenderer, ARolledCameraSeesTheSceneTurned) {
   }
 }
 
+// The iris is a flat disc behind the cornea: evenly lit across, though
+// the cornea's sphere it is painted on faces up at its top and down at its
+// foot. Lit hard from above (the renders' key light always is, from 11-46
+// degrees), the sphere's shading made the iris's lower band 13.2 levels
+// darker than its upper (mean of both eyes, this frame), which drew the iris
+// search down; shaded flat, 0.05.
+TEST(SynthRenderer, TheIrisIsEvenlyLit) {
+  FACECAP_REQUIRE_MODEL(model);
+  SynthOptions o = small_options();
+  o.width = 960;
+  o.height = 540;
+  o.noise_sigma = 0;
+  SynthPerformance p = make_performance(*model, o);
+  SynthFrame f = p.frames[0];
+  f.expression.setZero();  // eyes open
+  f.gaze_deg.setZero();
+  f.lighting.setZero();
+  f.lighting[0] = 0.7;
+  f.lighting[2] = 0.5;  // light from above, as the renders' key light always is
+  const SynthRenderer r(*model, p);
+  std::mt19937_64 rng(1);
+  cv::Mat grey;
+  cv::cvtColor(r.render(f, rng), grey, cv::COLOR_BGR2GRAY);
+  double difference = 0;
+  for (int eye = 0; eye < 2; ++eye) {
+    const Vec2d c = r.iris_centre(f, eye);
+    const Vec3d centre = f.pose.model_to_camera_rotation() * r.eyeballs().centre[eye] + f.pose.translation;
+    const double radius = p.camera.focal * kIrisRadiusCm / centre.z();
+    ASSERT_GT(radius, 5.0);
+    // Bands a quarter to 0.4 of the radius above and below the centre,
+    // beside the pupil (0.22 / 0.585 of the radius) and inside the rim.
+    double band[2] = {0, 0};
+    int count[2] = {0, 0};
+    for (int y = int(c.y() - radius); y <= int(c.y() + radius); ++y)
+      for (int x = int(c.x() - radius); x <= int(c.x() + radius); ++x) {
+        const double dx = x - c.x(), dy = y - c.y();
+        if (std::abs(dy) < 0.25 * radius || std::abs(dy) > 0.4 * radius) continue;
+        if (std::abs(dx) < 0.45 * radius || std::hypot(dx, dy) > 0.8 * radius) continue;
+        band[dy > 0] += grey.at<uint8_t>(y, x);
+        ++count[dy > 0];
+      }
+    ASSERT_GT(count[0], 4);
+    ASSERT_GT(count[1], 4);
+    difference += (band[0] / count[0] - band[1] / count[1]) / 2;
+  }
+  EXPECT_LT(std::abs(difference), 1.0) << "upper band minus lower band, grey levels";
+}
+
 // The eyeballs turn with the gaze: the pupil (the render's darkest pixels)
 // is where the turned eyeball's front projects, and iris_centre() (the iris
 // ring's centre, a little deeper) is beside it.

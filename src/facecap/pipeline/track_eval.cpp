@@ -203,7 +203,9 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
     for (int eye = 0; eye < 2; ++eye) {
       if (blink < 0.5f) ++open_eyes;
       if (!fit.irises[eye]) continue;
-      iris_errors.push_back((fit.irises[eye]->centre - renderer.iris_centre(truth, eye)).norm());
+      const Vec2d iris_error = fit.irises[eye]->centre - renderer.iris_centre(truth, eye);
+      iris_errors.push_back(iris_error.norm());
+      r.iris_bias_px += iris_error;
       if (blink < 0.5f) ++found_open;
     }
     if (fit.gaze.valid()) {
@@ -220,6 +222,7 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   }
   r.gaze_frames = gaze_frames;
   r.iris_error_px = median(iris_errors);
+  if (!iris_errors.empty()) r.iris_bias_px /= static_cast<double>(iris_errors.size());
   r.iris_found = open_eyes > 0 ? double(found_open) / open_eyes : 0.0;
   if (valid > 0) {
     r.vertex_error_mm /= valid;

@@ -133,9 +133,11 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& painted_to
       const Vec3f offset = neutral.col(v) - centre;
       const float from_axis = (offset - offset.dot(axis) * axis).norm();
       const bool front = offset.dot(axis) > 0.0f;
-      out.vertex_albedo.col(v) = front && from_axis < 0.22f                  ? Vec3f(0.02f, 0.02f, 0.02f)
-                                 : front && from_axis < float(kIrisRadiusCm) ? iris
-                                                                             : Vec3f(0.85f, 0.82f, 0.8f);
+      const bool in_iris = front && from_axis < float(kIrisRadiusCm);
+      out.vertex_albedo.col(v) = in_iris && from_axis < 0.22f ? Vec3f(0.02f, 0.02f, 0.02f)
+                                 : in_iris                    ? iris
+                                                              : Vec3f(0.85f, 0.82f, 0.8f);
+      if (in_iris) out.iris_vertices[eye].push_back(v);
     }
   }
   for (int v = regions::kEyeExtras.first_vertex; v <= regions::kEyeExtras.last_vertex; ++v) {

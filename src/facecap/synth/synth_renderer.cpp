@@ -95,7 +95,16 @@ cv::Mat SynthRenderer::render(const SynthFrame& frame, std::mt19937_64& noise_rn
     albedo = appearance_.vertex_albedo;
     triangles.insert(triangles.end(), face_triangles_.begin(), face_triangles_.end());
   }
-  const Positions normals = vertex_normals(vertices, triangles);
+  Positions normals = vertex_normals(vertices, triangles);
+  // The iris is a flat disc under the cornea, evenly lit across: shaded
+  // with the eye's axis, not the cornea's sphere (which, lit from above,
+  // darkened the iris's lower half and drew the iris search down).
+  const Mat3d model_to_camera = frame.pose.model_to_camera_rotation();
+  for (int eye = 0; eye < 2; ++eye) {
+    const Vec3f axis =
+        (model_to_camera * turned_axis(eyes_, eye, frame.gaze_deg.x(), frame.gaze_deg.y())).cast<float>();
+    for (const int v : appearance_.iris_vertices[eye]) normals.col(v) = axis;
+  }
 
   // Supersampled camera: high-resolution pixel centres 2x and 2x+1 average to x.
   PinholeCamera cam = performance_.camera;
