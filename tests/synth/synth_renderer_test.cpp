@@ -26,6 +26,24 @@ SynthOptions small_options() {
   return o;
 }
 
+// For looking at the eyes: a 960x540 performance without sensor noise, and
+// its first frame with the expression cleared (eyes open).
+struct EyesOpenShot {
+  SynthPerformance performance;
+  SynthFrame frame;
+};
+
+EyesOpenShot eyes_open_shot(const FaceModel& model) {
+  SynthOptions o = small_options();
+  o.width = 960;
+  o.height = 540;
+  o.noise_sigma = 0;
+  EyesOpenShot shot{make_performance(model, o), {}};
+  shot.frame = shot.performance.frames[0];
+  shot.frame.expression.setZero();
+  return shot;
+}
+
 }  // namespace
 
 TEST(SynthRenderer, TruthLandmarksAreProjectedLandmarkVertices) {
@@ -125,13 +143,9 @@ TEST(SynthRenderer, ARolledCameraSeesTheSceneTurned) {
 // search down; shaded flat, 0.05.
 TEST(SynthRenderer, TheIrisIsEvenlyLit) {
   FACECAP_REQUIRE_MODEL(model);
-  SynthOptions o = small_options();
-  o.width = 960;
-  o.height = 540;
-  o.noise_sigma = 0;
-  SynthPerformance p = make_performance(*model, o);
-  SynthFrame f = p.frames[0];
-  f.expression.setZero();  // eyes open
+  const EyesOpenShot shot = eyes_open_shot(*model);
+  const SynthPerformance& p = shot.performance;
+  SynthFrame f = shot.frame;
   f.gaze_deg.setZero();
   f.lighting.setZero();
   f.lighting[0] = 0.7;
@@ -170,13 +184,9 @@ TEST(SynthRenderer, TheIrisIsEvenlyLit) {
 // ring's centre, a little deeper) is beside it.
 TEST(SynthRenderer, TheIrisesTurnWithTheGaze) {
   FACECAP_REQUIRE_MODEL(model);
-  SynthOptions o = small_options();
-  o.width = 960;
-  o.height = 540;
-  o.noise_sigma = 0;
-  SynthPerformance p = make_performance(*model, o);
-  SynthFrame f = p.frames[0];
-  f.expression.setZero();  // eyes open
+  const EyesOpenShot shot = eyes_open_shot(*model);
+  const SynthPerformance& p = shot.performance;
+  SynthFrame f = shot.frame;
   const SynthRenderer r(*model, p);
   std::mt19937_64 rng(1);
   std::array<Vec2d, 2> left_gaze;
