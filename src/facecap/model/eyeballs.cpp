@@ -77,7 +77,12 @@ void turn_eyeballs(const EyeballGeometry& eyes, double yaw_deg, double pitch_deg
 
 Vec2d project_iris_centre(const EyeballGeometry& eyes, int eye, const Vec3d& direction, const HeadPose& pose,
                           const PinholeCamera& camera) {
-  const Vec3d iris = eyes.centre[eye] + eyes.iris_depth(eye) * direction.normalized();
+  return project_iris_centre(eyes, eye, direction, eyes.iris_depth(eye), pose, camera);
+}
+
+Vec2d project_iris_centre(const EyeballGeometry& eyes, int eye, const Vec3d& direction, double depth,
+                          const HeadPose& pose, const PinholeCamera& camera) {
+  const Vec3d iris = eyes.centre[eye] + depth * direction.normalized();
   return camera.project(Vec3d(pose.model_to_camera_rotation() * iris + pose.translation));
 }
 

@@ -54,8 +54,12 @@ Vec3d turned_axis(const EyeballGeometry& eyes, int eye, double yaw_deg, double p
 // from straight ahead to the gaze.
 void turn_eyeballs(const EyeballGeometry& eyes, double yaw_deg, double pitch_deg, Positions& head);
 
-// Where the centre of the iris of an eye turned to `direction` (model frame) projects.
+// Where the centre of the iris of an eye turned to `direction` (model frame)
+// projects, the iris's plane at `depth` from the eyeball's centre (by
+// default the sphere's iris_depth).
 Vec2d project_iris_centre(const EyeballGeometry& eyes, int eye, const Vec3d& direction, const HeadPose& pose,
                           const PinholeCamera& camera);
+Vec2d project_iris_centre(const EyeballGeometry& eyes, int eye, const Vec3d& direction, double depth,
+                          const HeadPose& pose, const PinholeCamera& camera);
 
 }  // namespace facecap

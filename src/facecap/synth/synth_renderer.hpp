@@ -30,8 +30,14 @@ class SynthRenderer {
   Landmarks landmark_vertex_projections(const SynthFrame& frame) const;
 
   // Where the centre of the iris of eye 0 (the subject's right) or 1
-  // projects: what a perfect iris detector would find.
+  // projects: what a perfect iris detector would find. The centre of the
+  // painted ring, which lies on the eye's axis but nearer the eyeball's
+  // centre than EyeballGeometry::iris_depth's sphere puts it: ICT's cornea
+  // bulges (painted_iris_depth).
   Vec2d iris_centre(const SynthFrame& frame, int eye) const;
+  // Distance from each eyeball's centre, along its axis, to the plane of
+  // the painted iris's rim on this identity's eyeball (cm).
+  double painted_iris_depth(int eye) const { return painted_iris_depth_[eye]; }
   const EyeballGeometry& eyeballs() const { return eyes_; }
 
   const SynthAppearance& appearance() const { return appearance_; }
@@ -49,6 +55,7 @@ class SynthRenderer {
   SynthAppearance appearance_;
   JawContour contour_;
   EyeballGeometry eyes_;
+  std::array<double, 2> painted_iris_depth_{0.0, 0.0};
   std::vector<Triangle> head_triangles_;  // non-face regions, global indices
   std::vector<Triangle> face_triangles_;  // face region, local = global indices
   bool detail_ = false;
