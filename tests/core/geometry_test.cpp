@@ -34,6 +34,25 @@ TEST(Camera, ProjectsWithEquation42) {
   EXPECT_DOUBLE_EQ(p.y(), 800.0 * -0.05 + 240.0);
 }
 
+// An image resized by a factor keeps each pixel's area: at 2x, the fine
+// pixels 2x and 2x + 1 cover coarse pixel x, so a point at coarse x lies at
+// fine 2x + 0.5; resizing back returns the camera; a crop then a resize is a
+// window of the image scaled.
+TEST(Camera, AResizedCameraKeepsEachPixelsArea) {
+  const PinholeCamera cam = PinholeCamera::centered(800.0, 640, 480);
+  const Vec3d point(10.0, -5.0, 100.0);
+  const Vec2d coarse = cam.project(point);
+  EXPECT_NEAR((cam.resized(2.0).project(point) - (2.0 * coarse + Vec2d(0.5, 0.5))).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((cam.resized(0.25).project(point) - ((coarse + Vec2d(0.5, 0.5)) / 4.0 - Vec2d(0.5, 0.5))).norm(), 0.0,
+              1e-9);
+  const PinholeCamera back = cam.resized(4.0).resized(0.25);
+  EXPECT_DOUBLE_EQ(back.focal, cam.focal);
+  EXPECT_DOUBLE_EQ(back.cx, cam.cx);
+  EXPECT_DOUBLE_EQ(back.cy, cam.cy);
+  const Vec2d window = cam.cropped(100, 50).resized(0.5).project(point);
+  EXPECT_NEAR((window - ((coarse - Vec2d(100, 50) + Vec2d(0.5, 0.5)) * 0.5 - Vec2d(0.5, 0.5))).norm(), 0.0, 1e-9);
+}
+
 TEST(Camera, FrontalHeadFacesTheCamera) {
   // The model's +z (out of the face) must point toward the camera (-z) at R = I,
   // and the model's up (+y) must point up in the image (-y).

@@ -166,7 +166,7 @@ TEST(VertexSamplerOnEachDevice, CudaSamplesWhatTheCpuSamples) {
   for (const int factor : {1, 2}) {
     cv::Mat scaled = image;
     if (factor > 1) scaled = image_pyramid(image, 2)[1];
-    const PinholeCamera c = scaled_camera(camera, factor);
+    const PinholeCamera c = camera.resized(1.0 / factor);
     RasterBuffers buffers;
     const VertexSamples a = cpu->sample(scaled, detailed.points, normals, coarse.points, coarse.triangles, c, buffers);
     const VertexSamples b = gpu->sample(scaled, detailed.points, normals, coarse.points, coarse.triangles, c, buffers);

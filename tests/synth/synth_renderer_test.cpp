@@ -234,10 +234,7 @@ TEST(SynthRenderer, TheIrisCentreIsWhereThePaintedIrisShows) {
   const SynthRenderer r(*model, p);
   const std::vector<Triangle> all = model->full_mesh().triangles;
   constexpr int kScale = 4;
-  PinholeCamera camera = p.camera;  // fine pixel centres kScale x + (kScale - 1) / 2 average to x
-  camera.focal *= kScale;
-  camera.cx = camera.cx * kScale + 0.5 * (kScale - 1);
-  camera.cy = camera.cy * kScale + 0.5 * (kScale - 1);
+  const PinholeCamera camera = p.camera.resized(kScale);
   RasterBuffers buffers;
   buffers.resize(o.width * kScale, o.height * kScale);
   for (int eye = 0; eye < 2; ++eye) {

@@ -23,6 +23,12 @@ struct PinholeCamera {
   }
   // The same camera for a window of the image whose top-left pixel is (x0, y0).
   PinholeCamera cropped(double x0, double y0) const { return {focal, cx - x0, cy - y0}; }
+  // The same camera for the image resized by `factor` (2: twice as fine; 0.5:
+  // half). Pixel x covers [x - 0.5, x + 0.5], so it becomes (x + 0.5) factor
+  // - 0.5: at factor 2, fine pixels 2x and 2x + 1 average to x.
+  PinholeCamera resized(double factor) const {
+    return {focal * factor, (cx + 0.5) * factor - 0.5, (cy + 0.5) * factor - 0.5};
+  }
 };
 
 struct HeadPose {

@@ -129,7 +129,7 @@ struct PendingFrame {
 
   // Mesh level l pairs with the image 2^(levels - 1 - l) times smaller.
   const cv::Mat& image_for(int l) const { return pyramid[out.levels - 1 - l]; }
-  PinholeCamera camera_for(int l) const { return scaled_camera(camera, double(1 << (out.levels - 1 - l))); }
+  PinholeCamera camera_for(int l) const { return camera.resized(1.0 / double(1 << (out.levels - 1 - l))); }
 };
 
 class Refiner {

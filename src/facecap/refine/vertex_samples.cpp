@@ -112,10 +112,4 @@ std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels) {
   return out;
 }
 
-PinholeCamera scaled_camera(const PinholeCamera& c, double factor) {
-  // Pixel x at full resolution covers [x - 0.5, x + 0.5]; at 1/factor it is
-  // (x + 0.5) / factor - 0.5.
-  return {c.focal / factor, (c.cx + 0.5) / factor - 0.5, (c.cy + 0.5) / factor - 0.5};
-}
-
 }  // namespace facecap

@@ -62,7 +62,4 @@ void drop_oblique_observations(VertexSamples& samples, const Positions& camera_p
 // The refinement reads level k - 1 - l for mesh level l of k.
 std::vector<cv::Mat> image_pyramid(const cv::Mat& bgr8, int levels);
 
-// The camera for an image `factor` times smaller (pixel centres kept consistent).
-PinholeCamera scaled_camera(const PinholeCamera& camera, double factor);
-
 }  // namespace facecap

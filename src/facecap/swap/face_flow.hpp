@@ -25,9 +25,7 @@ struct ScaledWindow {
     return {(p.x() - origin.x + 0.5f) * scale - 0.5f, (p.y() - origin.y + 0.5f) * scale - 0.5f};
   }
   // The camera that sees the window.
-  PinholeCamera camera(const PinholeCamera& c) const {
-    return {c.focal * scale, (c.cx - origin.x + 0.5) * scale - 0.5, (c.cy - origin.y + 0.5) * scale - 0.5};
-  }
+  PinholeCamera camera(const PinholeCamera& c) const { return c.cropped(origin.x, origin.y).resized(scale); }
 };
 
 // One frame's flows over `window` (CV_32FC2, in the window's pixels): from

@@ -150,11 +150,7 @@ cv::Mat SynthRenderer::render(const SynthFrame& frame, std::mt19937_64& noise_rn
     for (const int v : appearance_.iris_vertices[eye]) normals.col(v) = axis;
   }
 
-  // Supersampled camera: high-resolution pixel centres 2x and 2x+1 average to x.
-  PinholeCamera cam = performance_.camera;
-  cam.focal *= kSupersample;
-  cam.cx = cam.cx * kSupersample + 0.5 * (kSupersample - 1);
-  cam.cy = cam.cy * kSupersample + 0.5 * (kSupersample - 1);
+  const PinholeCamera cam = performance_.camera.resized(kSupersample);
   RasterBuffers buffers;
   buffers.resize(o.width * kSupersample, o.height * kSupersample);
   rasterize(vertices, triangles, cam, buffers);
