@@ -116,7 +116,7 @@ TEST(FaceAnimation, TheEyeTurnTargetsPlayTheGaze) {
     const Positions truth = to_camera(turned, keys[k].pose);
     const Eigen::Matrix3Xf played = g.played_part(1, k);
     for (int eye = 0; eye < 2; ++eye) {
-      const Region& r = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+      const Region& r = eyeball_region(eye);
       Eigen::Vector3f played_centre = Eigen::Vector3f::Zero(), played_pupil = Eigen::Vector3f::Zero();
       Vec3f true_centre = Vec3f::Zero();
       int n = 0;
@@ -155,7 +155,7 @@ TEST(FaceAnimation, EachEyeHasAnIrisRoundItsAxis) {
   const EyeballGeometry eyes = eyeball_geometry(*model, identity);
   const Positions rest = model->evaluate(identity.cast<float>(), Eigen::VectorXf());
   for (int eye = 0; eye < 2; ++eye) {
-    const Region& r = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+    const Region& r = eyeball_region(eye);
     const double iris_deg = std::asin(kIrisRadiusCm / eyes.radius[eye]) * 180 / M_PI;
     Vec3d dark_sum = Vec3d::Zero();
     int dark = 0;

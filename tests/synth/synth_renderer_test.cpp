@@ -238,7 +238,7 @@ TEST(SynthRenderer, TheIrisCentreIsWhereThePaintedIrisShows) {
   RasterBuffers buffers;
   buffers.resize(o.width * kScale, o.height * kScale);
   for (int eye = 0; eye < 2; ++eye) {
-    const Region& eyeball = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+    const Region& eyeball = eyeball_region(eye);
     std::vector<Triangle> triangles;
     for (const Triangle& t : all)
       if (t[0] >= eyeball.first_vertex && t[0] <= eyeball.last_vertex) triangles.push_back(t);

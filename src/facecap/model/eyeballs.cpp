@@ -3,15 +3,12 @@
 #include <cmath>
 
 #include "facecap/core/error.hpp"
-#include "facecap/model/regions.hpp"
 
 namespace facecap {
 
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-
-const Region& eyeball_region(int eye) { return eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft; }
 
 // One eye's sphere from its region's positions (3 x its vertices).
 void set_eyeball(const FaceModel& model, int eye, const Positions& shaped, EyeballGeometry& g) {

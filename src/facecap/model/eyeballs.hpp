@@ -19,12 +19,16 @@
 
 #include "facecap/core/camera.hpp"
 #include "facecap/model/face_model.hpp"
+#include "facecap/model/regions.hpp"
 
 namespace facecap {
 
 // Eye 0: the subject's right eye (iBUG 36-41); eye 1: the left (42-47).
 // The human iris is 11.7 mm across on average.
 inline constexpr double kIrisRadiusCm = 0.585;
+
+// The model's vertices of eye 0's or eye 1's eyeball.
+inline const Region& eyeball_region(int eye) { return eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft; }
 
 struct EyeballGeometry {
   std::array<Vec3d, 2> centre;  // model frame, cm

@@ -79,12 +79,13 @@ struct TrackEvalResult {
   double shape_sd_mm = 0;
   double shape_sd_fixed_size_mm = 0;
   double fit_ms_per_frame = 0;
-  // Gaze: the iris centres against the projected true pupils (median, pixels;
-  // and the mean of found minus true, x right and y down, pixels), the share
-  // of open eyes (frames not mid-blink) where an iris was found, and the mean
-  // angle between the estimated and the true head-relative gaze over the
-  // frames that have one, and its mean signed part: estimated minus true
-  // (yaw, pitch), head-relative, degrees (gaze_angles_deg).
+  // Gaze: the iris centres against the true ones (SynthRenderer::iris_centre;
+  // median, pixels; and the mean of found minus true, x right and y down,
+  // pixels), the share of open eyes (frames not mid-blink) where an iris was
+  // found, and the mean angle between the estimated and the true
+  // head-relative gaze over the frames that have one, and its mean signed
+  // part: estimated minus true (yaw, pitch), head-relative, degrees
+  // (gaze_angles_deg).
   double iris_error_px = 0;
   Vec2d iris_bias_px = Vec2d::Zero();
   double iris_found = 0;

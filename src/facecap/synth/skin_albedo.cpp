@@ -126,7 +126,7 @@ SynthAppearance paint_appearance(const FaceModel& model, const Vec3f& painted_to
   // eyeballs.hpp says an iris is.
   const EyeballGeometry eyes = eyeball_geometry(model, Eigen::VectorXd());
   for (int eye = 0; eye < 2; ++eye) {
-    const Region& eyeball = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+    const Region& eyeball = eyeball_region(eye);
     const Vec3f centre = eyes.centre[eye].cast<float>();
     const Vec3f axis = eyes.rest_axis[eye].cast<float>();
     for (int v = eyeball.first_vertex; v <= eyeball.last_vertex; ++v) {

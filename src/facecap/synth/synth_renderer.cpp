@@ -23,7 +23,7 @@ namespace {
 // was painted (skin_albedo.cpp).
 double painted_rim_depth(const FaceModel& model, const Eigen::VectorXf& identity, const EyeballGeometry& eyes, int eye,
                          const std::vector<int>& painted) {
-  const Region& region = eye == 0 ? regions::kEyeballRight : regions::kEyeballLeft;
+  const Region& region = eyeball_region(eye);
   const Eigen::VectorXf shape = model.identity_shape(identity, region);
   const Eigen::Map<const Positions> eyeball(shape.data(), 3, region.num_vertices());
   std::vector<char> is_painted(model.num_vertices, 0);
