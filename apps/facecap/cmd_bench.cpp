@@ -93,9 +93,7 @@ void register_bench(CLI::App& app, GlobalOptions& global) {
       track->add_flag("--all-faces", a->all_faces,
                       "Every face, on one decoding pass (as track --all-faces): the shared stages, then each face's");
   add_device_option(*track, a->refine_options.device);
-  track->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames (0: all)")
-      ->check(whole_number_at_least(0));
-  add_start_option(*track, a->capture.start_seconds);
+  add_frame_range_options(*track, a->capture);
   add_smooth_frames_option(*track, a->capture.fit.smooth_frames);
   track
       ->add_flag("--refine", a->refine,
@@ -319,6 +317,7 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
     int max_frames = 150;
     bool all_faces = false;
     VideoEncoding encoding;
+    CoverOptions covers;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file or image folder")->required();
@@ -330,11 +329,15 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
       ->check(whole_number_at_least(0))
       ->capture_default_str();
   add_encoding_options(*cmd, a->encoding, "the scratch output, as transform's");
+  add_cover_flags(*cmd, a->covers.keep_occluders, a->covers.moving_covers,
+                  "Re-render the face over whatever covers it (as transform --no-occlusion)",
+                  "as transform --no-moving-covers");
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to);
     const FaceModel model = load_model(global);
     TransformJobOptions o;
     o.encoding = a->encoding;
+    o.covers = a->covers;
     o.capture.max_frames = a->max_frames;
     o.capture.quiet = true;
     o.transform.schedule = ExpressionSchedule::constant(to, 1.0);
@@ -357,16 +360,20 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double n = std::max(1, timings.frames);
-    const double edit_ms = (timings.mapping_ms + timings.render_ms) / n;
+    const double edit_ms = (timings.mapping_ms + timings.render_ms + timings.covers_ms) / n;
     j["transform"] = {
         {"frames", timings.frames},
         {"mapping_smoothing_qp_ms_per_frame", timings.mapping_ms / n},
         {"rerender_composite_ms_per_frame", timings.render_ms / n},
+        {"covers_ms_per_frame", timings.covers_ms / n},
+        {"cover_preparation_ms_per_frame", timings.cover_preparation_ms / n},
         {"edit_ms_per_frame", edit_ms},
         {"edit_fps", edit_ms > 0 ? 1000.0 / edit_ms : 0.0},
         {"lighting_ms_per_frame", timings.lighting_ms / n},
         {"cpu_ms_per_frame",
-         cpu_budget_json({{"edit_thread", timings.edit_thread_cpu_ms}, {"lighting", timings.lighting_cpu_ms}},
+         cpu_budget_json({{"edit_thread", timings.edit_thread_cpu_ms},
+                          {"lighting", timings.lighting_cpu_ms},
+                          {"cover_preparation", timings.cover_preparation_cpu_ms}},
                          timings.job_cpu, n,
                          "CPU time per frame, where the ms above are wall times that include waiting "
                          "for a core: the edit's thread (mapping, re-render, composite and the "
@@ -376,9 +383,10 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
                          "facecap plus encoder against the cores times the run's wall time says "
                          "whether the cores were full")},
         {"note",
-         "edit = mapping + smoothing + lip QP + re-render + composite; lighting is the "
-         "refinement's SH estimate (albedo over the first 4 frames); with --all-faces, each "
-         "summed over the faces (their streams run on threads of their own)"}};
+         "edit = mapping + smoothing + lip QP + re-render + composite + covers (what covers the face, kept in "
+         "front; its unshading and optical flow run beside, on the lighting's stage: cover_preparation); lighting is "
+         "the refinement's SH estimate (albedo over the first 4 frames); with --all-faces, each summed over the "
+         "faces (their streams run on threads of their own)"}};
     j["fps_end_to_end"] = wall > 0 ? timings.frames / wall : 0.0;
     j["input"] = a->input;
     j["width"] = input.width;

@@ -132,10 +132,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                 "every frame)");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video")
       ->check(whole_number_at_least(0));
-  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
-  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
-  add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_face_option(*cmd, a->options.capture.tracker.pick);
+  add_fit_options(*cmd, a->options.capture);
   cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
   cmd->add_flag("--map-size", a->map_size,
                 "Keep the identity solve's own face size, without the size correction (diagnostic)");
@@ -347,10 +344,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
       ->excludes(method);
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames")
       ->check(whole_number_at_least(0));
-  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
-  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
-  add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_face_option(*cmd, a->options.capture.tracker.pick);
+  add_fit_options(*cmd, a->options.capture);
   cmd->add_option("-o,--output", a->output, "Keep the transformed video here (default: a temporary file)");
   cmd->add_option("--models", a->options.models_dir, "Expression models folder");
   cmd->callback([a, &global] {
@@ -420,10 +414,7 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--target", a->target, "Target video");
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames")
       ->check(whole_number_at_least(0));
-  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
-  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
-  add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
-  add_face_option(*cmd, a->options.capture.tracker.pick);
+  add_fit_options(*cmd, a->options.capture);
   cmd->add_option("-o,--output", a->output, "Keep the swapped video here (--source/--target; default: temporary)");
   cmd->add_flag("--wrinkles", a->options.swap.wrinkles, "Predict the target's expression wrinkles (§6.1.2)");
   add_swap_texture_flags(*cmd, a->options.swap);

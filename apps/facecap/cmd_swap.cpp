@@ -64,14 +64,9 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
       "OUT_shot<N>.glb after the first");
   add_matte_option(*cmd, a->options.matte, "new face");
   add_encoding_options(*cmd, a->options.encoding, "the output video (a --matte is lossless)");
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)")
-      ->check(whole_number_at_least(0));
-  add_start_option(*cmd, a->options.capture.start_seconds);
-  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
-  add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
-  add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
+  add_frame_range_options(*cmd, a->options.capture);
+  CLI::Option* face = add_fit_options(*cmd, a->options.capture).face;
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
-  CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
   CLI::Option* all_faces = add_all_faces_options(
       *cmd, a->all_faces, a->all,
       "Put the source's face on every face the target shows, into the one output, each from the frame it is first "

@@ -242,26 +242,21 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--focal", a->options.capture.fit.focal_guess,
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known");
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
-  add_init_frames_option(*cmd, a->options.capture.fit.init_frames);
-  CLI::Option* smooth = add_smooth_frames_option(*cmd, a->options.capture.fit.smooth_frames);
-  add_shot_cuts_option(*cmd, a->options.capture.shot_cuts);
+  add_frame_range_options(*cmd, a->options.capture);
+  const FitCliOptions fit = add_fit_options(*cmd, a->options.capture);
   CLI::Option* identity = add_identity_option(*cmd, a->options.capture.fit.known_identity);
-  CLI::Option* face = add_face_option(*cmd, a->options.capture.tracker.pick);
   CLI::Option* all_faces = add_all_faces_options(
       *cmd, a->all_faces, a->all,
       "Track every face the input shows, each into DIR/face_<k> (k in the order found) from the frame it is first "
       "found in, with DIR/faces.json listing them; one decoding pass for all (a face entering later is found within "
       "--search-every frames)");
-  all_faces->excludes(face)->excludes(identity);  // one person's face for every face
+  all_faces->excludes(fit.face)->excludes(identity);  // one person's face for every face
   CLI::Option* stream =
       cmd->add_flag("--stream", a->stream,
                     "Also print each frame's row (as in frames.jsonl) on stdout as soon as it is done, for a program "
                     "reading the capture live (cam:N; rows start once the identity is solved, after --init-frames "
                     "frames); the closing list of files then goes to stderr");
   stream->excludes("--all-faces");
-  cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames (0: all)")
-      ->check(whole_number_at_least(0));
-  add_start_option(*cmd, a->options.capture.start_seconds);
   cmd->add_flag("--each-image", a->each_image,
                 "INPUT is a folder of portraits, each fitted on its own as a photo is (its own identity and focal "
                 "length, any size) into DIR/<image name>, with one table of all: DIR/images.csv and "
@@ -271,7 +266,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
       ->excludes(stream)
       ->excludes("--livelink-udp")
       ->excludes("--start");
-  cmd->callback([a, &global, meshes, point_cache, mesh_format, smooth] {
+  cmd->callback([a, &global, meshes, point_cache, mesh_format, smooth = fit.smooth_frames] {
     a->options.mesh_space = a->mesh_space == "camera" ? MeshSpace::kCamera : MeshSpace::kModel;
     a->options.mesh_format = a->mesh_format == "ply" ? MeshFormat::kPly : MeshFormat::kObj;
     if (mesh_format->count() > 0 && meshes->count() == 0 && point_cache->count() == 0)

@@ -24,6 +24,7 @@ struct FacePick;
 struct AllFacesOptions;
 struct AllFacesSummary;
 struct SynthOptions;
+struct CaptureOptions;
 }  // namespace facecap
 
 namespace facecap::cli {
@@ -62,6 +63,16 @@ CLI::Validator number_between(double least, double most);
 void add_start_option(CLI::App& cmd, double& start_seconds);
 // --no-shot-cuts: one identity and focal length for the whole input (CaptureOptions::shot_cuts).
 void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts);
+// --max-frames and --start: which frames of the input a command reads.
+void add_frame_range_options(CLI::App& cmd, CaptureOptions& capture);
+// How a capture is fitted and whose face it follows, as every command that
+// captures asks it: --init-frames, --smooth-frames, --no-shot-cuts and --face.
+// Returns the two options others exclude or need.
+struct FitCliOptions {
+  CLI::Option* smooth_frames;
+  CLI::Option* face;
+};
+FitCliOptions add_fit_options(CLI::App& cmd, CaptureOptions& capture);
 // --units AU12=3,AU4=0: a FACS edit (action_units.hpp), checked when given
 // (parse_action_unit_targets names what is wrong). Returns the option.
 CLI::Option* add_action_units_option(CLI::App& cmd, std::string& units, const std::string& help);
@@ -113,6 +124,12 @@ CLI::Option* add_identity_option(CLI::App& cmd, std::optional<Eigen::VectorXd>& 
 // --no-occlusion: whether it leaves what covers the target's face in front
 // (SwapOptions), for `swap` and `eval swap` alike.
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
+// --no-occlusion and --no-moving-covers: whether an edit leaves what covers
+// the face in front of it, and finds a hand of the skin's colour by its
+// motion. `paint_over`: what the edit does without it; `cost`: the motion
+// test's cost in frames per second.
+void add_cover_flags(CLI::App& cmd, bool& keep_occluders, bool& moving_covers, const std::string& paint_over,
+                     const std::string& cost);
 // --device cpu|cuda: where the refinement's sampling, albedo and displacement solves run (default:
 // cuda when this build has it and a GPU answers, else cpu).
 void add_device_option(CLI::App& cmd, ComputeDevice& device);

@@ -13,6 +13,7 @@
 #include "facecap/expr/action_units.hpp"
 #include "facecap/expr/emotions.hpp"
 #include "facecap/model/model_cache.hpp"
+#include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 #include "facecap/pipeline/photo_face_texture.hpp"
@@ -70,6 +71,19 @@ void add_shot_cuts_option(CLI::App& cmd, bool& shot_cuts) {
       "Keep one identity and focal length for the whole input. By default a shot cut (the picture changes "
       "all at once: an edit to another speaker, another camera) starts a new shot whose identity and focal "
       "length are solved again");
+}
+
+void add_frame_range_options(CLI::App& cmd, CaptureOptions& capture) {
+  cmd.add_option("--max-frames", capture.max_frames, "Stop after this many frames (0: all)")
+      ->check(whole_number_at_least(0));
+  add_start_option(cmd, capture.start_seconds);
+}
+
+FitCliOptions add_fit_options(CLI::App& cmd, CaptureOptions& capture) {
+  add_init_frames_option(cmd, capture.fit.init_frames);
+  CLI::Option* smooth = add_smooth_frames_option(cmd, capture.fit.smooth_frames);
+  add_shot_cuts_option(cmd, capture.shot_cuts);
+  return {smooth, add_face_option(cmd, capture.tracker.pick)};
 }
 
 CLI::Option* add_action_units_option(CLI::App& cmd, std::string& units, const std::string& help) {
@@ -283,6 +297,17 @@ void add_device_option(CLI::App& cmd, ComputeDevice& device) {
       ->type_name("cpu|cuda");
 }
 
+void add_cover_flags(CLI::App& cmd, bool& keep_occluders, bool& moving_covers, const std::string& paint_over,
+                     const std::string& cost) {
+  cmd.add_flag_callback(
+      "--no-occlusion", [&keep_occluders] { keep_occluders = false; }, paint_over + " rather than leave it in front");
+  cmd.add_flag_callback(
+      "--no-moving-covers", [&moving_covers] { moving_covers = false; },
+      "Find covers by their colour alone: not a hand of the skin's own colour moving across the face, which the "
+      "optical flow finds (" +
+          cost + "); a hand that rests for seconds is lost either way");
+}
+
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
   // `swap` outlives the parse: it is part of the subcommand's arguments.
   cmd.add_flag_callback(
@@ -308,15 +333,9 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
                  "that land in the wrong place on another expression; 1 keeps the photo's texture as it is")
       ->check(number_between(0, 1))
       ->capture_default_str();
-  cmd.add_flag_callback(
-      "--no-occlusion", [&swap] { swap.keep_occluders = false; },
-      "Paint the new face over whatever covers the target's face (a microphone, a cup, hair, a hand) rather than "
-      "leave it in front");
-  cmd.add_flag_callback(
-      "--no-moving-covers", [&swap] { swap.moving_covers = false; },
-      "Find covers by their colour alone: not a hand of the skin's own colour moving across the face, which the "
-      "optical flow finds (at 720p on 2 cores, 30-34 fps against 35-37); a hand that rests for seconds is lost either "
-      "way");
+  add_cover_flags(cmd, swap.keep_occluders, swap.moving_covers,
+                  "Paint the new face over whatever covers the target's face (a microphone, a cup, hair, a hand)",
+                  "at 720p on 2 cores, 30-34 fps against 35-37");
   cmd.add_flag_callback(
       "--no-grade-match", [&swap] { swap.match_grade = false; },
       "Keep the photo's range of skin hues where the target shows a narrower one (a desaturated or sepia grade); "

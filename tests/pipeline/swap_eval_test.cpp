@@ -15,6 +15,7 @@
 #include "facecap/model/regions.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
+#include "pipeline/covered_frames.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -28,15 +29,6 @@ SwapJobOptions short_run(int frames) {
   o.capture.quiet = true;
   o.capture.max_frames = frames;
   return o;
-}
-
-// Per pixel, the largest difference over the channels of two BGR images
-// (CV_8U).
-cv::Mat largest_channel_difference(const cv::Mat& a, const cv::Mat& b) {
-  cv::Mat difference, channels[3];
-  cv::absdiff(a, b, difference);
-  cv::split(difference, channels);
-  return cv::max(cv::max(channels[0], channels[1]), channels[2]);
 }
 
 // A cover test's swap of the frames in `folder` (into its parent folder),
@@ -248,20 +240,8 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
   TempDir dir;
   constexpr int kFrames = 44, kCoverFrom = 20, kRadius = 32;
   auto cover_centre = [](int i) { return cv::Point(470 + (i - kCoverFrom), 350); };
-  std::vector<cv::Mat> input;
-  {
-    auto source = open_input(video.string());
-    Frame f;
-    fs::create_directories(dir.path() / "covered");
-    for (int i = 0; i < kFrames && source->read(f); ++i) {
-      cv::Mat image = f.image.clone();
-      if (i >= kCoverFrom) cv::circle(image, cover_centre(i), kRadius, cv::Scalar(96, 48, 32), cv::FILLED);
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%03d.png", i);
-      facecap::write_image((dir.path() / "covered" / name).string(), image);
-      input.push_back(image);
-    }
-  }
+  const std::vector<cv::Mat> input = write_covered_frames(video, dir.path() / "covered", kFrames, kCoverFrom,
+                                                          cover_centre, kRadius, cv::Scalar(96, 48, 32));
   ASSERT_EQ(int(input.size()), kFrames);
   // Per frame: the share of the cover (less 4 px at its edge) the output
   // keeps within 12 grey levels of the input, and SwappedFrame::covered.
@@ -322,11 +302,11 @@ TEST(SwapJob, ACoverInFrontOfTheTargetFaceStaysInFront) {
   }
 }
 
-// A hand of the target's own skin colour (its cheek's median, rounded and
-// grainy as skin is) comes up over the mouth and chin from below (frames
-// 20-27, about 15 mm a frame), rests there for a second with a slight
-// tremor (frames 28-51) and goes down again (52-59): no colour tells it
-// from the face, only its motion across it (MovingCover). Measured on the
+// A hand of the target's own skin colour (covered_frames.hpp: its cheek's
+// median, rounded and grainy as skin is) comes up over the mouth and chin
+// from below (frames 20-27, about 15 mm a frame), rests there for a second
+// with a slight tremor (frames 28-51) and goes down again (52-59): no colour
+// tells it from the face, only its motion across it (MovingCover). Measured on the
 // hand's pixels (less 4 px at its edge) that the swap without covers
 // changes by more than 12 grey levels: the share the swap keeps within 12
 // of the input.
@@ -335,78 +315,10 @@ TEST(SwapJob, AHandOfTheSkinsOwnColourStaysInFront) {
   FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
   FACECAP_REQUIRE_DATA(photo, "portrait_biden.jpg");
   TempDir dir;
-  constexpr int kFrames = 72, kEnter = 20, kRest = 28, kLeave = 52, kGone = 60;
-  // The palm's centre: rests below the chin, the fingers up over the mouth.
-  auto palm = [&](int i) {
-    const cv::Point2f rest(530, 480);
-    if (i < kEnter || i >= kGone) return cv::Point2f(rest.x, 2000);
-    if (i < kRest) return cv::Point2f(rest.x, rest.y + 25.0f * (kRest - i));
-    if (i < kLeave) return cv::Point2f(rest.x + 2.0f * std::sin(0.9f * i), rest.y + 1.5f * std::cos(1.3f * i));
-    return cv::Point2f(rest.x, rest.y + 25.0f * (i - kLeave + 1));
-  };
-  auto hand_mask = [&](cv::Size size, int i) {
-    cv::Mat mask(size, CV_8U, cv::Scalar(0));
-    const cv::Point2f c = palm(i);
-    cv::ellipse(mask, c, cv::Size(68, 80), 0, 0, 360, cv::Scalar(255), cv::FILLED);
-    const float offsets[4] = {-48, -16, 16, 48}, lengths[4] = {105, 125, 120, 100};
-    for (int f = 0; f < 4; ++f)
-      cv::line(mask, cv::Point2f(c.x + offsets[f], c.y - 40),
-               cv::Point2f(c.x + offsets[f] * 1.1f, c.y - 40 - lengths[f]), cv::Scalar(255), 28);
-    return mask;
-  };
-  std::vector<cv::Mat> input, hands;
-  {
-    auto source = open_input(video.string());
-    Frame f;
-    fs::create_directories(dir.path() / "hand");
-    cv::Scalar skin;
-    cv::Mat grain;
-    for (int i = 0; i < kFrames && source->read(f); ++i) {
-      if (i == 0) {
-        // The cheek's median colour, per channel.
-        std::vector<cv::Mat> channels;
-        cv::split(f.image(cv::Rect(420, 280, 30, 30)), channels);
-        for (int k = 0; k < 3; ++k) {
-          std::vector<uchar> v(channels[k].begin<uchar>(), channels[k].end<uchar>());
-          std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-          skin[k] = v[v.size() / 2];
-        }
-        // The skin's grain, moving with the hand.
-        grain = cv::Mat(512, 512, CV_32F);
-        cv::RNG(11).fill(grain, cv::RNG::NORMAL, 0.0, 8.0);
-        cv::GaussianBlur(grain, grain, cv::Size(0, 0), 1.5);
-      }
-      const cv::Mat mask = hand_mask(f.image.size(), i);
-      // Rounded as fingers are: darker toward their edges.
-      cv::Mat inside;
-      cv::distanceTransform(mask, inside, cv::DIST_L2, 3);
-      cv::Mat soft;
-      mask.convertTo(soft, CV_32F, 1.0 / 255);
-      cv::GaussianBlur(soft, soft, cv::Size(0, 0), 1.0);
-      cv::Mat image = f.image.clone();
-      const cv::Point2f c = palm(i);
-      const float top = c.y - 170, height = 250;
-      for (int y = 0; y < image.rows; ++y) {
-        const float lengthwise = 0.92f + 0.16f * std::clamp((y - top) / height, 0.0f, 1.0f);
-        for (int x = 0; x < image.cols; ++x) {
-          const float a = soft.at<float>(y, x);
-          if (a <= 0) continue;
-          const float shade = lengthwise * (0.8f + 0.2f * std::min(1.0f, inside.at<float>(y, x) / 12.0f));
-          cv::Vec3b& p = image.at<cv::Vec3b>(y, x);
-          const float g =
-              grain.at<float>(std::clamp(y - int(c.y) + 256, 0, 511), std::clamp(x - int(c.x) + 256, 0, 511));
-          for (int k = 0; k < 3; ++k) p[k] = cv::saturate_cast<uchar>((1 - a) * p[k] + a * (skin[k] * shade + g));
-        }
-      }
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%03d.png", i);
-      facecap::write_image((dir.path() / "hand" / name).string(), image);
-      input.push_back(image);
-      cv::Mat inner;
-      cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(9, 9)));
-      hands.push_back(inner);
-    }
-  }
+  using namespace skin_coloured_hand;
+  const HandFrames hand = write_hand_frames(video, dir.path() / "hand");
+  const std::vector<cv::Mat>& input = hand.input;
+  const std::vector<cv::Mat>& hands = hand.hands;
   ASSERT_EQ(int(input.size()), kFrames);
   // Per frame, the output and how much of the new face the covers took.
   struct Out {

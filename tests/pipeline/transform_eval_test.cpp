@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -15,6 +16,7 @@
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/face_animation.hpp"
 #include "io/glb_reader.hpp"
+#include "pipeline/covered_frames.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -194,6 +196,132 @@ TEST(TransformJob, TheMatteShowsWhereTheFaceWasReRendered) {
   TransformJobOptions same = o;
   same.matte = out;
   EXPECT_THROW(run_transform(*model, video.string(), out, same), Error);
+}
+
+// Something in front of the face (a navy disc over the corner of the
+// mouth, moving, from frame 20 on: after the frames the covers are learnt
+// from) stays in front of the new expression
+// (CoverOptions::keep_occluders) and out of the matte; without it the disc
+// is re-rendered with the face and moves with the smile. Where nothing
+// covers the face the edit is the same either way.
+TEST(TransformJob, ACoverInFrontOfTheFaceStaysInFront) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  constexpr int kFrames = 44, kCoverFrom = 20, kRadius = 32;
+  const cv::Scalar kNavy(96, 48, 32);
+  // Over the corner of the mouth on the image's right, drifting outward.
+  auto cover_centre = [](int i) { return cv::Point(555 + (i - kCoverFrom) / 2, 345); };
+  const fs::path folder = dir.path() / "covered";
+  const std::vector<cv::Mat> input =
+      write_covered_frames(video, folder, kFrames, kCoverFrom, cover_centre, kRadius, kNavy);
+  ASSERT_EQ(int(input.size()), kFrames);
+  auto transform = [&](bool keep_occluders) {
+    TransformJobOptions o = short_run(kFrames);
+    o.covers.keep_occluders = keep_occluders;
+    if (keep_occluders) o.matte = dir.path() / "matte.mp4";
+    std::vector<cv::Mat> out;
+    o.on_frame = [&](int, const cv::Mat& image) { out.push_back(image.clone()); };
+    run_transform(*model, folder.string(), dir.path() / (keep_occluders ? "kept.mp4" : "painted.mp4"), o);
+    return out;
+  };
+  const std::vector<cv::Mat> kept = transform(true), painted = transform(false);
+  ASSERT_EQ(int(kept.size()), kFrames);
+  ASSERT_EQ(int(painted.size()), kFrames);
+  // Per frame: the share of the disc (less 3 px at its edge) and of a ring
+  // 6 px wide just outside it that the output keeps within 12 grey levels
+  // of the input; and the pixels outside the disc that the output turns the
+  // disc's colour (within 30 levels of it, where the input is not).
+  auto share_kept = [&](const cv::Mat& out, int i, int from, int to) {
+    cv::Mat area(out.size(), CV_8U, cv::Scalar(0));
+    cv::circle(area, cover_centre(i), to, cv::Scalar(255), cv::FILLED);
+    if (from > 0) cv::circle(area, cover_centre(i), from, cv::Scalar(0), cv::FILLED);
+    const cv::Mat near = largest_channel_difference(out, input[i]) <= 12;
+    return double(cv::countNonZero(near & area)) / cv::countNonZero(area);
+  };
+  auto spilt = [&](const cv::Mat& out, int i) {
+    const cv::Mat navy(out.size(), CV_8UC3, kNavy);
+    cv::Mat outside(out.size(), CV_8U, cv::Scalar(255));
+    cv::circle(outside, cover_centre(i), kRadius + 1, cv::Scalar(0), cv::FILLED);
+    const cv::Mat now = largest_channel_difference(out, navy) <= 30;
+    const cv::Mat before = largest_channel_difference(input[i], navy) <= 30;
+    return cv::countNonZero(now & ~before & outside);
+  };
+  for (int i = 0; i < kFrames; ++i) {
+    if (i < kCoverFrom) {
+      // Nothing is taken for a cover.
+      EXPECT_LT(cv::countNonZero(largest_channel_difference(kept[i], painted[i]) > 12), 50) << i;
+    } else if (i >= kCoverFrom + 2) {
+      EXPECT_GT(share_kept(kept[i], i, 0, kRadius - 3), 0.99) << i;
+      EXPECT_GT(share_kept(kept[i], i, kRadius + 1, kRadius + 7), 0.95) << i;
+      EXPECT_LE(spilt(kept[i], i), 5) << i;
+      // Re-rendered with the face, the disc spreads as the smile does
+      // (150-270 pixels a frame).
+      EXPECT_GT(spilt(painted[i], i), 50) << i;
+    }
+  }
+  // The matte: the re-rendered face, with the disc cut out of it.
+  auto matte = open_input((dir.path() / "matte.mp4").string());
+  Frame m;
+  for (int i = 0; i < kFrames && matte->read(m); ++i) {
+    cv::Mat grey;
+    cv::extractChannel(m.image, grey, 1);
+    cv::Mat disc(grey.size(), CV_8U, cv::Scalar(0));
+    cv::circle(disc, cover_centre(std::max(i, kCoverFrom)), kRadius - 3, cv::Scalar(255), cv::FILLED);
+    const double mean = cv::mean(grey, disc)[0];
+    if (i < kCoverFrom) {
+      EXPECT_GT(mean, 200) << i;  // 235-255
+    } else if (i >= kCoverFrom + 2) {
+      EXPECT_LT(mean, 3) << i;
+    }
+  }
+}
+
+// The hand of the face's own skin colour of covered_frames.hpp, over the
+// mouth and chin of a speaker made happy: only its motion tells it from the
+// face (CoverOptions::moving_covers). Measured as the swap's test measures
+// it: on the hand's pixels that the transformation without covers changes
+// by more than 12 grey levels, the share kept within 12 of the input (0.76;
+// by the colour test alone 0).
+TEST(TransformJob, AHandOfTheSkinsOwnColourStaysInFront) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  TempDir dir;
+  using namespace skin_coloured_hand;
+  const HandFrames hand = write_hand_frames(video, dir.path() / "hand");
+  ASSERT_EQ(int(hand.input.size()), kFrames);
+  auto transform = [&](CoverOptions covers) {
+    TransformJobOptions o = short_run(kFrames);
+    o.covers = covers;
+    std::vector<cv::Mat> out;
+    o.on_frame = [&](int, const cv::Mat& image) { out.push_back(image.clone()); };
+    run_transform(*model, (dir.path() / "hand").string(), dir.path() / "out.mp4", o);
+    return out;
+  };
+  CoverOptions colour_only, none;
+  colour_only.moving_covers = false;
+  none.keep_occluders = false;
+  const std::vector<cv::Mat> kept = transform({}), by_colour = transform(colour_only), painted = transform(none);
+  ASSERT_EQ(int(kept.size()), kFrames);
+  auto changed = [](const cv::Mat& a, const cv::Mat& b) { return cv::Mat(largest_channel_difference(a, b) > 12); };
+  // Over the frames, the hand's pixels the edit without covers changes
+  // (40-250 a frame while it rests: a hand re-rendered from itself moves
+  // little) and of them those each run keeps.
+  int area = 0, kept_area = 0, colour_area = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    if (i < kEnter) {
+      // Nothing moves across the face yet: nothing is taken for a cover.
+      EXPECT_LT(cv::countNonZero(changed(kept[i], painted[i])), 50) << i;
+      continue;
+    }
+    const cv::Mat on_face = hand.hands[i] & changed(painted[i], hand.input[i]);
+    area += cv::countNonZero(on_face);
+    kept_area += cv::countNonZero(on_face & ~changed(kept[i], hand.input[i]));
+    colour_area += cv::countNonZero(on_face & ~changed(by_colour[i], hand.input[i]));
+  }
+  ASSERT_GT(area, 1000);
+  EXPECT_GT(double(kept_area) / area, 0.6);
+  EXPECT_LT(double(colour_area) / area, 0.1);  // the colour test does not see it
 }
 
 TEST(TransformJob, AMissingModelFolderFailsBeforeWritingAnything) {

@@ -1,8 +1,6 @@
 #include "facecap/pipeline/face_swap_stream.hpp"
 
-#include <optional>
-
-#include "facecap/core/parallel.hpp"
+#include "facecap/pipeline/cover_preparation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/swap/frame_preparation.hpp"
 
@@ -49,20 +47,7 @@ FaceSwapStream::FaceSwapStream(const FaceModel& model, const cv::Mat& photo, con
   // of the frame before: the swap's thread is the pipeline's slowest, and
   // these need only the frame, the tracked face and its lighting.
   preparation_ = swapper_.make_preparation();
-  if (preparation_) {
-    stage_->on_prepare([this](RefinedFrame& r) {
-      if (r.starts_shot) preparation_->reset();  // the swapper starts again too
-      if (!r.refinement || r.frame.image.empty()) return;
-      // On 2 cores, on its own thread alone: the pool's worker is the
-      // swap's, the pipeline's slowest stage. `bench swap --tracked-first`
-      // at 720p (6 alternating pairs) 23.8-25.6 -> 25.9-27.4 fps, the same
-      // output (the two flows, which ran on two cores, now one after the
-      // other). Where there are more, the pool has workers to spare.
-      std::optional<SerialScope> serial;
-      if (worker_count() <= 2) serial.emplace();
-      r.prepared = preparation_->prepare(r.frame.image, r.coarse, r.camera, r.refinement->lighting, r.frame.index);
-    });
-  }
+  if (preparation_) prepare_covers_beside(*stage_, *preparation_);
 }
 
 FaceSwapStream::~FaceSwapStream() = default;
@@ -93,7 +78,7 @@ void FaceSwapStream::take(const RefinedFrame& r) {
   t.lighting = r.refinement->lighting;
   t.lighting_final = r.refinement->albedo_final;
   t.index = f.index;
-  t.prepared = std::any_cast<PreparedFrame>(&r.prepared);
+  t.prepared = prepared_covers(r);
   t.points = &r.coarse;
   if (options_.wrinkles) {
     t.fine = r.refinement->positions;

@@ -1,16 +1,66 @@
 #include "facecap/pipeline/face_transform_stream.hpp"
 
 #include <chrono>
+#include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/compose/mouth_warp.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/pipeline/cover_preparation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 
 namespace facecap {
 
+namespace {
+
+// What covers the face stays in front of the re-rendered one: the layer
+// keeps the frame's own pixels where the frame shows a cover over the
+// tracked face, and where the new face would show a point of the surface
+// that the frame has covered (its colour there is the cover's, and would
+// move with the expression). `cover`: FaceCovers::covered's grid.
+void keep_covers_in_front(const cv::Mat& frame, const TriangleMesh& skin, const Positions& tracked,
+                          const Positions& changed, const PinholeCamera& camera, const cv::Mat& cover,
+                          FaceLayer& layer) {
+  if (cv::countNonZero(cover > 0) == 0) return;  // most frames: nothing to draw
+  // Drawn at half the window's resolution (the covers' edges fade over
+  // 2 mm, some 4 px at 720p) and scaled up.
+  const PinholeCamera window = camera.cropped(layer.box.x, layer.box.y).resized(0.5);
+  const cv::Size half((layer.box.width + 1) / 2, (layer.box.height + 1) / 2);
+  // Across the skin's openings (the mouth, the eyes) up to 6 % of the
+  // window each way, as the swap (the window is about 1.2 face widths
+  // here: some 10 mm).
+  const int across = cvRound(0.06 * half.width);
+  const cv::Mat in_front_half = cv::max(cover_in_front(skin, tracked, window, half, cover, across),
+                                        cover_in_front(skin, changed, window, half, cover, across));
+  if (cv::countNonZero(in_front_half > 0) == 0) return;
+  cv::Mat in_front;
+  cv::resize(in_front_half, in_front, layer.box.size(), 0, 0, cv::INTER_LINEAR);
+  cv::Mat colour, own;
+  layer.colour.convertTo(colour, CV_32FC3);
+  frame(layer.box).convertTo(own, CV_32FC3);
+  cv::Mat weight;
+  cv::merge(std::vector<cv::Mat>(3, in_front), weight);
+  colour += (own - colour).mul(weight);
+  colour.convertTo(layer.colour, CV_8UC3);
+  layer.mask.setTo(0, in_front > 0.5f);
+}
+
+}  // namespace
+
+void TransformTimings::add_stream(const TransformTimings& stream) {
+  mapping_ms += stream.mapping_ms;
+  lighting_ms += stream.lighting_ms;
+  render_ms += stream.render_ms;
+  covers_ms += stream.covers_ms;
+  cover_preparation_ms += stream.cover_preparation_ms;
+  edit_thread_cpu_ms += stream.edit_thread_cpu_ms;
+  lighting_cpu_ms += stream.lighting_cpu_ms;
+  cover_preparation_cpu_ms += stream.cover_preparation_cpu_ms;
+}
+
 FaceTransformStream::FaceTransformStream(const FaceModel& model, const ExpressionMapper& mapper,
-                                         const TransformOptions& options, int width, int height, Output output)
+                                         const TransformOptions& options, const CoverOptions& covers, int width,
+                                         int height, Output output)
     : model_(model),
       width_(width),
       height_(height),
@@ -24,9 +74,16 @@ FaceTransformStream::FaceTransformStream(const FaceModel& model, const Expressio
   // frames reach it and leave it in order, so the results are those of one
   // thread.
   stage_ = std::make_unique<RefineStage>(model, lighting_only_refinement(), [this](const RefinedFrame& r) { take(r); });
-  // At a cut the smoothing window stops (it does not reach across).
+  if (covers.keep_occluders) {
+    covers_ = std::make_unique<FaceCovers>(model, covers);
+    preparation_ = covers_->new_preparation();
+    prepare_covers_beside(*stage_, *preparation_);
+  }
+  // At a cut the smoothing window stops (it does not reach across), and
+  // the covers' references start again.
   stage_->on_shot_end([this] {
     emit(transformer_.finish());
+    if (covers_) covers_->restart();
     if (shot_end_) shot_end_();
   });
 }
@@ -41,6 +98,8 @@ void FaceTransformStream::finish() {
   timings_.lighting_ms = stage_->refine_ms();
   timings_.lighting_cpu_ms = stage_->timings().refine_cpu_ms;
   timings_.edit_thread_cpu_ms = stage_->timings().consumer_cpu_ms;
+  timings_.cover_preparation_ms = stage_->timings().prepare_ms;
+  timings_.cover_preparation_cpu_ms = stage_->timings().prepare_cpu_ms;
 }
 
 const Refiner& FaceTransformStream::refiner() const { return stage_->refiner(); }
@@ -55,6 +114,8 @@ void FaceTransformStream::take(const RefinedFrame& r) {
   if (r.refinement) {
     p.coarse = r.coarse;
     p.lighting = r.refinement->lighting;
+    p.lighting_final = r.refinement->albedo_final;
+    if (const PreparedFrame* prepared = prepared_covers(r)) p.prepared = *prepared;
     weights = f.fit.expression;
   }
   pending_.emplace(f.index, std::move(p));
@@ -79,6 +140,12 @@ void FaceTransformStream::emit(const std::vector<TransformedFrame>& done) {
       warp_mouth(p.frame.image, project_vertices(p.coarse, inner_lips_, cam),
                  project_vertices(changed, inner_lips_, cam), *layer);
       timings_.render_ms += ms_since(t0);
+      if (covers_ && p.prepared) {
+        const auto t1 = std::chrono::steady_clock::now();
+        const cv::Mat cover = covers_->covered(*p.prepared, p.lighting_final);
+        keep_covers_in_front(p.frame.image, covers_->skin(), p.coarse, changed, cam, cover, *layer);
+        timings_.covers_ms += ms_since(t1);
+      }
     }
     output_({p.frame, t, layer ? &*layer : nullptr});
     ++timings_.frames;

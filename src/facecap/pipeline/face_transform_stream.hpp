@@ -5,8 +5,10 @@
 // mapped, smoothed and lip-corrected (ExpressionTransformer, k frames of
 // delay), and the face re-rendered with them as a layer over the frame: the
 // skin re-shaded under the frame's lighting, the source mouth interior warped
-// to the new lips. run_transform drives one stream; transform --all-faces
-// one per face, their layers composited over the same frames.
+// to the new lips, and what covers the face (a hand, a microphone) kept in
+// front of it as a swap keeps it (face_covers.hpp). run_transform drives one
+// stream; transform --all-faces one per face, their layers composited over
+// the same frames.
 #include <functional>
 #include <map>
 #include <memory>
@@ -18,6 +20,7 @@
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/job_cpu.hpp"
 #include "facecap/pipeline/refine_stage.hpp"
+#include "facecap/swap/face_covers.hpp"
 
 namespace facecap {
 
@@ -30,7 +33,9 @@ struct TransformedFaceFrame {
 struct TransformTimings {
   double mapping_ms = 0;  // mapping, smoothing and lip QP
   double lighting_ms = 0;
-  double render_ms = 0;  // re-shading, mouth warp and blending
+  double render_ms = 0;             // re-shading, mouth warp and blending
+  double covers_ms = 0;             // what covers the face, on the edit's thread (CoverOptions::keep_occluders)
+  double cover_preparation_ms = 0;  // the covers' unshading and motion, on the stage's second thread
   int frames = 0;
   // CPU time (core/cpu_time.hpp), for a benchmark's budget of the cores:
   // the edit's thread (mapping, re-render, composite and the frame's
@@ -38,7 +43,11 @@ struct TransformTimings {
   // (the encoder's, the pool's, facecap's whole).
   double edit_thread_cpu_ms = 0;
   double lighting_cpu_ms = 0;
+  double cover_preparation_cpu_ms = 0;
   JobCpu job_cpu;
+
+  // Adds a stream's stage times (all but frames and job_cpu, the job's).
+  void add_stream(const TransformTimings& stream);
 };
 
 class FaceTransformStream {
@@ -47,7 +56,7 @@ class FaceTransformStream {
   using Output = std::function<void(const TransformedFaceFrame&)>;
   // `width` x `height`: the input's frames. The mapper is shared (it is thread-safe).
   FaceTransformStream(const FaceModel& model, const ExpressionMapper& mapper, const TransformOptions& options,
-                      int width, int height, Output output);
+                      const CoverOptions& covers, int width, int height, Output output);
   ~FaceTransformStream();
   FaceTransformStream(const FaceTransformStream&) = delete;
   FaceTransformStream& operator=(const FaceTransformStream&) = delete;
@@ -73,6 +82,8 @@ class FaceTransformStream {
     CapturedFrame frame;
     Positions coarse;  // camera-space face region, source expression
     ShCoeffs lighting;
+    bool lighting_final = false;            // Refinement::albedo_final
+    std::optional<PreparedFrame> prepared;  // with covers_
   };
   void take(const RefinedFrame& refined);
   void emit(const std::vector<TransformedFrame>& done);
@@ -84,6 +95,8 @@ class FaceTransformStream {
   ExpressionTransformer transformer_;
   std::vector<Triangle> skin_;  // the face region's skin triangles, re-shaded
   std::vector<int> inner_lips_;
+  std::unique_ptr<FaceCovers> covers_;             // CoverOptions::keep_occluders; used on the stage's thread
+  std::unique_ptr<FramePreparation> preparation_;  // with covers_, on the stage's second thread
   std::map<int, Pending> pending_;
   std::function<void()> shot_end_;
   TransformTimings timings_;

@@ -98,7 +98,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   const JobCpuClock cpu;
   std::optional<ShotAnimations> animations;  // --gltf, one file per shot
   FaceTransformStream stream(
-      model, mapper, options.transform, info.width, info.height, [&](const TransformedFaceFrame& t) {
+      model, mapper, options.transform, options.covers, info.width, info.height, [&](const TransformedFaceFrame& t) {
         cv::Mat out = t.frame.image;
         if (t.layer) {
           const auto t0 = std::chrono::steady_clock::now();
@@ -140,12 +140,7 @@ TransformSummary run_transform(const FaceModel& model, const std::string& input,
   capture.keep_images = true;
   summary.capture = run_capture(model, *source, capture, [&](const CapturedFrame& f) { stream.push(f); });
   stream.finish();
-  const TransformTimings t = stream.timings();
-  summary.timings.mapping_ms = t.mapping_ms;
-  summary.timings.lighting_ms = t.lighting_ms;
-  summary.timings.render_ms += t.render_ms;
-  summary.timings.edit_thread_cpu_ms = t.edit_thread_cpu_ms;
-  summary.timings.lighting_cpu_ms = t.lighting_cpu_ms;
+  summary.timings.add_stream(stream.timings());
   summary.timings.frames = static_cast<int>(summary.frames.size());
   if (summary.frames.empty()) throw Error("no frames could be read from " + input);
   // A copy of the input marked as transformed would be neither: nothing is written.
@@ -207,7 +202,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
         if (const auto own = options.face_expressions.find(found.index); own != options.face_expressions.end())
           transform.schedule = own->second.schedule;
         face.stream =
-            std::make_unique<FaceTransformStream>(model, mapper, transform, info.width, info.height,
+            std::make_unique<FaceTransformStream>(model, mapper, transform, options.covers, info.width, info.height,
                                                   [&frames, &face, k = found.index](const TransformedFaceFrame& t) {
                                                     face.frames.push_back(t.weights);
                                                     frames.add_layer(t.frame.index, k, t.layer);
@@ -222,12 +217,7 @@ AllFacesTransformSummary run_transform_all_faces(const FaceModel& model, const s
     }
     Face& face = it->second;
     face.stream->finish();
-    const TransformTimings t = face.stream->timings();
-    summary.timings.mapping_ms += t.mapping_ms;
-    summary.timings.lighting_ms += t.lighting_ms;
-    summary.timings.render_ms += t.render_ms;
-    summary.timings.edit_thread_cpu_ms += t.edit_thread_cpu_ms;
-    summary.timings.lighting_cpu_ms += t.lighting_cpu_ms;
+    summary.timings.add_stream(face.stream->timings());
     summary.frames.push_back(std::move(face.frames));
   }
   frames.finish();

@@ -24,6 +24,7 @@ namespace facecap {
 struct TransformJobOptions {
   CaptureOptions capture;
   TransformOptions transform;
+  CoverOptions covers;     // what covers a face stays in front of its new expression
   VideoEncoding encoding;  // the output video's (and its matte's preset)
   std::filesystem::path models_dir = default_expression_models_dir();
   std::filesystem::path plot;  // PNG of weight curves (empty: none)

@@ -242,13 +242,10 @@ struct FaceSwapper::Impl {
   // covered share) loses the new face where `cover` says.
   void keep_covers_in_front(const cv::Mat& frame, const Positions& target_points, const PinholeCamera& window,
                             const cv::Mat& cover, SwappedFrame& out) const {
-    cv::Mat in_front = cover_in_image(skin, target_points, window, out.window.size(), cover);
-    // Across the openings of the skin mesh (the mouth, the eyes) where a
-    // cover lies on both sides of them: up to 6 % of the window each way
-    // (the window is about 1.4 face widths: some 12 mm).
-    const int across = std::max(1, cvRound(0.06 * out.window.width));
-    cv::morphologyEx(in_front, in_front, cv::MORPH_CLOSE,
-                     cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * across + 1, 2 * across + 1)));
+    // Across the openings of the skin mesh: up to 6 % of the window each
+    // way (the window is about 1.4 face widths: some 12 mm).
+    const cv::Mat in_front =
+        cover_in_front(skin, target_points, window, out.window.size(), cover, cvRound(0.06 * out.window.width));
     const double full = cv::sum(out.alpha)[0];
     out.alpha = out.alpha.mul(1.0f - in_front);
     out.covered = full > 0 ? 1.0 - cv::sum(out.alpha)[0] / full : 0.0;

@@ -61,6 +61,15 @@ cv::Mat cover_in_image(const TriangleMesh& skin, const Positions& points, const 
   return out;
 }
 
+cv::Mat cover_in_front(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
+                       const cv::Mat& cover, int across_px) {
+  cv::Mat in_front = cover_in_image(skin, points, camera, size, cover);
+  const int across = std::max(1, across_px);
+  cv::morphologyEx(in_front, in_front, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * across + 1, 2 * across + 1)));
+  return in_front;
+}
+
 OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options)
     : options_(options), skin_(skin) {
   if (!(mm_per_uv > 0)) throw Error("occlusion mask: the mesh has no UV extent");

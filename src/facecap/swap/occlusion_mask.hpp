@@ -52,6 +52,12 @@ float cover_at(const cv::Mat& cover, const Vec2f& uv);
 cv::Mat cover_in_image(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
                        const cv::Mat& cover);
 
+// What an edit leaves in front of the face in such a window: cover_in_image,
+// closed across the skin mesh's openings (the mouth, the eyes) where a
+// cover lies on both sides of them, up to `across_px` pixels each way.
+cv::Mat cover_in_front(const TriangleMesh& skin, const Positions& points, const PinholeCamera& camera, cv::Size size,
+                       const cv::Mat& cover, int across_px);
+
 class OcclusionMask {
  public:
   // `skin`: the face's triangles with UVs; `mm_per_uv`: millimetres on the
