@@ -329,9 +329,7 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
       ->check(whole_number_at_least(0))
       ->capture_default_str();
   add_encoding_options(*cmd, a->encoding, "the scratch output, as transform's");
-  add_cover_flags(*cmd, a->covers.keep_occluders, a->covers.moving_covers,
-                  "Re-render the face over whatever covers it (as transform --no-occlusion)",
-                  "as transform --no-moving-covers");
+  add_transform_cover_flags(*cmd, a->covers);
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to);
     const FaceModel model = load_model(global);

@@ -345,6 +345,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames")
       ->check(whole_number_at_least(0));
   add_fit_options(*cmd, a->options.capture);
+  add_transform_cover_flags(*cmd, a->options.covers);
   cmd->add_option("-o,--output", a->output, "Keep the transformed video here (default: a temporary file)");
   cmd->add_option("--models", a->options.models_dir, "Expression models folder");
   cmd->callback([a, &global] {

@@ -69,10 +69,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                       "synthetic, with a sidecar .json). An input that cuts gets one per shot: OUT_shot<N>.glb after "
                       "the first");
   add_matte_option(*cmd, a->options.matte, "re-rendered face");
-  add_cover_flags(*cmd, a->options.covers.keep_occluders, a->options.covers.moving_covers,
-                  "Re-render the face over whatever covers it (a microphone, a cup, hair, a hand), moving it with the "
-                  "new expression,",
-                  "end to end at 720p on 2 cores, 12-13 fps against 16-17, and 18 with --no-occlusion");
+  add_transform_cover_flags(*cmd, a->options.covers);
   add_encoding_options(*cmd, a->options.encoding, "the output video (a --matte is lossless)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   add_frame_range_options(*cmd, a->options.capture);

@@ -25,6 +25,7 @@ struct AllFacesOptions;
 struct AllFacesSummary;
 struct SynthOptions;
 struct CaptureOptions;
+struct CoverOptions;
 }  // namespace facecap
 
 namespace facecap::cli {
@@ -130,6 +131,8 @@ void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap);
 // test's cost in frames per second.
 void add_cover_flags(CLI::App& cmd, bool& keep_occluders, bool& moving_covers, const std::string& paint_over,
                      const std::string& cost);
+// The same for transform, bench transform and eval transform (TransformJobOptions::covers).
+void add_transform_cover_flags(CLI::App& cmd, CoverOptions& covers);
 // --device cpu|cuda: where the refinement's sampling, albedo and displacement solves run (default:
 // cuda when this build has it and a GPU answers, else cpu).
 void add_device_option(CLI::App& cmd, ComputeDevice& device);

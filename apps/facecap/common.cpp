@@ -17,6 +17,7 @@
 #include "facecap/pipeline/face_roster.hpp"
 #include "facecap/pipeline/identity_file.hpp"
 #include "facecap/pipeline/photo_face_texture.hpp"
+#include "facecap/swap/face_covers.hpp"
 #include "facecap/synth/performance.hpp"
 
 namespace facecap::cli {
@@ -306,6 +307,13 @@ void add_cover_flags(CLI::App& cmd, bool& keep_occluders, bool& moving_covers, c
       "Find covers by their colour alone: not a hand of the skin's own colour moving across the face, which the "
       "optical flow finds (" +
           cost + "); a hand that rests for seconds is lost either way");
+}
+
+void add_transform_cover_flags(CLI::App& cmd, CoverOptions& covers) {
+  add_cover_flags(cmd, covers.keep_occluders, covers.moving_covers,
+                  "Re-render the face over whatever covers it (a microphone, a cup, hair, a hand), moving it with the "
+                  "new expression,",
+                  "end to end at 720p on 2 cores, 12-13 fps against 16-17, and 18 with --no-occlusion");
 }
 
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {
