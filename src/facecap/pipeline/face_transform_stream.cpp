@@ -8,6 +8,7 @@
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/pipeline/cover_preparation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/swap/weighted_channels.hpp"
 
 namespace facecap {
 
@@ -38,9 +39,7 @@ void keep_covers_in_front(const cv::Mat& frame, const TriangleMesh& skin, const 
   cv::Mat colour, own;
   layer.colour.convertTo(colour, CV_32FC3);
   frame(layer.box).convertTo(own, CV_32FC3);
-  cv::Mat weight;
-  cv::merge(std::vector<cv::Mat>(3, in_front), weight);
-  colour += (own - colour).mul(weight);
+  colour += times_weight(own - colour, in_front);
   colour.convertTo(layer.colour, CV_8UC3);
   layer.mask.setTo(0, in_front > 0.5f);
 }

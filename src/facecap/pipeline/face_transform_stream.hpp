@@ -39,8 +39,8 @@ struct TransformTimings {
   int frames = 0;
   // CPU time (core/cpu_time.hpp), for a benchmark's budget of the cores:
   // the edit's thread (mapping, re-render, composite and the frame's
-  // writing) and the lighting's, the stage's own threads; and the job's
-  // (the encoder's, the pool's, facecap's whole).
+  // writing), the lighting's and the covers' preparation, the stage's own
+  // threads; and the job's (the encoder's, the pool's, facecap's whole).
   double edit_thread_cpu_ms = 0;
   double lighting_cpu_ms = 0;
   double cover_preparation_cpu_ms = 0;
