@@ -382,6 +382,8 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
                 {"lip_error_max_mm", r.lip_error_max_mm},
                 {"target_rise", emotion_only(r.target_rise)},
                 {"retracked_rise", emotion_only(r.retracked_rise)},
+                {"eye_opening_change", emotion_only(r.eye_opening_change)},
+                {"gaze_change", r.gaze_change},
                 {"smoothness", r.smoothness},
                 {"smoothness_raw", r.smoothness_raw},
                 {"smoothness_mapped", r.smoothness_mapped},

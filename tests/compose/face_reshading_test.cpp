@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_layer.hpp"
-#include "facecap/compose/mouth_warp.hpp"
 #include "facecap/model/regions.hpp"
 #include "test_support.hpp"
 
@@ -81,21 +80,6 @@ TEST(FaceReshading, ASmileChangesTheMouthCornersNotTheForehead) {
   EXPECT_GT(change_near(lm[54]), 5.0);
   EXPECT_LT(change_near(lm[19]), 1.0);  // brows: untouched
   EXPECT_LT(change_near(lm[24]), 1.0);
-}
-
-TEST(MouthWarp, AnUnmovedContourCopiesTheMouth) {
-  cv::Mat frame(120, 160, CV_8UC3);
-  cv::RNG(9).fill(frame, cv::RNG::UNIFORM, 0, 255);
-  const std::vector<cv::Point2f> contour = {{60, 60}, {80, 52}, {100, 60}, {80, 70}};
-  FaceLayer layer = make_layer(frame, cv::Rect(50, 45, 60, 35), 8);
-  layer.colour.setTo(cv::Scalar(0, 0, 0));
-  warp_mouth(frame, contour, contour, layer);
-  ASSERT_GT(cv::countNonZero(layer.mask), 200);
-  cv::Mat d;
-  cv::absdiff(layer.colour, frame(layer.box), d);
-  cv::Mat inside;
-  cv::erode(layer.mask, inside, cv::Mat(), {-1, -1}, 2);  // away from the edge's interpolation
-  EXPECT_LE(cv::mean(d, inside)[0], 1.0);
 }
 
 }  // namespace facecap

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace facecap {
 
 namespace {
@@ -69,6 +71,45 @@ TEST(Mesh, ClosedMeshHasNoBoundaryAndOpenOneHas) {
   const auto boundary = boundary_vertices(m.triangles, 8);
   EXPECT_TRUE(boundary[0] && boundary[4] && boundary[7] && boundary[3]);
   EXPECT_FALSE(boundary[1] || boundary[2] || boundary[5] || boundary[6]);
+}
+
+TEST(Mesh, BoundaryLoopsGoRoundTheOutlineAndEachHole) {
+  // A 6 x 6 grid of cells with two cells cut out, apart: the outline (24
+  // edges) and two holes of 4 edges each.
+  constexpr int n = 6;
+  std::vector<Triangle> triangles;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      if ((x == 1 && y == 1) || (x == 4 && y == 3)) continue;
+      const int a = y * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+  const std::vector<std::vector<int>> loops = boundary_loops(triangles);
+  ASSERT_EQ(loops.size(), 3u);
+  EXPECT_EQ(loops[0].size(), 24u);
+  EXPECT_EQ(loops[1].size(), 4u);
+  EXPECT_EQ(loops[2].size(), 4u);
+  // Each step of a loop is an edge that one triangle has, in its winding.
+  auto has_edge = [&](int a, int b) {
+    int count = 0;
+    for (const Triangle& t : triangles)
+      for (int k = 0; k < 3; ++k) count += t[k] == a && t[(k + 1) % 3] == b;
+    return count;
+  };
+  for (const std::vector<int>& loop : loops)
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const int a = loop[i], b = loop[(i + 1) % loop.size()];
+      EXPECT_EQ(has_edge(a, b), 1) << a << " -> " << b;
+      EXPECT_EQ(has_edge(b, a), 0) << b << " -> " << a << " is inside";
+    }
+  // The holes are the cut cells' corners.
+  std::vector<int> corners;
+  for (const std::vector<int>& hole : {loops[1], loops[2]})
+    for (const int v : hole) corners.push_back(v);
+  std::sort(corners.begin(), corners.end());
+  EXPECT_EQ(corners, (std::vector<int>{8, 9, 15, 16, 25, 26, 32, 33}));
+  EXPECT_TRUE(boundary_loops(triangulate(cube_quads(), {}, 8).triangles).empty());
 }
 
 }  // namespace facecap

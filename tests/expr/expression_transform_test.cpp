@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/temp_dir.hpp"
+#include "facecap/model/eye_look.hpp"
 #include "test_support.hpp"
 
 namespace facecap {
@@ -129,6 +131,50 @@ TEST(ExpressionTransform, EveryShippedEmotionRaisesItsDefiningShapes) {
       for (const auto& s : shapes) rise += (m.weights[index_of(*model, s)] - w[index_of(*model, s)]) / shapes.size();
     }
     EXPECT_GT(rise / input.size(), 0.3) << to_string(e);
+  }
+}
+
+// The gaze's shapes (TransformOptions::kept_shapes, as the transform job
+// sets them) come out as tracked, frame by frame, though the mapping moves
+// them; a FACS edit that sets one of them still sets it.
+TEST(ExpressionTransform, KeptShapesStayAsTrackedThoughTheMappingMovesThem) {
+  FACECAP_REQUIRE_MODEL(model);
+  const ExpressionMapper mapper;
+  const std::vector<int> gaze = EyeLookShapes(*model).indices();
+  ASSERT_EQ(gaze.size(), 8u);
+  std::vector<Eigen::VectorXf> input = speech(*model, 30);
+  for (int t = 0; t < 30; ++t)  // the eyes look about, down and to the side
+    for (size_t k = 0; k < gaze.size(); ++k) input[t][gaze[k]] = 0.15f + 0.1f * std::sin(0.4f * t + float(k));
+  auto run = [&](const TransformOptions& o) {
+    ExpressionTransformer transformer(mapper, lip_basis(*model), o);
+    std::vector<TransformedFrame> out;
+    for (int t = 0; t < 30; ++t) {
+      const auto ready = transformer.push(t, t / 30.0, input[t]);
+      out.insert(out.end(), ready.begin(), ready.end());
+    }
+    const auto rest = transformer.finish();
+    out.insert(out.end(), rest.begin(), rest.end());
+    return out;
+  };
+  TransformOptions o;
+  o.schedule = ExpressionSchedule::constant(Emotion::kSurprise, 1.0);
+  double moved = 0;
+  for (const TransformedFrame& f : run(o))
+    for (const int k : gaze) moved = std::max(moved, double(std::abs(f.weights[k] - f.tracked[k])));
+  EXPECT_GT(moved, 0.03) << "the mapping alone leaves the gaze: nothing to keep";
+  o.kept_shapes = gaze;
+  const std::vector<TransformedFrame> kept = run(o);
+  ASSERT_EQ(kept.size(), 30u);
+  const int wide = index_of(*model, "eyeWide_L");
+  for (const TransformedFrame& f : kept) {
+    for (const int k : gaze) EXPECT_NEAR(f.weights[k], f.tracked[k], 1e-3f) << model->expression_names[k];
+    EXPECT_GT(f.weights[wide], f.tracked[wide] + 0.2f) << "frame " << f.index;  // the rest is still surprise
+  }
+  // A FACS edit setting a kept shape sets it.
+  o.shape_targets = {{gaze[4], 0.7f}};
+  for (const TransformedFrame& f : run(o)) {
+    EXPECT_NEAR(f.weights[gaze[4]], 0.7f, 1e-3f) << "frame " << f.index;
+    EXPECT_NEAR(f.weights[gaze[5]], f.tracked[gaze[5]], 1e-3f) << "frame " << f.index;
   }
 }
 

@@ -114,6 +114,19 @@ TEST(TransformEval, AddressKeepsItsAudio) {
   EXPECT_TRUE(r.marked_synthetic);
 }
 
+// Surprise opens the eyes (eyeWide) and the output shows it: dlib's eye
+// aspect ratio on the output against the input's rises. It fell (-3 % over
+// 90 frames) before the eyes' openings were stretched into what the raised
+// lids uncover (widen_opening) and the gaze's shapes kept as tracked.
+TEST(TransformEval, SurpriseWidensTheEyesTheOutputShows) {
+  FACECAP_REQUIRE_MODEL(model);
+  FACECAP_REQUIRE_DATA(video, "address_720p_a.mp4");
+  const TransformEval r = evaluate_transform(*model, video.string(), Emotion::kSurprise, short_run(45));
+  EXPECT_LT(r.gaze_change, 1e-4);  // where the speaker looks is kept
+  EXPECT_GT(r.eye_opening_change, 0.03);
+  EXPECT_LE(r.lip_error_mm, 1.0);
+}
+
 TEST(TransformEval, LinearBaselineAlsoKeepsTheLips) {
   FACECAP_REQUIRE_MODEL(model);
   FACECAP_REQUIRE_DATA(video, "talking_webcam_400x300.mp4");

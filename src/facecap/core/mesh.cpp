@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace facecap {
@@ -83,6 +84,40 @@ std::vector<bool> boundary_vertices(const std::vector<Triangle>& triangles, int 
     i = j;
   }
   return boundary;
+}
+
+std::vector<std::vector<int>> boundary_loops(const std::vector<Triangle>& triangles) {
+  // The directed edges whose reverse no triangle has: each boundary edge
+  // once, in its triangle's winding.
+  std::vector<std::pair<int, int>> directed;
+  directed.reserve(3 * triangles.size());
+  for (const Triangle& t : triangles)
+    for (int k = 0; k < 3; ++k) directed.emplace_back(t[k], t[(k + 1) % 3]);
+  std::sort(directed.begin(), directed.end());
+  std::vector<std::pair<int, int>> boundary;
+  for (const auto& [a, b] : directed)
+    if (!std::binary_search(directed.begin(), directed.end(), std::pair{b, a})) boundary.emplace_back(a, b);
+  // Walk them: from each unused edge, the next edge out of its end.
+  std::vector<bool> used(boundary.size(), false);
+  auto next_from = [&](int v) -> int {
+    auto it = std::lower_bound(boundary.begin(), boundary.end(), std::pair{v, std::numeric_limits<int>::min()});
+    for (; it != boundary.end() && it->first == v; ++it)
+      if (!used[size_t(it - boundary.begin())]) return int(it - boundary.begin());
+    return -1;
+  };
+  std::vector<std::vector<int>> loops;
+  for (size_t start = 0; start < boundary.size(); ++start) {
+    if (used[start]) continue;
+    std::vector<int> loop;
+    for (int e = int(start); e >= 0; e = next_from(boundary[size_t(e)].second)) {
+      used[size_t(e)] = true;
+      loop.push_back(boundary[size_t(e)].first);
+      if (boundary[size_t(e)].second == loop.front()) break;
+    }
+    loops.push_back(std::move(loop));
+  }
+  std::stable_sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  return loops;
 }
 
 std::vector<Vec2f> per_vertex_uvs(const TriangleMesh& mesh) {

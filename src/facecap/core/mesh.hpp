@@ -44,6 +44,11 @@ VertexAdjacency vertex_adjacency(const std::vector<Triangle>& triangles, int num
 // Vertices on the open boundary of the triangle mesh (an edge used by one triangle).
 std::vector<bool> boundary_vertices(const std::vector<Triangle>& triangles, int num_vertices);
 
+// The open boundary as closed loops of vertices, each in the order of its
+// triangles' winding (a hole's loop runs opposite to the outer one's), the
+// longest first. A vertex where two loops touch starts or continues either.
+std::vector<std::vector<int>> boundary_loops(const std::vector<Triangle>& triangles);
+
 // One UV per vertex (the first corner that uses it), for per-vertex lookups.
 std::vector<Vec2f> per_vertex_uvs(const TriangleMesh& mesh);
 

@@ -1,10 +1,22 @@
 #include "facecap/expr/expression_transform.hpp"
 
+#include <algorithm>
+
 namespace facecap {
 
 ExpressionTransformer::ExpressionTransformer(const ExpressionMapper& mapper, Eigen::MatrixXd lip_rows,
                                              TransformOptions options)
-    : mapper_(mapper), lip_rows_(std::move(lip_rows)), options_(std::move(options)) {}
+    : mapper_(mapper), lip_rows_(std::move(lip_rows)), options_(std::move(options)) {
+  for (const int shape : options_.kept_shapes) {
+    const bool set = std::any_of(options_.shape_targets.begin(), options_.shape_targets.end(),
+                                 [&](const auto& target) { return target.first == shape; });
+    if (!set) kept_.push_back(shape);
+  }
+}
+
+void ExpressionTransformer::keep_shapes(Eigen::VectorXf& w, const Eigen::VectorXf& tracked) const {
+  for (const int shape : kept_) w[shape] = tracked[shape];
+}
 
 Eigen::VectorXf ExpressionTransformer::map_scheduled(const Eigen::VectorXf& w, double time, float& confidence) const {
   const ScheduleState s = options_.schedule.at(time);
@@ -41,6 +53,7 @@ std::vector<TransformedFrame> ExpressionTransformer::push(int index, double time
   if (tracked) {
     slot.frame.tracked = *tracked;
     slot.frame.mapped = map_scheduled(*tracked, time, slot.confidence);
+    keep_shapes(slot.frame.mapped, *tracked);
     slot.frame.lip_only = correct_lips(lip_rows_, slot.frame.mapped, *tracked, options_.lips);
   }
   window_.push_back(std::move(slot));
@@ -83,6 +96,7 @@ TransformedFrame ExpressionTransformer::complete(size_t at) {
     confidence.push_back(window_[i].confidence);
   }
   f.smoothed = window_mean(mapped, confidence);
+  keep_shapes(f.smoothed, f.tracked);  // this frame's own, not its neighbours' mean
   f.weights = correct_lips(lip_rows_, f.smoothed, f.tracked, options_.lips);
   return f;
 }

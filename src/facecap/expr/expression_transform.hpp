@@ -26,6 +26,14 @@ struct TransformOptions {
   // still scales the change (its targets are not used). Then smoothed and
   // lip-corrected as a mapping is.
   std::vector<std::pair<int, float>> shape_targets;
+  // Shapes (model indices) held as tracked whatever the mapping says,
+  // unless shape_targets sets them: the gaze's eyeLook shapes
+  // (eye_look.hpp; FaceTransformStream holds them). An expression does not
+  // change where the speaker looks, and ICT's eyeLook shapes move the lids
+  // (eyeLookDown at 1 lowers the upper lid 7.7 mm): the mappings, which
+  // learnt nothing of gaze, moved them a little, enough to close the eyes
+  // that surprise's eyeWide opens.
+  std::vector<int> kept_shapes;
   LipCorrectionOptions lips;
 };
 
@@ -54,11 +62,13 @@ class ExpressionTransformer {
   };
   TransformedFrame complete(size_t at);
   Eigen::VectorXf map_scheduled(const Eigen::VectorXf& w, double time, float& confidence) const;
-  MappedWeights with_shapes_set(const Eigen::VectorXf& w) const;  // options_.shape_targets
+  MappedWeights with_shapes_set(const Eigen::VectorXf& w) const;               // options_.shape_targets
+  void keep_shapes(Eigen::VectorXf& w, const Eigen::VectorXf& tracked) const;  // kept_ as in `tracked`
 
   const ExpressionMapper& mapper_;
   Eigen::MatrixXd lip_rows_;
   TransformOptions options_;
+  std::vector<int> kept_;    // options_.kept_shapes less those shape_targets sets
   std::deque<Slot> window_;  // frames not yet output and the k before them
   int emitted_ = 0;          // frames of window_ already output (the past half)
 };

@@ -6,6 +6,8 @@
 #include "facecap/compose/face_reshading.hpp"
 #include "facecap/compose/mouth_warp.hpp"
 #include "facecap/core/stopwatch.hpp"
+#include "facecap/model/eye_look.hpp"
+#include "facecap/model/eye_margins.hpp"
 #include "facecap/pipeline/cover_preparation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
 #include "facecap/swap/weighted_channels.hpp"
@@ -44,6 +46,12 @@ void keep_covers_in_front(const cv::Mat& frame, const TriangleMesh& skin, const 
   layer.mask.setTo(0, in_front > 0.5f);
 }
 
+// `options` with the gaze's shapes held as tracked (TransformOptions::kept_shapes).
+TransformOptions with_gaze_kept(TransformOptions options, const FaceModel& model) {
+  for (const int shape : EyeLookShapes(model).indices()) options.kept_shapes.push_back(shape);
+  return options;
+}
+
 }  // namespace
 
 void TransformTimings::add_stream(const TransformTimings& stream) {
@@ -64,10 +72,12 @@ FaceTransformStream::FaceTransformStream(const FaceModel& model, const Expressio
       width_(width),
       height_(height),
       output_(std::move(output)),
-      transformer_(mapper, lip_basis(model), options) {
+      transformer_(mapper, lip_basis(model), with_gaze_kept(options, model)) {
   const TriangleMesh face = model.region_mesh(regions::kFace);
   skin_ = masked_triangles(face.triangles, face_skin_mask());
   for (int i = 60; i < 68; ++i) inner_lips_.push_back(model.landmarks.vertices[i]);
+  for (const std::vector<int>& margin : eye_margin_loops(model, skin_))
+    if (!margin.empty()) eye_margins_.push_back(margin);
   // The lighting, the mapping and the re-render run on the refinement stage's
   // thread, concurrently with the next frames' capture (§4.4.1's pipelining);
   // frames reach it and leave it in order, so the results are those of one
@@ -138,6 +148,9 @@ void FaceTransformStream::emit(const std::vector<TransformedFrame>& done) {
       layer = reshade_face(p.frame.image, p.coarse, changed, skin_, p.lighting, cam);
       warp_mouth(p.frame.image, project_vertices(p.coarse, inner_lips_, cam),
                  project_vertices(changed, inner_lips_, cam), *layer);
+      for (const std::vector<int>& margin : eye_margins_)
+        widen_opening(p.frame.image, project_vertices(p.coarse, margin, cam), project_vertices(changed, margin, cam),
+                      *layer);
       timings_.render_ms += ms_since(t0);
       if (covers_ && p.prepared) {
         const auto t1 = std::chrono::steady_clock::now();

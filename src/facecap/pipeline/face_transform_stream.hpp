@@ -95,6 +95,7 @@ class FaceTransformStream {
   ExpressionTransformer transformer_;
   std::vector<Triangle> skin_;  // the face region's skin triangles, re-shaded
   std::vector<int> inner_lips_;
+  std::vector<std::vector<int>> eye_margins_;      // the skin's openings at the eyes (eye_margins.hpp)
   std::unique_ptr<FaceCovers> covers_;             // CoverOptions::keep_occluders; used on the stage's thread
   std::unique_ptr<FramePreparation> preparation_;  // with covers_, on the stage's second thread
   std::map<int, Pending> pending_;

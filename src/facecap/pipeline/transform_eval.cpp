@@ -8,6 +8,7 @@
 #include "facecap/io/input.hpp"
 #include "facecap/io/synthetic_mark.hpp"
 #include "facecap/io/video_writer.hpp"
+#include "facecap/model/eye_look.hpp"
 
 namespace facecap {
 
@@ -52,6 +53,22 @@ TrackedWeights retrack(const FaceModel& model, const TransformSummary& s, const 
   capture.start_seconds = 0;  // the output begins where the input's run did
   capture.fit.known_identity = s.capture.identity.identity;
   return track_weights(model, output, capture);
+}
+
+// TransformEval::eye_opening_change: the input tracked again as the output
+// was (`after`, retrack), over the same frames, both eyes' aspect ratios
+// meaned.
+double eye_opening_change(const FaceModel& model, const TransformSummary& s, const std::string& input,
+                          const TrackedWeights& after, CaptureOptions capture) {
+  capture.fit.known_identity = s.capture.identity.identity;
+  const TrackedWeights before = track_weights(model, input, capture);
+  auto mean = [](const std::vector<double>& v) {
+    double sum = 0;
+    for (const double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / double(v.size());
+  };
+  const double in = mean(before.eye_openings);
+  return in > 0 && !after.eye_openings.empty() ? mean(after.eye_openings) / in - 1.0 : 0.0;
 }
 
 // The input's tracked weights over its valid frames.
@@ -101,6 +118,7 @@ MeasuredRun run_and_measure(const FaceModel& model, const std::string& video, co
   r.smoothness = m.smoothness;
   r.smoothness_raw = m.smoothness_raw;
   r.smoothness_mapped = m.smoothness_mapped;
+  r.gaze_change = m.gaze_change;
   r.timings = s.timings;
 
   const InputInfo in = probe_video_file(video);
@@ -131,8 +149,9 @@ TransformMetrics measure_transform(const FaceModel& model, const std::vector<Tra
                                    const std::vector<int>& defining) {
   TransformMetrics m;
   const Eigen::MatrixXd lips = lip_basis(model);  // 12 x E, cm per unit weight
-  double lip_sum = 0, rise_sum = 0;
-  long lip_count = 0, rise_count = 0;
+  const std::vector<int> gaze = EyeLookShapes(model).indices();
+  double lip_sum = 0, rise_sum = 0, gaze_sum = 0;
+  long lip_count = 0, rise_count = 0, gaze_count = 0;
   for (const TransformedFrame& f : frames) {
     if (!f.valid) continue;
     ++m.valid_frames;
@@ -148,7 +167,9 @@ TransformMetrics measure_transform(const FaceModel& model, const std::vector<Tra
       rise_sum += f.weights[k] - f.tracked[k];
       ++rise_count;
     }
+    for (const int k : gaze) gaze_sum += std::abs(f.weights[k] - f.tracked[k]), ++gaze_count;
   }
+  m.gaze_change = gaze_count > 0 ? gaze_sum / gaze_count : 0.0;
   m.lip_error_mm = lip_count > 0 ? lip_sum / lip_count : 0.0;
   m.target_rise = rise_count > 0 ? rise_sum / rise_count : 0.0;
   m.smoothness = mean_step(frames, [](const TransformedFrame& f) -> const Eigen::VectorXf& { return f.weights; });
@@ -157,12 +178,27 @@ TransformMetrics measure_transform(const FaceModel& model, const std::vector<Tra
   return m;
 }
 
+double eye_aspect_ratio(const Landmarks& p) {
+  double sum = 0;
+  int eyes = 0;
+  for (const int first : {36, 42}) {
+    // Corners first + 0 and + 3; upper lid + 1, + 2 over lower lid + 5, + 4.
+    const double width = (p[first] - p[first + 3]).norm();
+    if (!(width > 0)) continue;
+    sum += ((p[first + 1] - p[first + 5]).norm() + (p[first + 2] - p[first + 4]).norm()) / (2 * width);
+    ++eyes;
+  }
+  return eyes > 0 ? sum / eyes : 0.0;
+}
+
 TrackedWeights track_weights(const FaceModel& model, const std::filesystem::path& video, CaptureOptions capture) {
   TrackedWeights out;
   capture.quiet = true;
   auto source = open_input(video.string());
   const CaptureSummary summary = run_capture(model, *source, capture, [&](const CapturedFrame& f) {
-    if (f.status != TrackStatus::kLost) out.weights.push_back(f.fit.expression);
+    if (f.status == TrackStatus::kLost) return;
+    out.weights.push_back(f.fit.expression);
+    out.eye_openings.push_back(eye_aspect_ratio(f.fit.observed));
   });
   out.identity = summary.identity.identity;
   return out;
@@ -179,6 +215,7 @@ TransformEval evaluate_transform(const FaceModel& model, const std::string& vide
     const TrackedWeights after = retrack(model, run.summary, run.output, o.capture);
     if (!after.weights.empty())
       r.retracked_rise = defining_mean(model, after.weights, target) - defining_mean(model, before, target);
+    r.eye_opening_change = eye_opening_change(model, run.summary, video, after, o.capture);
   }
   return r;
 }

@@ -38,6 +38,14 @@ struct TransformEval {
   // tracked ones. The fit of 68 landmarks reads part of a change as other
   // shapes, so this is lower than target_rise (README).
   double retracked_rise = 0;
+  // How much wider the eyes look in the output than in the input: the mean
+  // eye aspect ratio of dlib's landmarks on the output over the input's
+  // (both tracked with the input's identity held), less 1. Surprise and
+  // fear widen the eyes (eyeWide), happiness and anger narrow them.
+  double eye_opening_change = 0;
+  // Mean |change| of the gaze's eyeLook weights, result against tracked
+  // (0: the edit keeps where the speaker looks; TransformOptions::kept_shapes).
+  double gaze_change = 0;
   double smoothness = 0;  // mean |w_t - w_(t-1)| of the result
   // The same of the output without the smoothing term: the per-frame mapping
   // with the same lip correction. This is the ablation of the window
@@ -57,6 +65,7 @@ struct TransformEval {
 struct TransformMetrics {
   double lip_error_mm = 0, lip_error_max_mm = 0, target_rise = 0, smoothness = 0, smoothness_raw = 0;
   double smoothness_mapped = 0;
+  double gaze_change = 0;
   int valid_frames = 0;
 };
 TransformMetrics measure_transform(const FaceModel& model, const std::vector<TransformedFrame>& frames, Emotion target);
@@ -69,8 +78,14 @@ TransformMetrics measure_transform(const FaceModel& model, const std::vector<Tra
 // retracked_rise reads an output with.
 struct TrackedWeights {
   std::vector<Eigen::VectorXf> weights;
+  std::vector<double> eye_openings;  // per frame, eye_aspect_ratio of dlib's landmarks
   Eigen::VectorXd identity;
 };
+
+// The eye aspect ratio of 68 landmarks (Soukupova and Cech, 2016): each
+// eye's two lid-to-lid distances over twice its corners' distance, meaned
+// over the eyes; 0 where an eye has no width.
+double eye_aspect_ratio(const Landmarks& points);
 TrackedWeights track_weights(const FaceModel& model, const std::filesystem::path& video, CaptureOptions capture);
 
 // Writes the output to `output` (a temporary file when empty) and measures it.

@@ -1,0 +1,109 @@
+#include "facecap/compose/mouth_warp.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace facecap {
+
+namespace {
+
+// An eye seen in a 160 x 120 frame: lid-coloured skin, and an opening
+// (a lens 60 px wide, 16 tall, centred at (80, 60)) of white with a dark
+// iris 14 px across at its centre.
+struct Eye {
+  cv::Mat frame = cv::Mat(120, 160, CV_8UC3, cv::Scalar(60, 90, 160));
+  std::vector<cv::Point2f> contour;  // 16 points, clockwise from the inner corner
+  Eye() {
+    for (int i = 0; i < 16; ++i) {
+      const double a = 2 * M_PI * i / 16;
+      contour.emplace_back(float(80 - 30 * std::cos(a)), float(60 - 8 * std::sin(a)));
+    }
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& p : contour) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
+    cv::fillPoly(frame, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(235, 235, 235), cv::LINE_AA);
+    cv::circle(frame, {80, 60}, 7, cv::Scalar(40, 50, 60), cv::FILLED, cv::LINE_AA);
+  }
+  // The contour with the upper lid's points moved down by `dy` (negative: up).
+  std::vector<cv::Point2f> upper_lid_moved(float dy) const {
+    std::vector<cv::Point2f> moved = contour;
+    for (cv::Point2f& p : moved)
+      if (p.y < 59.5f) p.y += dy * (60 - p.y) / 8;  // most at the top, none at the corners
+    return moved;
+  }
+};
+
+// The layer a re-render leaves: the lids drawn (skin colour, mask set)
+// outside the `opening`, the frame's pixels (mask unset) inside it.
+FaceLayer rerendered_lids(const Eye& eye, const std::vector<cv::Point2f>& opening) {
+  FaceLayer layer = make_layer(eye.frame, cv::Rect(40, 30, 80, 60), 8);
+  layer.mask.setTo(255);
+  std::vector<cv::Point> inside;
+  for (const cv::Point2f& p : opening) inside.emplace_back(cvRound(p.x - layer.box.x), cvRound(p.y - layer.box.y));
+  cv::fillPoly(layer.mask, std::vector<std::vector<cv::Point>>{inside}, cv::Scalar(0));
+  layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
+  return layer;
+}
+
+}  // namespace
+
+TEST(MouthWarp, AnUnmovedContourCopiesTheMouth) {
+  cv::Mat frame(120, 160, CV_8UC3);
+  cv::RNG(9).fill(frame, cv::RNG::UNIFORM, 0, 255);
+  const std::vector<cv::Point2f> contour = {{60, 60}, {80, 52}, {100, 60}, {80, 70}};
+  FaceLayer layer = make_layer(frame, cv::Rect(50, 45, 60, 35), 8);
+  layer.colour.setTo(cv::Scalar(0, 0, 0));
+  warp_mouth(frame, contour, contour, layer);
+  ASSERT_GT(cv::countNonZero(layer.mask), 200);
+  cv::Mat d;
+  cv::absdiff(layer.colour, frame(layer.box), d);
+  cv::Mat inside;
+  cv::erode(layer.mask, inside, cv::Mat(), {-1, -1}, 2);  // away from the edge's interpolation
+  EXPECT_LE(cv::mean(d, inside)[0], 1.0);
+}
+
+TEST(WidenOpening, ARaisedLidOpensOntoTheEyeNotOntoTheOldLid) {
+  const Eye eye;
+  const std::vector<cv::Point2f> wider = eye.upper_lid_moved(-6);
+  FaceLayer layer = rerendered_lids(eye, wider);
+  const FaceLayer before{layer.box, layer.colour.clone(), layer.mask.clone(), {}};
+  // The band the raised lid uncovered: in the new opening, off the old one,
+  // a pixel in from both edges.
+  cv::Mat band(layer.box.size(), CV_8U, cv::Scalar(0)), old_opening = band.clone();
+  auto fill = [&](cv::Mat& into, const std::vector<cv::Point2f>& contour) {
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& p : contour) polygon.emplace_back(cvRound(p.x - layer.box.x), cvRound(p.y - layer.box.y));
+    cv::fillPoly(into, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
+  };
+  fill(band, wider);
+  fill(old_opening, eye.contour);
+  cv::dilate(old_opening, old_opening, cv::Mat());
+  cv::erode(band, band, cv::Mat());
+  band &= ~old_opening;
+  ASSERT_GT(cv::countNonZero(band), 60);
+  // Without the widening the band shows the frame's lid; with it, the eye.
+  EXPECT_LT(cv::mean(before.colour, band)[0], 100);
+  widen_opening(eye.frame, eye.contour, wider, layer);
+  EXPECT_GT(cv::mean(layer.colour, band)[0], 180);
+  EXPECT_EQ(cv::countNonZero(layer.mask & band), cv::countNonZero(band)) << "the band is the layer's now";
+  // The re-rendered lids and the iris's centre stay as they were.
+  cv::Mat changed;
+  cv::absdiff(layer.colour, before.colour, changed);
+  cv::cvtColor(changed, changed, cv::COLOR_BGR2GRAY);
+  EXPECT_EQ(cv::countNonZero(changed & before.mask), 0);
+  const cv::Vec3b iris = layer.colour.at<cv::Vec3b>(60 - layer.box.y, 80 - layer.box.x);
+  EXPECT_EQ(iris, eye.frame.at<cv::Vec3b>(60, 80));
+}
+
+TEST(WidenOpening, ALoweredLidCoversTheEyeAndSquashesNothing) {
+  const Eye eye;
+  const std::vector<cv::Point2f> narrower = eye.upper_lid_moved(4);
+  FaceLayer layer = rerendered_lids(eye, narrower);
+  const cv::Mat colour = layer.colour.clone(), mask = layer.mask.clone();
+  widen_opening(eye.frame, eye.contour, narrower, layer);
+  EXPECT_EQ(cv::norm(layer.colour, colour, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(layer.mask, mask, cv::NORM_INF), 0.0);
+}
+
+}  // namespace facecap
