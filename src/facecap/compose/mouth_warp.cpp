@@ -12,22 +12,30 @@ cv::Point2f centroid(const std::vector<cv::Point2f>& points) {
   return c;
 }
 
-// Maps the fan of `from` around `from_centre` onto the fan of `to` around
-// `to_centre`, triangle by triangle, into the layer; where `under_skin`,
-// only into pixels the layer's mask left unset before the fan (a triangle's
-// own mask evaluated after its neighbours painted lost the widening:
-// address_720p_a to surprise, 45 frames, eye_opening_change -0.002 against
-// 0.065), and triangles whose corners all stay are left as they are.
-void warp_fan(const cv::Mat& source, const std::vector<cv::Point2f>& from, cv::Point2f from_centre,
-              const std::vector<cv::Point2f>& to, cv::Point2f to_centre, bool under_skin, FaceLayer& layer) {
+// Barycentric weights of `p` in the triangle (a, b, c); false where it
+// lies outside (by more than `slack` of the triangle's own weights) or the
+// triangle has no area.
+bool barycentric(const cv::Point2f& p, const cv::Point2f& a, const cv::Point2f& b, const cv::Point2f& c,
+                 cv::Vec3f& weights, float slack = 1e-4f) {
+  const cv::Point2f ab = b - a, ac = c - a, ap = p - a;
+  const float area = ab.cross(ac);
+  if (std::abs(area) < 1e-6f) return false;
+  const float wb = ap.cross(ac) / area, wc = ab.cross(ap) / area;
+  weights = {1 - wb - wc, wb, wc};
+  return weights[0] >= -slack && wb >= -slack && wc >= -slack;
+}
+
+}  // namespace
+
+void warp_mouth(const cv::Mat& source, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
+                FaceLayer& layer) {
   const size_t n = from.size();
+  if (n < 3 || to.size() != n || layer.box.area() == 0) return;
   const cv::Point2f offset(float(layer.box.x), float(layer.box.y));
-  const cv::Mat unset = under_skin ? layer.mask == 0 : cv::Mat();
+  const cv::Point2f cf = centroid(from), ct = centroid(to);
   for (size_t i = 0; i < n; ++i) {
-    const size_t j = (i + 1) % n;
-    if (under_skin && from_centre == to_centre && from[i] == to[i] && from[j] == to[j]) continue;
-    const cv::Point2f src[3] = {from_centre, from[i], from[j]};
-    const cv::Point2f dst[3] = {to_centre - offset, to[i] - offset, to[j] - offset};
+    const cv::Point2f src[3] = {cf, from[i], from[(i + 1) % n]};
+    const cv::Point2f dst[3] = {ct - offset, to[i] - offset, to[(i + 1) % n] - offset};
     const cv::Rect box =
         cv::boundingRect(std::vector<cv::Point2f>(dst, dst + 3)) & cv::Rect(0, 0, layer.box.width, layer.box.height);
     if (box.area() == 0) continue;
@@ -41,30 +49,59 @@ void warp_fan(const cv::Mat& source, const std::vector<cv::Point2f>& from, cv::P
     std::vector<cv::Point> pts;
     for (const cv::Point2f& p : dst) pts.emplace_back(cvRound(p.x - box.x), cvRound(p.y - box.y));
     cv::fillConvexPoly(triangle, pts, cv::Scalar(255), cv::LINE_AA);
-    if (under_skin) triangle &= unset(box);
     patch.copyTo(layer.colour(box), triangle);
     cv::Mat mask = layer.mask(box);
     cv::bitwise_or(mask, triangle, mask);
   }
 }
 
-}  // namespace
-
-void warp_mouth(const cv::Mat& source, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
-                FaceLayer& layer) {
-  if (from.size() < 3 || to.size() != from.size() || layer.box.area() == 0) return;
-  warp_fan(source, from, centroid(from), to, centroid(to), false, layer);
-}
-
 void widen_opening(const cv::Mat& source, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
                    FaceLayer& layer) {
-  if (from.size() < 3 || to.size() != from.size() || layer.box.area() == 0) return;
+  const size_t n = from.size();
+  if (n < 3 || to.size() != n || layer.box.area() == 0) return;
   const cv::Point2f centre = centroid(from);
   std::vector<cv::Point2f> wider = from;
-  for (size_t i = 0; i < from.size(); ++i) {
-    if (cv::norm(to[i] - centre) > cv::norm(from[i] - centre)) wider[i] = to[i];
+  bool widens = false;
+  for (size_t i = 0; i < n; ++i) {
+    if (cv::norm(to[i] - centre) > cv::norm(from[i] - centre)) wider[i] = to[i], widens = true;
   }
-  warp_fan(source, from, centre, wider, centre, true, layer);
+  if (!widens) return;
+  // Each unset pixel inside the wider fan, mapped back through the fan
+  // triangle that holds it (its barycentric weights on the old corners):
+  // one mapping per pixel, whatever order the triangles come in (thin
+  // triangles drawn one by one with smoothed edges overlap, and the last
+  // drawn won).
+  const cv::Point2f offset(float(layer.box.x), float(layer.box.y));
+  std::vector<cv::Point2f> outline = wider;
+  outline.push_back(centre);
+  const cv::Rect box = (cv::boundingRect(outline) - cv::Point(layer.box.x, layer.box.y) + cv::Size(2, 2)) &
+                       cv::Rect(0, 0, layer.box.width, layer.box.height);
+  if (box.area() == 0) return;
+  cv::Mat map_x(box.size(), CV_32F, cv::Scalar(-1)), map_y(box.size(), CV_32F, cv::Scalar(-1));
+  cv::Mat painted(box.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < box.height; ++y) {
+    const uchar* unset = layer.mask.ptr<uchar>(box.y + y) + box.x;
+    for (int x = 0; x < box.width; ++x) {
+      if (unset[x] != 0) continue;
+      const cv::Point2f p = cv::Point2f(float(box.x + x), float(box.y + y)) + offset;
+      for (size_t i = 0; i < n; ++i) {
+        const size_t j = (i + 1) % n;
+        cv::Vec3f w;
+        if (!barycentric(p, centre, wider[i], wider[j], w)) continue;
+        if (wider[i] == from[i] && wider[j] == from[j]) break;  // this part of the eye stays
+        const cv::Point2f q = w[0] * centre + w[1] * from[i] + w[2] * from[j];
+        map_x.at<float>(y, x) = q.x;
+        map_y.at<float>(y, x) = q.y;
+        painted.at<uchar>(y, x) = 255;
+        break;
+      }
+    }
+  }
+  cv::Mat patch;
+  cv::remap(source, patch, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  patch.copyTo(layer.colour(box), painted);
+  cv::Mat mask = layer.mask(box);
+  cv::bitwise_or(mask, painted, mask);
 }
 
 }  // namespace facecap
