@@ -1,5 +1,6 @@
 #include "facecap/compose/mouth_warp.hpp"
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 namespace facecap {

@@ -1,5 +1,6 @@
 #include "facecap/model/eye_margins.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "facecap/model/regions.hpp"
