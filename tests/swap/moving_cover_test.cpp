@@ -159,6 +159,63 @@ TEST(FaceFlow, FollowsTheFaceBothWaysAndStartsAgainAcrossAGap) {
   EXPECT_THROW(FaceFlow(8), Error);
 }
 
+// A skipped frame is still the last frame: the next flows run from it.
+TEST(FaceFlow, AfterASkippedFrameTheFlowRunsFromThatFrame) {
+  const Positions points = square_points(0);
+  const cv::Rect box = facing_box(unit_square(), points, kCamera, {640, 480}, 8);
+  FaceFlow flow;
+  EXPECT_TRUE(flow.next(frame(0), box, 0).empty());
+  flow.skip(frame(0.45f), box, 1);
+  const FlowPair pair = flow.next(frame(0.9f), box, 2);  // 6 px on from the skipped frame, 12 from the first
+  ASSERT_FALSE(pair.empty());
+  const Vec2f centre = pair.window(Vec2f(320, 240));
+  EXPECT_NEAR(pair.back.at<cv::Vec2f>(cvRound(centre.y()), cvRound(centre.x()))[0], -6.0f * pair.window.scale, 0.3f);
+  flow.skip(frame(0.9f), box, 4);  // frame 3 missing: starts afresh
+  EXPECT_FALSE(flow.next(frame(0.9f), box, 5).empty());
+  flow.skip(frame(0.9f), box, 7);
+  EXPECT_TRUE(flow.next(frame(0.9f), box, 9).empty());  // frame 8 missing
+}
+
+// Told that nothing changed colour on the face, the mover skips its flows
+// while it carries nothing, and finds what it would have found: none. It
+// does not skip while it carries a cover (the flow carries the evidence),
+// and the frame after a skipped one is measured from it.
+TEST(MovingCover, WhereNothingChangedColourItFindsWhatTheFlowWouldHave) {
+  const MillimetreGrid g = grid();
+  MovingCover always(unit_square(), g), gated(unit_square(), g);
+  const cv::Mat seen(g.map.size, g.map.size, CV_32F, cv::Scalar(1));
+  const Positions still = square_points(0);
+  int index = 0;
+  auto both = [&](const cv::Mat& image, bool changed) {
+    const cv::Mat a = always.update(image, still, kCamera, seen, index);
+    const cv::Mat b = gated.update(image, still, kCamera, seen, index, changed);
+    ++index;
+    return cv::norm(a, b, cv::NORM_INF);
+  };
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(both(frame(0), false), 0.0) << i;  // nothing moves
+  cv::Point cover(180, 250);
+  for (int i = 0; i < 8; ++i) {  // in from the left at 12 px a frame: its colours come
+    cover.x += 12;
+    EXPECT_EQ(both(frame(0, cover), true), 0.0) << i;
+  }
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(both(frame(0, cover), false), 0.0) << i;  // resting: carried all the same
+  cv::Mat e = gated.update(frame(0, cover), still, kCamera, seen, index++, false);
+  EXPECT_GT(evidence_at(e, cover, 0), 0.8f);
+
+  // Told wrongly that nothing changed while a cover comes in, it does not
+  // look; told on the next frame, it finds the cover from the last frame.
+  MovingCover told(unit_square(), g);
+  cover = {180, 250};
+  EXPECT_EQ(largest(told.update(frame(0), still, kCamera, seen, 0, true)), 0.0);
+  for (int i = 1; i < 4; ++i) {
+    cover.x += 12;
+    EXPECT_EQ(largest(told.update(frame(0, cover), still, kCamera, seen, i, false)), 0.0) << i;
+  }
+  cover.x += 12;
+  e = told.update(frame(0, cover), still, kCamera, seen, 4, true);
+  EXPECT_GT(evidence_at(e, cover, 0), 0.99f);
+}
+
 // The box around what faces the camera: 171 px across at the image's
 // centre, 8 px more each side; none for the square turned away.
 TEST(FaceFlow, TheFacingBoxHoldsTheSkinThatFacesTheCamera) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+#include <utility>
 
 #include "facecap/core/error.hpp"
 #include "facecap/core/parallel.hpp"
@@ -60,14 +61,29 @@ void FaceFlow::reset() {
   state_->box = cv::Rect();
 }
 
-FlowPair FaceFlow::next(const cv::Mat& frame, const cv::Rect& face_box, int frame_index) {
+cv::Mat FaceFlow::grey_following(const cv::Mat& frame, int frame_index) {
   State& s = *state_;
   if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
   s.last_index = frame_index;
-  FlowPair out;
-  out.index = frame_index;
   cv::Mat grey;
   cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
+void FaceFlow::remember(cv::Mat grey, const cv::Rect& face_box) {
+  state_->grey = std::move(grey);
+  state_->box = face_box;
+}
+
+void FaceFlow::skip(const cv::Mat& frame, const cv::Rect& face_box, int frame_index) {
+  remember(grey_following(frame, frame_index), face_box);
+}
+
+FlowPair FaceFlow::next(const cv::Mat& frame, const cv::Rect& face_box, int frame_index) {
+  State& s = *state_;
+  cv::Mat grey = grey_following(frame, frame_index);
+  FlowPair out;
+  out.index = frame_index;
   const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
   if (!s.grey.empty() && s.grey.size() == grey.size() && face_box.area() > 0) {
     const cv::Rect box = (face_box | s.box) & frame_rect;
@@ -88,8 +104,7 @@ FlowPair FaceFlow::next(const cv::Mat& frame, const cv::Rect& face_box, int fram
         },
         1);
   }
-  s.grey = grey;
-  s.box = face_box;
+  remember(std::move(grey), face_box);
   return out;
 }
 

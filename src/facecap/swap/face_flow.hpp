@@ -57,11 +57,20 @@ class FaceFlow {
   // follow), or where the frames differ in size or the face has no box.
   FlowPair next(const cv::Mat& frame, const cv::Rect& face_box, int frame_index = -1);
 
+  // Takes `frame` as the last frame, as next() does, without the flows:
+  // for a frame where nothing needs them, the next frame's are still
+  // between consecutive frames.
+  void skip(const cv::Mat& frame, const cv::Rect& face_box, int frame_index = -1);
+
   // Forget the last frame.
   void reset();
 
  private:
   struct State;
+  // Starts afresh where `frame_index` does not follow the last frame's;
+  // `frame` in grey.
+  cv::Mat grey_following(const cv::Mat& frame, int frame_index);
+  void remember(cv::Mat grey, const cv::Rect& face_box);
   int flow_width_;
   std::unique_ptr<State> state_;
 };

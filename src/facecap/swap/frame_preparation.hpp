@@ -12,6 +12,7 @@
 #include "facecap/core/geometry.hpp"
 #include "facecap/core/spherical_harmonics.hpp"
 #include "facecap/model/face_model.hpp"
+#include "facecap/swap/colour_change.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/moving_cover.hpp"
 
@@ -44,6 +45,7 @@ class FramePreparation {
   TriangleMesh skin_;
   UvTexelMap map_;
   std::unique_ptr<MovingCover> moving_;  // null: moving covers off
+  ColourChange colour_change_;           // whether the moving covers need their flow
 };
 
 }  // namespace facecap

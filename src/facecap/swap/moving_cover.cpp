@@ -186,7 +186,7 @@ void MovingCover::reset() {
 }
 
 cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera,
-                            const cv::Mat& seen, int frame_index) {
+                            const cv::Mat& seen, int frame_index, bool colour_changed) {
   State& s = *state_;
   // Motion is measured between consecutive frames only.
   if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
@@ -200,7 +200,15 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
   const cv::Rect frame_rect(0, 0, frame.cols, frame.rows);
   const cv::Rect face_box = seen_bounds(image_xy, seen, 8) & frame_rect;
 
-  const FlowPair flow = s.flow.next(frame, facing_box(s.skin, points, camera, frame.size(), 8), frame_index);
+  // Without a new colour and with nothing to carry, the evidence is none:
+  // nothing moves fast enough for a new cover, and growth needs a seed.
+  const cv::Rect flow_box = facing_box(s.skin, points, camera, frame.size(), 8);
+  const bool needs_flow = colour_changed || !s.evidence_image.empty();
+  FlowPair flow;
+  if (needs_flow)
+    flow = s.flow.next(frame, flow_box, frame_index);
+  else
+    s.flow.skip(frame, flow_box, frame_index);
   if (!flow.empty() && !s.image_xy.empty() && face_box.area() > 0) {
     const ScaledWindow& window = flow.window;
     const cv::Mat &back = flow.back, &ahead = flow.ahead;

@@ -24,7 +24,9 @@
 // late, is no cover on the talking heads of ../shared/data.
 //
 // Its cost at 720p alone (swap_bench BM_MovingCover720p): 7 ms a frame, of
-// which the two flows take 3 on two cores (5 on one). A swap runs it on
+// which the two flows take 3 on two cores (5 on one). A caller that knows
+// nothing changed colour on the face (colour_change.hpp) skips the flows
+// where no cover is being carried: most frames of a talking head. A swap runs it on
 // another thread, beside the last frame's swap (FramePreparation), where
 // on 2 cores it takes 3 to 5 times as long, sharing them
 // (SwapOptions::moving_covers turns it off).
@@ -62,8 +64,12 @@ class MovingCover {
   // video; one that does not follow the last frame's (a frame without a
   // face between) starts afresh, as reset() does; -1: unknown, taken to
   // follow. None on the first frame after construction or reset().
+  // `colour_changed`: false where the caller knows that nothing on the
+  // face changed colour since the last frame (ColourChange), so that
+  // nothing new came across it: where no cover is being carried either,
+  // the flows are skipped and the evidence is none, as they would find.
   cv::Mat update(const cv::Mat& frame, const Positions& points, const PinholeCamera& camera, const cv::Mat& seen,
-                 int frame_index = -1);
+                 int frame_index = -1, bool colour_changed = true);
 
   // Forget the last frame.
   void reset();
