@@ -18,10 +18,11 @@ void report_swap(const SwapJobTimings& timings, const std::string& output) {
   const SwapTimings& t = timings.swap;
   std::fprintf(stderr,
                "source %.0f ms | per frame swapped: lighting %.2f, appearance %.2f (first frames only), render %.2f, "
-               "wrinkles %.2f, expression ratio %.2f, occlusion %.2f, warp %.2f, blend %.2f ms\nwrote %s and %s.json "
-               "(synthetic-media marks)\n",
+               "wrinkles %.2f, expression ratio %.2f, occlusion %.2f (its optical flow on %d of %d frames), warp %.2f, "
+               "blend %.2f ms\nwrote %s and %s.json (synthetic-media marks)\n",
                timings.source_ms, timings.lighting_ms / n, t.appearance_ms / n, t.render_ms / n, t.wrinkle_ms / n,
-               t.ratio_ms / n, t.occlusion_ms / n, t.warp_ms / n, t.blend_ms / n, output.c_str(), output.c_str());
+               t.ratio_ms / n, t.occlusion_ms / n, t.flow_frames, timings.swapped, t.warp_ms / n, t.blend_ms / n,
+               output.c_str(), output.c_str());
 }
 
 }  // namespace

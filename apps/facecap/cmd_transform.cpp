@@ -17,9 +17,10 @@ void report_transform(const TransformTimings& t, const std::string& output) {
   const double n = std::max(1, t.frames);
   std::fprintf(stderr,
                "per frame: mapping+smoothing+QP %.2f ms, lighting %.2f ms, re-render+composite %.2f ms, covers %.2f ms "
-               "(+ %.2f ms beside)\nwrote %s and %s.json (synthetic-media marks)\n",
+               "(+ %.2f ms beside; their optical flow on %d of %d frames)\nwrote %s and %s.json (synthetic-media "
+               "marks)\n",
                t.mapping_ms / n, t.lighting_ms / n, t.render_ms / n, t.covers_ms / n, t.cover_preparation_ms / n,
-               output.c_str(), output.c_str());
+               t.cover_flow_frames, t.frames, output.c_str(), output.c_str());
 }
 
 }  // namespace

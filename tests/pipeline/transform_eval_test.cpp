@@ -303,18 +303,26 @@ TEST(TransformJob, AHandOfTheSkinsOwnColourStaysInFront) {
   using namespace skin_coloured_hand;
   const HandFrames hand = write_hand_frames(video, dir.path() / "hand");
   ASSERT_EQ(int(hand.input.size()), kFrames);
+  int flow_frames = 0;
   auto transform = [&](CoverOptions covers) {
     TransformJobOptions o = short_run(kFrames);
     o.covers = covers;
     std::vector<cv::Mat> out;
     o.on_frame = [&](int, const cv::Mat& image) { out.push_back(image.clone()); };
-    run_transform(*model, (dir.path() / "hand").string(), dir.path() / "out.mp4", o);
+    flow_frames =
+        run_transform(*model, (dir.path() / "hand").string(), dir.path() / "out.mp4", o).timings.cover_flow_frames;
     return out;
   };
   CoverOptions colour_only, none;
   colour_only.moving_covers = false;
   none.keep_occluders = false;
-  const std::vector<cv::Mat> kept = transform({}), by_colour = transform(colour_only), painted = transform(none);
+  const std::vector<cv::Mat> kept = transform({});
+  // The flow runs from the hand's first frame on (its colours come over
+  // the face), while its evidence is carried, and on few of the frames
+  // before it (colour_change.hpp).
+  EXPECT_GE(flow_frames, kFrames - kEnter);
+  EXPECT_LT(flow_frames, kFrames - 10);
+  const std::vector<cv::Mat> by_colour = transform(colour_only), painted = transform(none);
   ASSERT_EQ(int(kept.size()), kFrames);
   auto changed = [](const cv::Mat& a, const cv::Mat& b) { return cv::Mat(largest_channel_difference(a, b) > 12); };
   // Over the frames, the hand's pixels the edit without covers changes

@@ -216,6 +216,40 @@ TEST(MovingCover, WhereNothingChangedColourItFindsWhatTheFlowWouldHave) {
   EXPECT_GT(evidence_at(e, cover, 0), 0.99f);
 }
 
+// A resting cover fades; once no evidence reaches one half, which counts
+// for nothing, it is dropped, and the flow is no longer needed for it.
+TEST(MovingCover, EvidenceUnderOneHalfIsDroppedAndNeedsNoFlow) {
+  const MillimetreGrid g = grid();
+  MovingCoverOptions o;
+  o.half_life_frames = 4;
+  MovingCover mover(unit_square(), g, o);
+  const cv::Mat seen(g.map.size, g.map.size, CV_32F, cv::Scalar(1));
+  const Positions still = square_points(0);
+  int index = 0;
+  mover.update(frame(0), still, kCamera, seen, index++);
+  EXPECT_FALSE(mover.measured_motion());  // no last frame
+  cv::Point cover(180, 250);
+  cv::Mat e;
+  for (int i = 0; i < 8; ++i) {
+    cover.x += 12;
+    e = mover.update(frame(0, cover), still, kCamera, seen, index++);
+  }
+  ASSERT_GT(evidence_at(e, cover, 0), 0.99f);
+  // Resting, nothing changing colour: carried, and measured, while it counts.
+  int rested = 0;
+  while (largest(e) >= 0.5 && rested < 20) {
+    e = mover.update(frame(0, cover), still, kCamera, seen, index++, false);
+    EXPECT_TRUE(mover.measured_motion()) << rested;
+    ++rested;
+  }
+  EXPECT_GE(rested, 4);  // one half-life at least
+  EXPECT_LE(rested, 6);
+  EXPECT_GT(largest(e), 0.0);  // this frame's faded evidence, under one half
+  e = mover.update(frame(0, cover), still, kCamera, seen, index++, false);
+  EXPECT_FALSE(mover.measured_motion());
+  EXPECT_EQ(largest(e), 0.0);
+}
+
 // The box around what faces the camera: 171 px across at the image's
 // centre, 8 px more each side; none for the square turned away.
 TEST(FaceFlow, TheFacingBoxHoldsTheSkinThatFacesTheCamera) {

@@ -60,6 +60,7 @@ void TransformTimings::add_stream(const TransformTimings& stream) {
   render_ms += stream.render_ms;
   covers_ms += stream.covers_ms;
   cover_preparation_ms += stream.cover_preparation_ms;
+  cover_flow_frames += stream.cover_flow_frames;
   edit_thread_cpu_ms += stream.edit_thread_cpu_ms;
   lighting_cpu_ms += stream.lighting_cpu_ms;
   cover_preparation_cpu_ms += stream.cover_preparation_cpu_ms;
@@ -124,7 +125,10 @@ void FaceTransformStream::take(const RefinedFrame& r) {
     p.coarse = r.coarse;
     p.lighting = r.refinement->lighting;
     p.lighting_final = r.refinement->albedo_final;
-    if (const PreparedFrame* prepared = prepared_covers(r)) p.prepared = *prepared;
+    if (const PreparedFrame* prepared = prepared_covers(r)) {
+      p.prepared = *prepared;
+      timings_.cover_flow_frames += prepared->motion_measured ? 1 : 0;
+    }
     weights = f.fit.expression;
   }
   pending_.emplace(f.index, std::move(p));

@@ -36,6 +36,7 @@ struct TransformTimings {
   double render_ms = 0;             // re-shading, mouth warp and blending
   double covers_ms = 0;             // what covers the face, on the edit's thread (CoverOptions::keep_occluders)
   double cover_preparation_ms = 0;  // the covers' unshading and motion, on the stage's second thread
+  int cover_flow_frames = 0;        // frames whose moving covers ran their optical flow (colour_change.hpp)
   int frames = 0;
   // CPU time (core/cpu_time.hpp), for a benchmark's budget of the cores:
   // the edit's thread (mapping, re-render, composite and the frame's

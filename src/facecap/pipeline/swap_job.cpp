@@ -224,6 +224,7 @@ void add_stream_timings(SwapJobTimings& sum, const FaceSwapStream& stream) {
   sum.swap.wrinkle_setup_ms += t.wrinkle_setup_ms;
   sum.swap.ratio_ms += t.ratio_ms;
   sum.swap.occlusion_ms += t.occlusion_ms;
+  sum.swap.flow_frames += t.flow_frames;
   sum.swapped += stream.swapped();
   const RefineStageTimings& stage = stream.stage_timings();
   sum.lighting_ms += stage.refine_ms;

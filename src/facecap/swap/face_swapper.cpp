@@ -171,6 +171,7 @@ struct FaceSwapper::Impl {
   struct Cover {
     cv::Mat cover;
     std::optional<FaceTexture> skin;
+    bool motion_measured = false;  // PreparedFrame's
   };
   Cover find_cover(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
                    bool appearance_frame) {
@@ -187,6 +188,7 @@ struct FaceSwapper::Impl {
     drop_non_skin(*c.skin);
     if (appearance_frame) occlusion->add_reference(seen);
     c.cover = occlusion->covered(seen, prepared->moving);
+    c.motion_measured = prepared->motion_measured;
     c.skin->weight.setTo(0, c.cover > 0);  // the expression ratio's change is the face's, not a cover's
     return c;
   }
@@ -307,6 +309,7 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   const Impl::Cover cover = m.occlusion ? m.find_cover(frame, target, target_points, appearance_frame) : Impl::Cover{};
   const double occlusion_ms = m.occlusion ? ms_since(t0) : 0.0;
   t.occlusion_ms += occlusion_ms;
+  t.flow_frames += cover.motion_measured ? 1 : 0;
   t0 = std::chrono::steady_clock::now();
   const cv::Mat ratio_gains =
       m.ratio ? m.expression_gains(frame, target, target_points, holes, cover.skin, appearance_frame) : cv::Mat();

@@ -155,6 +155,7 @@ struct SwapTimings {
   double wrinkle_setup_ms = 0;  // the transfer's factorisation, once a shot (not in wrinkle_ms)
   double ratio_ms = 0;          // the target's unshading and change (with SwapOptions::expression_ratio)
   double occlusion_ms = 0;      // what covers the target face (with SwapOptions::keep_occluders)
+  int flow_frames = 0;          // frames whose moving covers ran their optical flow (colour_change.hpp)
 };
 
 struct SwappedFrame {

@@ -22,6 +22,7 @@ PreparedFrame FramePreparation::prepare(const cv::Mat& frame, const Positions& p
   if (moving_)
     out.moving = moving_->update(frame, points, camera, out.seen.weight, frame_index,
                                  colour_change_.changed(out.seen, frame_index));
+  out.motion_measured = moving_ && moving_->measured_motion();
   return out;
 }
 

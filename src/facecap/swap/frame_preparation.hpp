@@ -19,8 +19,9 @@
 namespace facecap {
 
 struct PreparedFrame {
-  FaceTexture seen;  // the frame unshaded onto the grid, nothing dropped (OcclusionMask::unshade)
-  cv::Mat moving;    // MovingCover's evidence on the grid (empty: moving covers off)
+  FaceTexture seen;              // the frame unshaded onto the grid, nothing dropped (OcclusionMask::unshade)
+  cv::Mat moving;                // MovingCover's evidence on the grid (empty: moving covers off)
+  bool motion_measured = false;  // MovingCover ran its optical flow on this frame (MovingCover::measured_motion)
 };
 
 class FramePreparation {

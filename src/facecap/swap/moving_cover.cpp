@@ -21,6 +21,9 @@ namespace {
 constexpr int kSampledVertices = 1500;
 // Rounds of the trimmed least squares.
 constexpr int kFitRounds = 4;
+// Evidence that counts: a cover (OcclusionMask::covered), a seed for
+// growth, a sample left out of the shared disagreement.
+constexpr float kMinEvidence = 0.5f;
 
 // Each texel's image position (CV_32FC2) and depth in cm (CV_32F, 0 where
 // no triangle covers the texel).
@@ -138,7 +141,8 @@ struct MovingCover::State {
   Eigen::Matrix2Xf sampled_xy;  // the sampled vertices', in their order
   cv::Mat evidence_image;       // at evidence_window's scale (empty: no evidence)
   ScaledWindow evidence_window;
-  int last_index = -1;  // the last frame's number (-1: unknown)
+  int last_index = -1;    // the last frame's number (-1: unknown)
+  bool measured = false;  // the last update() ran the flow
 };
 
 namespace {
@@ -179,6 +183,8 @@ MovingCover::~MovingCover() = default;
 MovingCover::MovingCover(MovingCover&&) noexcept = default;
 MovingCover& MovingCover::operator=(MovingCover&&) noexcept = default;
 
+bool MovingCover::measured_motion() const { return state_->measured; }
+
 void MovingCover::reset() {
   state_->flow.reset();
   state_->image_xy = cv::Mat();
@@ -209,6 +215,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
     flow = s.flow.next(frame, flow_box, frame_index);
   else
     s.flow.skip(frame, flow_box, frame_index);
+  s.measured = !flow.empty();
   if (!flow.empty() && !s.image_xy.empty() && face_box.area() > 0) {
     const ScaledWindow& window = flow.window;
     const cv::Mat &back = flow.back, &ahead = flow.ahead;
@@ -233,7 +240,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
       if (reinterpret_cast<const float*>(seen.data)[s.vertex_texel[s.sampled[k]]] <= 0) continue;
       const Vec2f at = sampled_xy.col(k);
       const Vec2f from = at + flow_at(back, at) / window.scale;
-      if (carried_at(from) >= 0.5f) continue;
+      if (carried_at(from) >= kMinEvidence) continue;
       samples.push_back({at, from - s.sampled_xy.col(k)});
     }
     const AffineField shared = shared_disagreement(samples);
@@ -295,7 +302,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
       cv::morphologyEx(fast, fast, cv::MORPH_OPEN,
                        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
     slow |= fast;
-    const cv::Mat seeds = fast | ((evidence >= 0.5f) & slow);
+    const cv::Mat seeds = fast | ((evidence >= kMinEvidence) & slow);
     cv::Mat labels;
     const int count = cv::connectedComponents(slow, labels, 8, CV_32S);
     std::vector<uchar> seeded(count, 0);
@@ -311,12 +318,18 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
   s.sampled_xy = sampled_xy;
   // The evidence drawn into the image, at the flow's scale (the next
   // frame samples it where its flow says its pixels came from); none
-  // drawn where there is none (most frames: the drawing, a rasterisation
-  // of the skin, took 2-3 ms a frame beside a 720p swap).
+  // drawn where none reaches one half (most frames: the drawing, a
+  // rasterisation of the skin, took 2-3 ms a frame beside a 720p swap).
+  // Evidence under one half is inert: what covers the face
+  // (OcclusionMask::covered), the seeds above and the samples of the
+  // shared disagreement all need one half, and carried evidence only
+  // fades; without it the flow need not run (colour_changed).
   s.evidence_window = {face_box.tl(), std::min(1.0f, float(options_.flow_width) / float(std::max(1, face_box.width)))};
   const cv::Size evidence_size(std::max(1, int(std::lround(face_box.width * s.evidence_window.scale))),
                                std::max(1, int(std::lround(face_box.height * s.evidence_window.scale))));
-  s.evidence_image = face_box.area() > 0 && cv::countNonZero(evidence) > 0
+  double strongest = 0;
+  cv::minMaxLoc(evidence, nullptr, &strongest);
+  s.evidence_image = face_box.area() > 0 && strongest >= kMinEvidence
                          ? cover_in_image(s.skin, points, s.evidence_window.camera(camera), evidence_size, evidence)
                          : cv::Mat();
   return evidence;

@@ -19,7 +19,8 @@
 // is a guess: growth and carrying need the round trip, a new cover only
 // within a quarter of the flow's length (its own flow is rough). The last
 // frame's evidence is carried along the flow, fading by half every
-// half_life_frames frames: a hand that rests stays found for a while. The
+// half_life_frames frames: a hand that rests stays found for a while
+// (evidence under one half counts for nothing, and is dropped). The
 // lips' and the jaw's own motion, which the tracking follows a little
 // late, is no cover on the talking heads of ../shared/data.
 //
@@ -73,6 +74,10 @@ class MovingCover {
 
   // Forget the last frame.
   void reset();
+
+  // Whether the last update() ran the optical flow (not on the first frame,
+  // nor where it was told nothing changed colour and carried nothing).
+  bool measured_motion() const;
 
  private:
   struct State;
