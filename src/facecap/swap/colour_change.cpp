@@ -32,8 +32,7 @@ void ColourChange::reset() {
 }
 
 bool ColourChange::changed(const FaceTexture& seen, int frame_index) {
-  if (frame_index >= 0 && last_index_ >= 0 && frame_index != last_index_ + 1) reset();
-  last_index_ = frame_index;
+  if (!sequence_.follows(frame_index)) reset();
   cv::Mat log_colour;
   cv::log(cv::max(seen.albedo, cv::Scalar::all(0)) + cv::Scalar::all(kLogFloor), log_colour);
   const bool known = !last_log_.empty() && last_log_.size() == log_colour.size();

@@ -19,6 +19,7 @@
 // 10-21 % of the frames.
 #include <opencv2/core.hpp>
 
+#include "facecap/core/frame_sequence.hpp"
 #include "facecap/swap/face_texture.hpp"
 
 namespace facecap {
@@ -48,7 +49,7 @@ class ColourChange {
   int radius_;        // of the opening's disc, texels
   cv::Mat last_log_;  // the last frame's log colour (CV_32FC3)
   cv::Mat last_weight_;
-  int last_index_ = -1;
+  FrameSequence sequence_;
 };
 
 }  // namespace facecap

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/frame_sequence.hpp"
 #include "facecap/core/parallel.hpp"
 
 namespace facecap {
@@ -37,7 +38,7 @@ struct FaceFlow::State {
   cv::Ptr<cv::DISOpticalFlow> back, ahead;  // one each: the two run at once
   cv::Mat grey;                             // the last frame's
   cv::Rect box;                             // its face box
-  int last_index = -1;
+  FrameSequence sequence;                   // the frames' numbers
 };
 
 FaceFlow::FaceFlow(int flow_width) : flow_width_(flow_width), state_(std::make_unique<State>()) {
@@ -62,9 +63,7 @@ void FaceFlow::reset() {
 }
 
 cv::Mat FaceFlow::grey_following(const cv::Mat& frame, int frame_index) {
-  State& s = *state_;
-  if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
-  s.last_index = frame_index;
+  if (!state_->sequence.follows(frame_index)) reset();
   cv::Mat grey;
   cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
   return grey;

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/core/error.hpp"
+#include "facecap/core/frame_sequence.hpp"
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/swap/face_flow.hpp"
@@ -141,8 +142,8 @@ struct MovingCover::State {
   Eigen::Matrix2Xf sampled_xy;  // the sampled vertices', in their order
   cv::Mat evidence_image;       // at evidence_window's scale (empty: no evidence)
   ScaledWindow evidence_window;
-  int last_index = -1;    // the last frame's number (-1: unknown)
-  bool measured = false;  // the last update() ran the flow
+  FrameSequence sequence;  // the frames' numbers
+  bool measured = false;   // the last update() ran the flow
 };
 
 namespace {
@@ -195,8 +196,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
                             const cv::Mat& seen, int frame_index, bool colour_changed) {
   State& s = *state_;
   // Motion is measured between consecutive frames only.
-  if (frame_index >= 0 && s.last_index >= 0 && frame_index != s.last_index + 1) reset();
-  s.last_index = frame_index;
+  if (!s.sequence.follows(frame_index)) reset();
   const int n = s.map.size;
   cv::Mat evidence(n, n, CV_32F, cv::Scalar(0));
   cv::Mat image_xy, depth;
