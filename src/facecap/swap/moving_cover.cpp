@@ -22,9 +22,6 @@ namespace {
 constexpr int kSampledVertices = 1500;
 // Rounds of the trimmed least squares.
 constexpr int kFitRounds = 4;
-// Evidence that counts: a cover (OcclusionMask::covered), a seed for
-// growth, a sample left out of the shared disagreement.
-constexpr float kMinEvidence = 0.5f;
 
 // Each texel's image position (CV_32FC2) and depth in cm (CV_32F, 0 where
 // no triangle covers the texel).
@@ -240,7 +237,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
       if (reinterpret_cast<const float*>(seen.data)[s.vertex_texel[s.sampled[k]]] <= 0) continue;
       const Vec2f at = sampled_xy.col(k);
       const Vec2f from = at + flow_at(back, at) / window.scale;
-      if (carried_at(from) >= kMinEvidence) continue;
+      if (carried_at(from) >= kCoveringEvidence) continue;
       samples.push_back({at, from - s.sampled_xy.col(k)});
     }
     const AffineField shared = shared_disagreement(samples);
@@ -302,7 +299,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
       cv::morphologyEx(fast, fast, cv::MORPH_OPEN,
                        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
     slow |= fast;
-    const cv::Mat seeds = fast | ((evidence >= kMinEvidence) & slow);
+    const cv::Mat seeds = fast | ((evidence >= kCoveringEvidence) & slow);
     cv::Mat labels;
     const int count = cv::connectedComponents(slow, labels, 8, CV_32S);
     std::vector<uchar> seeded(count, 0);
@@ -329,7 +326,7 @@ cv::Mat MovingCover::update(const cv::Mat& frame, const Positions& points, const
                                std::max(1, int(std::lround(face_box.height * s.evidence_window.scale))));
   double strongest = 0;
   cv::minMaxLoc(evidence, nullptr, &strongest);
-  s.evidence_image = face_box.area() > 0 && strongest >= kMinEvidence
+  s.evidence_image = face_box.area() > 0 && strongest >= kCoveringEvidence
                          ? cover_in_image(s.skin, points, s.evidence_window.camera(camera), evidence_size, evidence)
                          : cv::Mat();
   return evidence;

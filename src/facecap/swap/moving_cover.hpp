@@ -27,8 +27,8 @@
 // Its cost at 720p alone (swap_bench BM_MovingCover720p): 7 ms a frame, of
 // which the two flows take 3 on two cores (5 on one). A caller that knows
 // nothing changed colour on the face (colour_change.hpp) skips the flows
-// where no cover is being carried: most frames of a talking head. A swap runs it on
-// another thread, beside the last frame's swap (FramePreparation), where
+// where no cover is being carried: most frames of a talking head. A swap
+// runs it on another thread, beside the last frame's swap (FramePreparation), where
 // on 2 cores it takes 3 to 5 times as long, sharing them
 // (SwapOptions::moving_covers turns it off).
 #include <memory>

@@ -152,7 +152,7 @@ cv::Mat OcclusionMask::covered(const FaceTexture& seen, const cv::Mat& moving) c
       if (outside > options_.min_log_change) f[x] = 255;
     }
   }
-  if (!moving.empty()) found.setTo(255, (moving > 0.5f) & (seen.weight > 0));
+  if (!moving.empty()) found.setTo(255, (moving > kCoveringEvidence) & (seen.weight > 0));
   const int speck = texels(0.5f * options_.min_extent_mm, grid_.texels_per_mm);
   if (speck > 0) cv::morphologyEx(found, found, cv::MORPH_OPEN, disc(speck));
   if (cv::countNonZero(found) == 0) return out;

@@ -33,6 +33,10 @@
 
 namespace facecap {
 
+// MovingCover's evidence (0..1) above which a texel is covered; the mover
+// carries only evidence that reaches it (less counts for nothing).
+constexpr float kCoveringEvidence = 0.5f;
+
 struct OcclusionOptions {
   float texel_mm = 1.0f;        // the grid, as the expression ratio's
   float min_log_change = 0.7f;  // a factor of 2 in a channel, past what the appearance frames showed nearby
@@ -73,7 +77,7 @@ class OcclusionMask {
   // How covered each texel is (CV_32F, 0..1, grid_size() square over UV
   // [0, 1]^2, row 0 at v = 1) in a frame unshaded so; all zero
   // before any reference. `moving`: MovingCover's evidence on the grid,
-  // covered where above one half whatever its colour (empty: none).
+  // covered where above kCoveringEvidence whatever its colour (empty: none).
   cv::Mat covered(const FaceTexture& seen, const cv::Mat& moving = {}) const;
 
   int grid_size() const { return grid_.map.size; }
