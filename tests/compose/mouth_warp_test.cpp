@@ -46,6 +46,46 @@ FaceLayer rerendered_lids(const Eye& eye, const std::vector<cv::Point2f>& openin
   return layer;
 }
 
+// An eye as a face shows it, in a 320 x 240 frame: the opening 120 px wide
+// and 32 tall, centred at (160, 120); the skin's loop (`contour`) 4 px
+// outside the lids' edges, where the lid hides it; an iris 56 px across
+// (0.23 of the eye's width in radius) that both lids cut, with a pupil and
+// a catchlight; the lids' edges dark (lashes). `visible`: the opening the
+// landmarks mark.
+struct RealEye {
+  static constexpr float kIrisRadius = 28.0f;
+  cv::Mat frame = cv::Mat(240, 320, CV_8UC3, cv::Scalar(60, 90, 160));
+  std::vector<cv::Point2f> contour, visible;
+  RealEye() {
+    for (int i = 0; i < 24; ++i) {
+      const double a = 2 * M_PI * i / 24;
+      contour.emplace_back(float(160 - 60 * std::cos(a)), float(120 - 20 * std::sin(a)));
+      visible.emplace_back(float(160 - 60 * std::cos(a)), float(120 - 16 * std::sin(a)));
+    }
+    cv::Mat eyeball(frame.size(), CV_8UC3, cv::Scalar(235, 235, 235));
+    cv::circle(eyeball, {160, 120}, int(kIrisRadius), cv::Scalar(40, 60, 90), cv::FILLED, cv::LINE_AA);
+    cv::circle(eyeball, {160, 120}, 8, cv::Scalar(10, 10, 10), cv::FILLED, cv::LINE_AA);
+    cv::circle(eyeball, {166, 126}, 2, cv::Scalar(250, 250, 250), cv::FILLED, cv::LINE_AA);
+    cv::Mat inside(frame.size(), CV_8U, cv::Scalar(0));
+    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{polygon(visible)}, cv::Scalar(255), cv::LINE_8);
+    eyeball.copyTo(frame, inside);
+    cv::polylines(frame, std::vector<std::vector<cv::Point>>{polygon(visible)}, true, cv::Scalar(20, 25, 30), 2,
+                  cv::LINE_AA);
+  }
+  static std::vector<cv::Point> polygon(const std::vector<cv::Point2f>& points) {
+    std::vector<cv::Point> out;
+    for (const cv::Point2f& p : points) out.emplace_back(cvRound(p.x), cvRound(p.y));
+    return out;
+  }
+  // `points` with the upper ones moved down by `dy` at the top (negative:
+  // up), in proportion to their height (`half_height` at the top).
+  static std::vector<cv::Point2f> upper_moved(std::vector<cv::Point2f> points, float dy, float half_height) {
+    for (cv::Point2f& p : points)
+      if (p.y < 119.5f) p.y += dy * (120 - p.y) / half_height;
+    return points;
+  }
+};
+
 }  // namespace
 
 TEST(MouthWarp, AnUnmovedContourCopiesTheMouth) {
@@ -104,6 +144,64 @@ TEST(WidenOpening, ALoweredLidCoversTheEyeAndSquashesNothing) {
   widen_opening(eye.frame, eye.contour, narrower, layer);
   EXPECT_EQ(cv::norm(layer.colour, colour, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(layer.mask, mask, cv::NORM_INF), 0.0);
+}
+
+TEST(WidenOpening, ARaisedLidUncoversTheIrisRoundAndTheWhiteAboveIt) {
+  const RealEye eye;
+  // The lid raised by 20 px: its edge from 16 px above the centre to 36,
+  // above the iris's top (28).
+  const std::vector<cv::Point2f> wider = RealEye::upper_moved(eye.contour, -25, 20);
+  const std::vector<cv::Point2f> lid_edge = RealEye::upper_moved(eye.visible, -20, 16);
+  const cv::Rect content(80, 80, 160, 80);
+  const cv::Rect box = make_layer(eye.frame, content, 8).box;
+  const auto inside = [&](const std::vector<cv::Point2f>& outline) {
+    cv::Mat m(box.size(), CV_8U, cv::Scalar(0));
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& p : outline) polygon.emplace_back(cvRound(p.x - box.x), cvRound(p.y - box.y));
+    cv::fillPoly(m, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
+    return m;
+  };
+  // Judged above the old lid's edge (what the raised lid uncovered), 8 px
+  // inside the new one (off its dark line, which the fan stretches), and 2 px
+  // inside the iris's outline or outside it.
+  cv::Mat opened;
+  cv::erode(inside(lid_edge), opened, cv::Mat(), {-1, -1}, 8);
+  opened &= ~inside(eye.visible);
+  cv::Mat iris(box.size(), CV_8U, cv::Scalar(0)), white(box.size(), CV_8U, cv::Scalar(255));
+  const cv::Point centre = cv::Point(160, 120) - box.tl();
+  cv::circle(iris, centre, int(RealEye::kIrisRadius) - 2, cv::Scalar(255), cv::FILLED);
+  cv::circle(white, centre, int(RealEye::kIrisRadius) + 2, cv::Scalar(0), cv::FILLED);
+  const cv::Mat opened_iris = opened & iris, opened_white = opened & white;
+  ASSERT_GT(cv::countNonZero(opened_iris), 200);
+  ASSERT_GT(cv::countNonZero(opened_white), 100);
+  const auto widened = [&](const VisibleEye* visible) {
+    FaceLayer layer = make_layer(eye.frame, content, 8);
+    layer.mask.setTo(255);
+    layer.mask.setTo(0, inside(wider));
+    layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
+    widen_opening(eye.frame, eye.contour, wider, layer, visible);
+    cv::Mat grey;
+    cv::cvtColor(layer.colour, grey, cv::COLOR_BGR2GRAY);
+    return grey;
+  };
+  const auto share_dark = [](const cv::Mat& grey, const cv::Mat& where) {
+    return double(cv::countNonZero((grey < 120) & where)) / cv::countNonZero(where);
+  };
+  // The fan alone stretches the iris up with the lid, taller than round,
+  // into what should be white.
+  const cv::Mat stretched = widened(nullptr);
+  EXPECT_GT(share_dark(stretched, opened_white), 0.3);
+  const VisibleEye visible{{160, 120}, RealEye::kIrisRadius, eye.visible};
+  const cv::Mat round = widened(&visible);
+  EXPECT_GT(share_dark(round, opened_iris), 0.98) << "the uncovered iris";
+  EXPECT_LT(share_dark(round, opened_white), 0.02) << "the white above it";
+  // The iris the frame showed stays as it was.
+  cv::Mat frame_grey;
+  cv::cvtColor(eye.frame(box), frame_grey, cv::COLOR_BGR2GRAY);
+  cv::Mat shown_iris;
+  cv::erode(inside(eye.visible), shown_iris, cv::Mat(), {-1, -1}, 3);
+  shown_iris &= iris;
+  EXPECT_LE(cv::norm(round, frame_grey, cv::NORM_INF, shown_iris), 2.0);
 }
 
 }  // namespace facecap

@@ -46,6 +46,18 @@ void keep_covers_in_front(const cv::Mat& frame, const TriangleMesh& skin, const 
   layer.mask.setTo(0, in_front > 0.5f);
 }
 
+// What the frame shows of eye `e` (0: iBUG 36-41, 1: 42-47): its iris and
+// the opening its landmarks mark; none where no iris was found.
+std::optional<VisibleEye> visible_eye(const CoarseFit& fit, int e) {
+  const std::optional<IrisObservation>& iris = fit.irises[e];
+  if (!iris || !(iris->radius > 0)) return std::nullopt;
+  VisibleEye eye;
+  eye.iris_centre = cv::Point2f(float(iris->centre.x()), float(iris->centre.y()));
+  eye.iris_radius = float(iris->radius);
+  for (int k = 36 + 6 * e; k < 42 + 6 * e; ++k) eye.opening.emplace_back(fit.observed[k].x(), fit.observed[k].y());
+  return eye;
+}
+
 // `options` with the gaze's shapes held as tracked (TransformOptions::kept_shapes).
 TransformOptions with_gaze_kept(TransformOptions options, const FaceModel& model) {
   for (const int shape : EyeLookShapes(model).indices()) options.kept_shapes.push_back(shape);
@@ -77,8 +89,7 @@ FaceTransformStream::FaceTransformStream(const FaceModel& model, const Expressio
   const TriangleMesh face = model.region_mesh(regions::kFace);
   skin_ = masked_triangles(face.triangles, face_skin_mask());
   for (int i = 60; i < 68; ++i) inner_lips_.push_back(model.landmarks.vertices[i]);
-  for (const std::vector<int>& margin : eye_margin_loops(model, skin_))
-    if (!margin.empty()) eye_margins_.push_back(margin);
+  eye_margins_ = eye_margin_loops(model, skin_);
   // The lighting, the mapping and the re-render run on the refinement stage's
   // thread, concurrently with the next frames' capture (§4.4.1's pipelining);
   // frames reach it and leave it in order, so the results are those of one
@@ -152,9 +163,12 @@ void FaceTransformStream::emit(const std::vector<TransformedFrame>& done) {
       layer = reshade_face(p.frame.image, p.coarse, changed, skin_, p.lighting, cam);
       warp_mouth(p.frame.image, project_vertices(p.coarse, inner_lips_, cam),
                  project_vertices(changed, inner_lips_, cam), *layer);
-      for (const std::vector<int>& margin : eye_margins_)
-        widen_opening(p.frame.image, project_vertices(p.coarse, margin, cam), project_vertices(changed, margin, cam),
-                      *layer);
+      for (int e = 0; e < 2; ++e) {
+        if (eye_margins_[e].empty()) continue;
+        const std::optional<VisibleEye> eye = visible_eye(p.frame.fit, e);
+        widen_opening(p.frame.image, project_vertices(p.coarse, eye_margins_[e], cam),
+                      project_vertices(changed, eye_margins_[e], cam), *layer, eye ? &*eye : nullptr);
+      }
       timings_.render_ms += ms_since(t0);
       if (covers_ && p.prepared) {
         const auto t1 = std::chrono::steady_clock::now();

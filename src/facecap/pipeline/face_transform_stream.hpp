@@ -9,6 +9,7 @@
 // front of it as a swap keeps it (face_covers.hpp). run_transform drives one
 // stream; transform --all-faces one per face, their layers composited over
 // the same frames.
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -96,7 +97,7 @@ class FaceTransformStream {
   ExpressionTransformer transformer_;
   std::vector<Triangle> skin_;  // the face region's skin triangles, re-shaded
   std::vector<int> inner_lips_;
-  std::vector<std::vector<int>> eye_margins_;      // the skin's openings at the eyes (eye_margins.hpp)
+  std::array<std::vector<int>, 2> eye_margins_;    // the skin's openings at eyes 0 and 1 (eye_margins.hpp)
   std::unique_ptr<FaceCovers> covers_;             // CoverOptions::keep_occluders; used on the stage's thread
   std::unique_ptr<FramePreparation> preparation_;  // with covers_, on the stage's second thread
   std::map<int, Pending> pending_;
