@@ -86,6 +86,38 @@ struct RealEye {
   }
 };
 
+// RealEye's upper lid raised by 20 px (its edge from 16 px above the
+// centre to 36, above the iris's top at 28) and the eye widened into the
+// layer the re-render leaves (the lids drawn outside the new loop).
+struct RaisedLid {
+  RealEye eye;
+  std::vector<cv::Point2f> wider = RealEye::upper_moved(eye.contour, -25, 20);
+  std::vector<cv::Point2f> lid_edge = RealEye::upper_moved(eye.visible, -20, 16);
+  cv::Rect content{80, 80, 160, 80};
+  cv::Rect box = make_layer(eye.frame, content, 8).box;
+  VisibleEye visible{{160, 120}, RealEye::kIrisRadius, eye.visible};
+
+  // The inside of `outline` in the layer's window.
+  cv::Mat inside(const std::vector<cv::Point2f>& outline) const {
+    cv::Mat m(box.size(), CV_8U, cv::Scalar(0));
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& p : outline) polygon.emplace_back(cvRound(p.x - box.x), cvRound(p.y - box.y));
+    cv::fillPoly(m, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
+    return m;
+  }
+  // The layer's grey levels after widen_opening, with or without what the frame shows of the eye.
+  cv::Mat widened(const VisibleEye* shown) const {
+    FaceLayer layer = make_layer(eye.frame, content, 8);
+    layer.mask.setTo(255);
+    layer.mask.setTo(0, inside(wider));
+    layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
+    widen_opening(eye.frame, eye.contour, wider, layer, shown);
+    cv::Mat grey;
+    cv::cvtColor(layer.colour, grey, cv::COLOR_BGR2GRAY);
+    return grey;
+  }
+};
+
 }  // namespace
 
 TEST(MouthWarp, AnUnmovedContourCopiesTheMouth) {
@@ -147,26 +179,14 @@ TEST(WidenOpening, ALoweredLidCoversTheEyeAndSquashesNothing) {
 }
 
 TEST(WidenOpening, ARaisedLidUncoversTheIrisRoundAndTheWhiteAboveIt) {
-  const RealEye eye;
-  // The lid raised by 20 px: its edge from 16 px above the centre to 36,
-  // above the iris's top (28).
-  const std::vector<cv::Point2f> wider = RealEye::upper_moved(eye.contour, -25, 20);
-  const std::vector<cv::Point2f> lid_edge = RealEye::upper_moved(eye.visible, -20, 16);
-  const cv::Rect content(80, 80, 160, 80);
-  const cv::Rect box = make_layer(eye.frame, content, 8).box;
-  const auto inside = [&](const std::vector<cv::Point2f>& outline) {
-    cv::Mat m(box.size(), CV_8U, cv::Scalar(0));
-    std::vector<cv::Point> polygon;
-    for (const cv::Point2f& p : outline) polygon.emplace_back(cvRound(p.x - box.x), cvRound(p.y - box.y));
-    cv::fillPoly(m, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
-    return m;
-  };
+  const RaisedLid raised;
+  const cv::Rect box = raised.box;
   // Judged above the old lid's edge (what the raised lid uncovered), 8 px
-  // inside the new one (off its dark line, which the fan stretches), and 2 px
-  // inside the iris's outline or outside it.
+  // inside the new one (off its dark line), and 2 px inside the iris's
+  // outline or outside it.
   cv::Mat opened;
-  cv::erode(inside(lid_edge), opened, cv::Mat(), {-1, -1}, 8);
-  opened &= ~inside(eye.visible);
+  cv::erode(raised.inside(raised.lid_edge), opened, cv::Mat(), {-1, -1}, 8);
+  opened &= ~raised.inside(raised.eye.visible);
   cv::Mat iris(box.size(), CV_8U, cv::Scalar(0)), white(box.size(), CV_8U, cv::Scalar(255));
   const cv::Point centre = cv::Point(160, 120) - box.tl();
   cv::circle(iris, centre, int(RealEye::kIrisRadius) - 2, cv::Scalar(255), cv::FILLED);
@@ -174,32 +194,21 @@ TEST(WidenOpening, ARaisedLidUncoversTheIrisRoundAndTheWhiteAboveIt) {
   const cv::Mat opened_iris = opened & iris, opened_white = opened & white;
   ASSERT_GT(cv::countNonZero(opened_iris), 200);
   ASSERT_GT(cv::countNonZero(opened_white), 100);
-  const auto widened = [&](const VisibleEye* visible) {
-    FaceLayer layer = make_layer(eye.frame, content, 8);
-    layer.mask.setTo(255);
-    layer.mask.setTo(0, inside(wider));
-    layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
-    widen_opening(eye.frame, eye.contour, wider, layer, visible);
-    cv::Mat grey;
-    cv::cvtColor(layer.colour, grey, cv::COLOR_BGR2GRAY);
-    return grey;
-  };
   const auto share_dark = [](const cv::Mat& grey, const cv::Mat& where) {
     return double(cv::countNonZero((grey < 120) & where)) / cv::countNonZero(where);
   };
   // The fan alone stretches the iris up with the lid, taller than round,
   // into what should be white.
-  const cv::Mat stretched = widened(nullptr);
+  const cv::Mat stretched = raised.widened(nullptr);
   EXPECT_GT(share_dark(stretched, opened_white), 0.3);
-  const VisibleEye visible{{160, 120}, RealEye::kIrisRadius, eye.visible};
-  const cv::Mat round = widened(&visible);
+  const cv::Mat round = raised.widened(&raised.visible);
   EXPECT_GT(share_dark(round, opened_iris), 0.98) << "the uncovered iris";
-  EXPECT_LT(share_dark(round, opened_white), 0.02) << "the white above it";
+  EXPECT_LT(share_dark(round, opened_white), 0.01) << "the white above it";
   // The iris the frame showed stays as it was.
   cv::Mat frame_grey;
-  cv::cvtColor(eye.frame(box), frame_grey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(raised.eye.frame(box), frame_grey, cv::COLOR_BGR2GRAY);
   cv::Mat shown_iris;
-  cv::erode(inside(eye.visible), shown_iris, cv::Mat(), {-1, -1}, 3);
+  cv::erode(raised.inside(raised.eye.visible), shown_iris, cv::Mat(), {-1, -1}, 3);
   shown_iris &= iris;
   EXPECT_LE(cv::norm(round, frame_grey, cv::NORM_INF, shown_iris), 2.0);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 namespace facecap {
 
@@ -34,8 +35,8 @@ bool barycentric(const cv::Point2f& p, const cv::Point2f& a, const cv::Point2f& 
 // at the pixel itself, its mirror image across the disc's horizontal
 // diameter, or at the same distance from the centre toward the side; a
 // pixel off the disc whose fan source lies on it (or on its edge) takes the
-// white on the fan source's row, past the edge, as far outside the disc as
-// the pixel is.
+// white as far outside the disc as the pixel is, on the fan source's row or,
+// above the disc, turned toward the side.
 cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, const VisibleEye& eye) {
   const float r = eye.iris_radius;
   // The lid's edge and lashes, and the iris's blurred rim: some 2 px at
@@ -46,6 +47,17 @@ cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, con
   const cv::Point2f c = eye.iris_centre;
   const cv::Point2f d = p - c;
   const float from_centre = std::sqrt(d.dot(d));
+  // The first point clear of the lids at `radius` from the iris's centre,
+  // turning from p's direction toward the horizontal on p's side.
+  const auto turned_to_the_side = [&](float radius) -> std::optional<cv::Point2f> {
+    const float side = d.x >= 0 ? 1.0f : -1.0f, angle = std::atan2(d.y, side * d.x);
+    for (int step = 1; step <= 8; ++step) {
+      const float turned = angle * (1.0f - step / 8.0f);
+      const cv::Point2f q(c.x + side * radius * std::cos(turned), c.y + radius * std::sin(turned));
+      if (clear(q)) return q;
+    }
+    return std::nullopt;
+  };
   if (from_centre <= r) {
     if (clear(p)) return p;
     const cv::Point2f mirrored(p.x, 2 * c.y - p.y);
@@ -53,14 +65,7 @@ cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, con
     // Under both lids: the iris at the same distance from its centre (off
     // its blurred rim), turned toward the side (the iris is much the same
     // all round; the fan would draw a stretched pupil here).
-    const float side = d.x >= 0 ? 1.0f : -1.0f, angle = std::atan2(d.y, side * d.x);
-    const float radius = std::max(0.0f, std::min(from_centre, r - edge));
-    for (int step = 1; step <= 8; ++step) {
-      const float turned = angle * (1.0f - step / 8.0f);
-      const cv::Point2f q(c.x + side * radius * std::cos(turned), c.y + radius * std::sin(turned));
-      if (clear(q)) return q;
-    }
-    return fan;
+    return turned_to_the_side(std::max(0.0f, std::min(from_centre, r - edge))).value_or(fan);
   }
   const float rim = r + edge, row = fan.y - c.y;
   if (std::abs(row) >= rim) return fan;
@@ -68,7 +73,10 @@ cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, con
   if (std::abs(fan.x - c.x) >= half_chord) return fan;
   const float side = d.x >= 0 ? 1.0f : -1.0f;
   const cv::Point2f white(c.x + side * (half_chord + (from_centre - r)), fan.y);
-  return clear(white) ? white : fan;
+  if (clear(white)) return white;
+  // Above the disc, where that row shows no white: the white as far out
+  // from the disc, turned toward the side.
+  return turned_to_the_side(from_centre + edge).value_or(fan);
 }
 
 }  // namespace
