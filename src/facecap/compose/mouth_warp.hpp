@@ -37,8 +37,8 @@ struct VisibleEye {
 // and a pixel beside the disc the white of the eye beside it (without it,
 // a widened iris came out taller than round). Only pixels the layer's mask
 // left unset (not the re-rendered skin) are painted, and their mask set.
-// Without it, a lid raised by eyeWide showed the frame's own lid again
-// beneath it.
+// Without the widening, a lid raised by eyeWide showed the frame's own lid
+// again beneath it.
 void widen_opening(const cv::Mat& source, const std::vector<cv::Point2f>& source_contour,
                    const std::vector<cv::Point2f>& new_contour, FaceLayer& layer, const VisibleEye* eye = nullptr);
 

@@ -95,7 +95,7 @@ struct EyePatch {
 
 std::array<Vec2d, 6> eye_points(const Landmarks& landmarks, int eye) {
   std::array<Vec2d, 6> p;
-  for (int k = 0; k < 6; ++k) p[k] = landmarks[36 + 6 * eye + k].cast<double>();
+  for (int k = 0; k < kEyeLandmarks; ++k) p[k] = landmarks[first_eye_landmark(eye) + k].cast<double>();
   return p;
 }
 

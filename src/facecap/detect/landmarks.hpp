@@ -20,6 +20,13 @@ inline Landmarks zero_landmarks() {
   return lm;
 }
 
+// Each eye's six landmarks begin here: eye 0 (the subject's right, on the
+// image's left for a face seen from the front) at iBUG 36, eye 1 at 42;
+// each runs from a corner along the upper lid to the other corner and back
+// along the lower lid (36 and 45 are the outer corners).
+inline constexpr int kEyeLandmarks = 6;
+inline constexpr int first_eye_landmark(int eye) { return 36 + kEyeLandmarks * eye; }
+
 // Axis-aligned box in pixels.
 struct Box {
   float x = 0, y = 0, width = 0, height = 0;

@@ -54,7 +54,8 @@ std::optional<VisibleEye> visible_eye(const CoarseFit& fit, int e) {
   VisibleEye eye;
   eye.iris_centre = cv::Point2f(float(iris->centre.x()), float(iris->centre.y()));
   eye.iris_radius = float(iris->radius);
-  for (int k = 36 + 6 * e; k < 42 + 6 * e; ++k) eye.opening.emplace_back(fit.observed[k].x(), fit.observed[k].y());
+  for (int k = first_eye_landmark(e); k < first_eye_landmark(e) + kEyeLandmarks; ++k)
+    eye.opening.emplace_back(fit.observed[k].x(), fit.observed[k].y());
   return eye;
 }
 

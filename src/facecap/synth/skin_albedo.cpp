@@ -4,6 +4,7 @@
 #include <random>
 
 #include "facecap/core/image_sampling.hpp"
+#include "facecap/detect/landmarks.hpp"
 #include "facecap/model/eyeballs.hpp"
 
 namespace facecap {
@@ -38,7 +39,8 @@ cv::Mat painted_skin(const FaceModel& model, const std::vector<Vec2f>& uv, const
   const float eye_px = float(cv::norm(landmark_px(36) - landmark_px(45)));
   auto eye_centre = [&](int side) {  // 0: landmarks 36-41, 1: 42-47
     cv::Point2f c(0, 0);
-    for (int i = 36 + 6 * side; i < 42 + 6 * side; ++i) c += landmark_px(i) / 6.0f;
+    for (int i = first_eye_landmark(side); i < first_eye_landmark(side) + kEyeLandmarks; ++i)
+      c += landmark_px(i) / float(kEyeLandmarks);
     return c;
   };
   const auto polyline = [&](int from, int to, bool closed, const Vec3f& colour, float width) {
