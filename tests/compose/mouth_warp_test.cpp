@@ -9,6 +9,40 @@ namespace facecap {
 
 namespace {
 
+// `points` rounded to pixels, relative to `origin`.
+std::vector<cv::Point> polygon(const std::vector<cv::Point2f>& points, cv::Point origin = {}) {
+  std::vector<cv::Point> out;
+  for (const cv::Point2f& p : points) out.emplace_back(cvRound(p.x - origin.x), cvRound(p.y - origin.y));
+  return out;
+}
+
+// 255 inside `outline` in the window `box` of the frame.
+cv::Mat inside(const std::vector<cv::Point2f>& outline, const cv::Rect& box) {
+  cv::Mat m(box.size(), CV_8U, cv::Scalar(0));
+  cv::fillPoly(m, std::vector<std::vector<cv::Point>>{polygon(outline, box.tl())}, cv::Scalar(255));
+  return m;
+}
+
+// `points` with those above `centre_y` (the upper lid's) moved down by `dy`
+// at the top (negative: up), in proportion to their height above it
+// (`half_height` at the top): most at the top, none at the corners.
+std::vector<cv::Point2f> upper_lid_moved(std::vector<cv::Point2f> points, float dy, float centre_y, float half_height) {
+  for (cv::Point2f& p : points)
+    if (p.y < centre_y - 0.5f) p.y += dy * (centre_y - p.y) / half_height;
+  return points;
+}
+
+// The layer a re-render leaves around `content`: the lids drawn (skin
+// colour, mask set) outside the `opening`, the frame's pixels (mask unset)
+// inside it.
+FaceLayer rerendered_lids(const cv::Mat& frame, const cv::Rect& content, const std::vector<cv::Point2f>& opening) {
+  FaceLayer layer = make_layer(frame, content, 8);
+  layer.mask.setTo(255);
+  layer.mask.setTo(0, inside(opening, layer.box));
+  layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
+  return layer;
+}
+
 // An eye seen in a 160 x 120 frame: lid-coloured skin, and an opening
 // (a lens 60 px wide, 16 tall, centred at (80, 60)) of white with a dark
 // iris 14 px across at its centre.
@@ -20,31 +54,16 @@ struct Eye {
       const double a = 2 * M_PI * i / 16;
       contour.emplace_back(float(80 - 30 * std::cos(a)), float(60 - 8 * std::sin(a)));
     }
-    std::vector<cv::Point> polygon;
-    for (const cv::Point2f& p : contour) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
-    cv::fillPoly(frame, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(235, 235, 235), cv::LINE_AA);
+    cv::fillPoly(frame, std::vector<std::vector<cv::Point>>{polygon(contour)}, cv::Scalar(235, 235, 235), cv::LINE_AA);
     cv::circle(frame, {80, 60}, 7, cv::Scalar(40, 50, 60), cv::FILLED, cv::LINE_AA);
   }
   // The contour with the upper lid's points moved down by `dy` (negative: up).
-  std::vector<cv::Point2f> upper_lid_moved(float dy) const {
-    std::vector<cv::Point2f> moved = contour;
-    for (cv::Point2f& p : moved)
-      if (p.y < 59.5f) p.y += dy * (60 - p.y) / 8;  // most at the top, none at the corners
-    return moved;
+  std::vector<cv::Point2f> upper_lid_moved(float dy) const { return facecap::upper_lid_moved(contour, dy, 60, 8); }
+  // The layer a re-render leaves with the lids drawn outside `opening`.
+  FaceLayer rerendered(const std::vector<cv::Point2f>& opening) const {
+    return rerendered_lids(frame, cv::Rect(40, 30, 80, 60), opening);
   }
 };
-
-// The layer a re-render leaves: the lids drawn (skin colour, mask set)
-// outside the `opening`, the frame's pixels (mask unset) inside it.
-FaceLayer rerendered_lids(const Eye& eye, const std::vector<cv::Point2f>& opening) {
-  FaceLayer layer = make_layer(eye.frame, cv::Rect(40, 30, 80, 60), 8);
-  layer.mask.setTo(255);
-  std::vector<cv::Point> inside;
-  for (const cv::Point2f& p : opening) inside.emplace_back(cvRound(p.x - layer.box.x), cvRound(p.y - layer.box.y));
-  cv::fillPoly(layer.mask, std::vector<std::vector<cv::Point>>{inside}, cv::Scalar(0));
-  layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
-  return layer;
-}
 
 // An eye as a face shows it, in a 320 x 240 frame: the opening 120 px wide
 // and 32 tall, centred at (160, 120); the skin's loop (`contour`) 4 px
@@ -66,23 +85,9 @@ struct RealEye {
     cv::circle(eyeball, {160, 120}, int(kIrisRadius), cv::Scalar(40, 60, 90), cv::FILLED, cv::LINE_AA);
     cv::circle(eyeball, {160, 120}, 8, cv::Scalar(10, 10, 10), cv::FILLED, cv::LINE_AA);
     cv::circle(eyeball, {166, 126}, 2, cv::Scalar(250, 250, 250), cv::FILLED, cv::LINE_AA);
-    cv::Mat inside(frame.size(), CV_8U, cv::Scalar(0));
-    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{polygon(visible)}, cv::Scalar(255), cv::LINE_8);
-    eyeball.copyTo(frame, inside);
+    eyeball.copyTo(frame, inside(visible, cv::Rect({}, frame.size())));
     cv::polylines(frame, std::vector<std::vector<cv::Point>>{polygon(visible)}, true, cv::Scalar(20, 25, 30), 2,
                   cv::LINE_AA);
-  }
-  static std::vector<cv::Point> polygon(const std::vector<cv::Point2f>& points) {
-    std::vector<cv::Point> out;
-    for (const cv::Point2f& p : points) out.emplace_back(cvRound(p.x), cvRound(p.y));
-    return out;
-  }
-  // `points` with the upper ones moved down by `dy` at the top (negative:
-  // up), in proportion to their height (`half_height` at the top).
-  static std::vector<cv::Point2f> upper_moved(std::vector<cv::Point2f> points, float dy, float half_height) {
-    for (cv::Point2f& p : points)
-      if (p.y < 119.5f) p.y += dy * (120 - p.y) / half_height;
-    return points;
   }
 };
 
@@ -91,26 +96,17 @@ struct RealEye {
 // layer the re-render leaves (the lids drawn outside the new loop).
 struct RaisedLid {
   RealEye eye;
-  std::vector<cv::Point2f> wider = RealEye::upper_moved(eye.contour, -25, 20);
-  std::vector<cv::Point2f> lid_edge = RealEye::upper_moved(eye.visible, -20, 16);
+  std::vector<cv::Point2f> wider = upper_lid_moved(eye.contour, -25, 120, 20);
+  std::vector<cv::Point2f> lid_edge = upper_lid_moved(eye.visible, -20, 120, 16);
   cv::Rect content{80, 80, 160, 80};
   cv::Rect box = make_layer(eye.frame, content, 8).box;
   VisibleEye visible{{160, 120}, RealEye::kIrisRadius, eye.visible};
 
   // The inside of `outline` in the layer's window.
-  cv::Mat inside(const std::vector<cv::Point2f>& outline) const {
-    cv::Mat m(box.size(), CV_8U, cv::Scalar(0));
-    std::vector<cv::Point> polygon;
-    for (const cv::Point2f& p : outline) polygon.emplace_back(cvRound(p.x - box.x), cvRound(p.y - box.y));
-    cv::fillPoly(m, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
-    return m;
-  }
+  cv::Mat inside(const std::vector<cv::Point2f>& outline) const { return facecap::inside(outline, box); }
   // The layer's grey levels after widen_opening, with or without what the frame shows of the eye.
   cv::Mat widened(const VisibleEye* shown) const {
-    FaceLayer layer = make_layer(eye.frame, content, 8);
-    layer.mask.setTo(255);
-    layer.mask.setTo(0, inside(wider));
-    layer.colour.setTo(cv::Scalar(60, 90, 160), layer.mask);
+    FaceLayer layer = rerendered_lids(eye.frame, content, wider);
     widen_opening(eye.frame, eye.contour, wider, layer, shown);
     cv::Mat grey;
     cv::cvtColor(layer.colour, grey, cv::COLOR_BGR2GRAY);
@@ -138,18 +134,11 @@ TEST(MouthWarp, AnUnmovedContourCopiesTheMouth) {
 TEST(WidenOpening, ARaisedLidOpensOntoTheEyeNotOntoTheOldLid) {
   const Eye eye;
   const std::vector<cv::Point2f> wider = eye.upper_lid_moved(-6);
-  FaceLayer layer = rerendered_lids(eye, wider);
+  FaceLayer layer = eye.rerendered(wider);
   const FaceLayer before{layer.box, layer.colour.clone(), layer.mask.clone(), {}};
   // The band the raised lid uncovered: in the new opening, off the old one,
   // a pixel in from both edges.
-  cv::Mat band(layer.box.size(), CV_8U, cv::Scalar(0)), old_opening = band.clone();
-  auto fill = [&](cv::Mat& into, const std::vector<cv::Point2f>& contour) {
-    std::vector<cv::Point> polygon;
-    for (const cv::Point2f& p : contour) polygon.emplace_back(cvRound(p.x - layer.box.x), cvRound(p.y - layer.box.y));
-    cv::fillPoly(into, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255));
-  };
-  fill(band, wider);
-  fill(old_opening, eye.contour);
+  cv::Mat band = inside(wider, layer.box), old_opening = inside(eye.contour, layer.box);
   cv::dilate(old_opening, old_opening, cv::Mat());
   cv::erode(band, band, cv::Mat());
   band &= ~old_opening;
@@ -171,7 +160,7 @@ TEST(WidenOpening, ARaisedLidOpensOntoTheEyeNotOntoTheOldLid) {
 TEST(WidenOpening, ALoweredLidCoversTheEyeAndSquashesNothing) {
   const Eye eye;
   const std::vector<cv::Point2f> narrower = eye.upper_lid_moved(4);
-  FaceLayer layer = rerendered_lids(eye, narrower);
+  FaceLayer layer = eye.rerendered(narrower);
   const cv::Mat colour = layer.colour.clone(), mask = layer.mask.clone();
   widen_opening(eye.frame, eye.contour, narrower, layer);
   EXPECT_EQ(cv::norm(layer.colour, colour, cv::NORM_INF), 0.0);

@@ -47,10 +47,11 @@ cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, con
   const cv::Point2f c = eye.iris_centre;
   const cv::Point2f d = p - c;
   const float from_centre = std::sqrt(d.dot(d));
+  const float side = d.x >= 0 ? 1.0f : -1.0f;  // p's side of the iris
   // The first point clear of the lids at `radius` from the iris's centre,
   // turning from p's direction toward the horizontal on p's side.
   const auto turned_to_the_side = [&](float radius) -> std::optional<cv::Point2f> {
-    const float side = d.x >= 0 ? 1.0f : -1.0f, angle = std::atan2(d.y, side * d.x);
+    const float angle = std::atan2(d.y, side * d.x);
     for (int step = 1; step <= 8; ++step) {
       const float turned = angle * (1.0f - step / 8.0f);
       const cv::Point2f q(c.x + side * radius * std::cos(turned), c.y + radius * std::sin(turned));
@@ -71,7 +72,6 @@ cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, con
   if (std::abs(row) >= rim) return fan;
   const float half_chord = std::sqrt(rim * rim - row * row);
   if (std::abs(fan.x - c.x) >= half_chord) return fan;
-  const float side = d.x >= 0 ? 1.0f : -1.0f;
   const cv::Point2f white(c.x + side * (half_chord + (from_centre - r)), fan.y);
   if (clear(white)) return white;
   // Above the disc, where that row shows no white: the white as far out

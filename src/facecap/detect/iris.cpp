@@ -50,7 +50,7 @@ struct EyeWindow {
   Vec2d last() const { return Vec2d(x0 + (size.width - 1) / scale, y0 + (size.height - 1) / scale); }
 };
 
-EyeWindow eye_window(const std::array<Vec2d, 6>& p) {
+EyeWindow eye_window(const std::array<Vec2d, kEyeLandmarks>& p) {
   const Vec2d eye = p[3] - p[0];
   const double width = eye.norm();
   EyeWindow w;
@@ -93,14 +93,15 @@ struct EyePatch {
   cv::Mat visible;  // CV_32F, 1 inside the outline shrunk off the lid line and lashes
 };
 
-std::array<Vec2d, 6> eye_points(const Landmarks& landmarks, int eye) {
-  std::array<Vec2d, 6> p;
+std::array<Vec2d, kEyeLandmarks> eye_points(const Landmarks& landmarks, int eye) {
+  std::array<Vec2d, kEyeLandmarks> p;
   for (int k = 0; k < kEyeLandmarks; ++k) p[k] = landmarks[first_eye_landmark(eye) + k].cast<double>();
   return p;
 }
 
 // `origin`: where grey's first pixel lies in the image `p` is in.
-std::optional<EyePatch> resample_eye(const cv::Mat& grey, const cv::Point& origin, const std::array<Vec2d, 6>& p) {
+std::optional<EyePatch> resample_eye(const cv::Mat& grey, const cv::Point& origin,
+                                     const std::array<Vec2d, kEyeLandmarks>& p) {
   const EyeWindow w = eye_window(p);
   const auto [lo, hi] = image_bounds(w, w.hi);
   if (lo.x() < origin.x || lo.y() < origin.y || hi.x() > origin.x + grey.cols - 1 || hi.y() > origin.y + grey.rows - 1)
@@ -233,7 +234,7 @@ std::optional<IrisObservation> locate_iris(const cv::Mat& grey, const Landmarks&
                                            const IrisExpectation& expected, const IrisOptions& options,
                                            const cv::Point& origin) {
   if (grey.empty() || grey.type() != CV_8UC1 || (eye != 0 && eye != 1)) return std::nullopt;
-  const std::array<Vec2d, 6> p = eye_points(landmarks, eye);
+  const std::array<Vec2d, kEyeLandmarks> p = eye_points(landmarks, eye);
   const double width = (p[3] - p[0]).norm();
   if (!(width >= options.min_eye_width_px)) return std::nullopt;
   const double opening = 0.5 * ((p[1] - p[5]).norm() + (p[2] - p[4]).norm());
