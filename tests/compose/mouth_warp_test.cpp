@@ -202,4 +202,67 @@ TEST(WidenOpening, ARaisedLidUncoversTheIrisRoundAndTheWhiteAboveIt) {
   EXPECT_LE(cv::norm(round, frame_grey, cv::NORM_INF, shown_iris), 2.0);
 }
 
+TEST(WidenOpening, ARaisedLidUncoversNoSecondCatchlight) {
+  RaisedLid raised;
+  const cv::Rect box = raised.box;
+  // Three more catchlights (brighter than the white, 235) in the iris's
+  // upper half: two where the frame shows it clear of the lid, where the
+  // iris a lid uncovers is looked for, and one across the lid's edge (104.2
+  // px there), as the landmarks often put it (the fan stretched that one up
+  // with the lid: 60 bright pixels against 52).
+  for (const cv::Point at : {cv::Point(144, 110), cv::Point(176, 110), cv::Point(150, 104)})
+    cv::circle(raised.eye.frame, at, 2, cv::Scalar(250, 250, 250), cv::FILLED, cv::LINE_AA);
+  cv::Mat frame_grey;
+  cv::cvtColor(raised.eye.frame(box), frame_grey, cv::COLOR_BGR2GRAY);
+  const cv::Mat out = raised.widened(&raised.visible);
+  const int glints = cv::countNonZero(frame_grey > 240);
+  ASSERT_GE(glints, 4 * 9);
+  EXPECT_LE(cv::countNonZero(out > 240), glints) << "each catchlight once";
+  cv::Mat uncovered;  // the iris's disc above the old lid's edge
+  cv::circle(uncovered = cv::Mat(box.size(), CV_8U, cv::Scalar(0)), cv::Point(160, 120) - box.tl(),
+             int(RealEye::kIrisRadius) - 2, cv::Scalar(255), cv::FILLED);
+  uncovered &= ~raised.inside(raised.eye.visible);
+  ASSERT_GT(cv::countNonZero(uncovered), 200);
+  EXPECT_GT(cv::countNonZero((out < 120) & uncovered), 0.98 * cv::countNonZero(uncovered)) << "the iris";
+}
+
+// Rows of `grey`'s column x, from y0 down, until the first white (> 200).
+int rows_to_white(const cv::Mat& grey, int x, int y0) {
+  int y = y0;
+  while (y < grey.rows && grey.at<uchar>(y, x) <= 200) ++y;
+  return y - y0;
+}
+// Rows of `grey`'s column x, from y0 down to y1, that are as dark as the lashes (< 45).
+int dark_rows(const cv::Mat& grey, int x, int y0, int y1) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y) n += grey.at<uchar>(y, x) < 45;
+  return n;
+}
+
+TEST(WidenOpening, ARaisedLidKeepsItsEdgeAndLashesAsThick) {
+  const RaisedLid raised;
+  const cv::Rect box = raised.box;
+  cv::Mat frame_grey;
+  cv::cvtColor(raised.eye.frame(box), frame_grey, cv::COLOR_BGR2GRAY);
+  const cv::Mat fan = raised.widened(nullptr), kept = raised.widened(&raised.visible);
+  // Beside the iris (its edge 28 px from the centre), where the frame shows
+  // white below the lid: the rows from the skin's loop (20 px above the
+  // centre at the top, 45 px once raised) down to the white, and those as
+  // dark as the lash line.
+  for (const int x : {122, 198}) {
+    SCOPED_TRACE(x);
+    const int col = x - box.x, middle = 120 - box.y;
+    const float height = std::sqrt(1 - std::pow((x - 160) / 60.0f, 2.0f));
+    const int old_loop = cvCeil(120 - 20 * height) - box.y, new_loop = cvCeil(120 - 45 * height) - box.y;
+    const int band = rows_to_white(frame_grey, col, old_loop), lashes = dark_rows(frame_grey, col, old_loop, middle);
+    ASSERT_GE(band, 4);
+    ASSERT_GE(lashes, 2);
+    // The fan stretches them with the opening; moved whole, they stay.
+    EXPECT_GE(rows_to_white(fan, col, new_loop), 2 * band);
+    EXPECT_LE(std::abs(rows_to_white(kept, col, new_loop) - band), 1);
+    EXPECT_GE(dark_rows(fan, col, new_loop, middle), lashes + 2);
+    EXPECT_LE(std::abs(dark_rows(kept, col, new_loop, middle) - lashes), 1);
+  }
+}
+
 }  // namespace facecap

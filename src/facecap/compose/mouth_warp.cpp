@@ -1,5 +1,7 @@
 #include "facecap/compose/mouth_warp.hpp"
 
+#include "facecap/compose/eye_source.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -26,57 +28,6 @@ bool barycentric(const cv::Point2f& p, const cv::Point2f& a, const cv::Point2f& 
   const float wb = ap.cross(ac) / area, wc = ab.cross(ap) / area;
   weights = {1 - wb - wc, wb, wc};
   return weights[0] >= -slack && wb >= -slack && wc >= -slack;
-}
-
-// Where the fan would take output pixel `p` from (`fan`), where it takes
-// it from with the iris kept round (widen_opening): the lid and its lashes
-// (a fan source off the visible opening) move with the fan; a pixel of the
-// iris's disc takes the iris where the frame shows it clear of the lids,
-// at the pixel itself, its mirror image across the disc's horizontal
-// diameter, or at the same distance from the centre toward the side; a
-// pixel off the disc whose fan source lies on it (or on its edge) takes the
-// white as far outside the disc as the pixel is, on the fan source's row or,
-// above the disc, turned toward the side.
-cv::Point2f unstretched_source(const cv::Point2f& p, const cv::Point2f& fan, const VisibleEye& eye) {
-  const float r = eye.iris_radius;
-  // The lid's edge and lashes, and the iris's blurred rim: some 2 px at
-  // 720p, where an iris is 9-10 px across.
-  const float edge = std::max(1.5f, 0.1f * r);
-  const auto clear = [&](const cv::Point2f& s) { return cv::pointPolygonTest(eye.opening, s, true) >= edge; };
-  if (!clear(fan)) return fan;
-  const cv::Point2f c = eye.iris_centre;
-  const cv::Point2f d = p - c;
-  const float from_centre = std::sqrt(d.dot(d));
-  const float side = d.x >= 0 ? 1.0f : -1.0f;  // p's side of the iris
-  // The first point clear of the lids at `radius` from the iris's centre,
-  // turning from p's direction toward the horizontal on p's side.
-  const auto turned_to_the_side = [&](float radius) -> std::optional<cv::Point2f> {
-    const float angle = std::atan2(d.y, side * d.x);
-    for (int step = 1; step <= 8; ++step) {
-      const float turned = angle * (1.0f - step / 8.0f);
-      const cv::Point2f q(c.x + side * radius * std::cos(turned), c.y + radius * std::sin(turned));
-      if (clear(q)) return q;
-    }
-    return std::nullopt;
-  };
-  if (from_centre <= r) {
-    if (clear(p)) return p;
-    const cv::Point2f mirrored(p.x, 2 * c.y - p.y);
-    if (clear(mirrored)) return mirrored;
-    // Under both lids: the iris at the same distance from its centre (off
-    // its blurred rim), turned toward the side (the iris is much the same
-    // all round; the fan would draw a stretched pupil here).
-    return turned_to_the_side(std::max(0.0f, std::min(from_centre, r - edge))).value_or(fan);
-  }
-  const float rim = r + edge, row = fan.y - c.y;
-  if (std::abs(row) >= rim) return fan;
-  const float half_chord = std::sqrt(rim * rim - row * row);
-  if (std::abs(fan.x - c.x) >= half_chord) return fan;
-  const cv::Point2f white(c.x + side * (half_chord + (from_centre - r)), fan.y);
-  if (clear(white)) return white;
-  // Above the disc, where that row shows no white: the white as far out
-  // from the disc, turned toward the side.
-  return turned_to_the_side(from_centre + edge).value_or(fan);
 }
 
 }  // namespace
@@ -120,6 +71,8 @@ void widen_opening(const cv::Mat& source, const std::vector<cv::Point2f>& from, 
     if (cv::norm(to[i] - centre) > cv::norm(from[i] - centre)) wider[i] = to[i], widens = true;
   }
   if (!widens) return;
+  std::optional<WidenedEye> widened;
+  if (eye && eye->opening.size() >= 3) widened.emplace(source, *eye, from, wider);
   // Each unset pixel inside the wider fan, mapped back through the fan
   // triangle that holds it (its barycentric weights on the old corners):
   // one mapping per pixel, whatever order the triangles come in (thin
@@ -144,7 +97,7 @@ void widen_opening(const cv::Mat& source, const std::vector<cv::Point2f>& from, 
         if (!barycentric(p, centre, wider[i], wider[j], w)) continue;
         if (wider[i] == from[i] && wider[j] == from[j]) break;  // this part of the eye stays
         const cv::Point2f fan = w[0] * centre + w[1] * from[i] + w[2] * from[j];
-        const cv::Point2f q = eye ? unstretched_source(p, fan, *eye) : fan;
+        const cv::Point2f q = widened ? widened->source_of(p, fan) : fan;
         map_x.at<float>(y, x) = q.x;
         map_y.at<float>(y, x) = q.y;
         painted.at<uchar>(y, x) = 255;

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "facecap/compose/eye_source.hpp"
 #include "facecap/compose/face_layer.hpp"
 
 namespace facecap {
@@ -15,15 +16,6 @@ namespace facecap {
 void warp_mouth(const cv::Mat& source, const std::vector<cv::Point2f>& source_contour,
                 const std::vector<cv::Point2f>& new_contour, FaceLayer& layer);
 
-// What the frame shows of an eye, for widen_opening: the dark disc of its
-// iris (iris.hpp) and its opening between the lids as the landmarks mark
-// it (iBUG 36-41 or 42-47), in frame pixels.
-struct VisibleEye {
-  cv::Point2f iris_centre;
-  float iris_radius = 0.0f;
-  std::vector<cv::Point2f> opening;
-};
-
 // An eye's opening stretched into what the new lids open beyond the old
 // ones (contours: the skin's loop there, eye_margins.hpp): each contour
 // point goes to its new position where that lies farther from the source
@@ -31,11 +23,11 @@ struct VisibleEye {
 // re-rendered lid covers what a closing lid hides, as a real lid does,
 // rather than the eye being squashed). The fan's centre stays: the eye's
 // middle holds still, and what lies above it stretches up with the lid.
-// With `eye`, the iris does not: the fan moves the lid's edge and the
-// lashes, but a pixel of the iris's disc shows the iris as it lies (from
-// below the lid, the disc's mirror image across its horizontal diameter),
-// and a pixel beside the disc the white of the eye beside it (without it,
-// a widened iris came out taller than round). Only pixels the layer's mask
+// With `eye`, neither the iris nor the lid's edge does (WidenedEye,
+// eye_source.hpp): the lid's edge and lashes move up whole, the eye the
+// frame showed stays, and the eye the lid uncovers shows the iris round and
+// the white beside it (stretched, a widened iris came out taller than
+// round, and the lash line twice as thick). Only pixels the layer's mask
 // left unset (not the re-rendered skin) are painted, and their mask set.
 // Without the widening, a lid raised by eyeWide showed the frame's own lid
 // again beneath it.

@@ -1,0 +1,172 @@
+#include "facecap/compose/eye_source.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <utility>
+
+namespace facecap {
+
+namespace {
+
+// Catchlights are near white; an iris, even a pale one, lies well below.
+constexpr float kGlintAboveIris = 60.0f;
+
+// Where the line up through `u` across the eye meets a closed contour: the
+// height (v) of its highest crossing (`highest`) or its lowest; none where
+// it misses.
+template <class Axes>
+std::optional<float> crossing(const std::vector<cv::Point2f>& contour, const Axes& axes, float u, bool highest) {
+  std::optional<float> found;
+  for (size_t i = 0; i < contour.size(); ++i) {
+    const cv::Point2f& a = contour[i];
+    const cv::Point2f& b = contour[(i + 1) % contour.size()];
+    const float ua = axes.u(a), ub = axes.u(b);
+    if (ua == ub || (u < ua && u < ub) || (u > ua && u > ub)) continue;
+    const float v = axes.v(a) + (u - ua) / (ub - ua) * (axes.v(b) - axes.v(a));
+    if (!found || (highest ? v > *found : v < *found)) found = v;
+  }
+  return found;
+}
+
+// A pixel's brightness (BT.601 luma) in an 8-bit BGR frame.
+float luma(const cv::Mat& frame, int x, int y) {
+  const cv::Vec3b& c = frame.at<cv::Vec3b>(std::clamp(y, 0, frame.rows - 1), std::clamp(x, 0, frame.cols - 1));
+  return 0.114f * c[0] + 0.587f * c[1] + 0.299f * c[2];
+}
+
+// The median brightness of the pixels `use` accepts in the disc of `radius` around `centre`; none where it accepts
+// none.
+template <class Accept>
+std::optional<float> median_luma(const cv::Mat& frame, const cv::Point2f& centre, float radius, const Accept& use) {
+  std::vector<float> levels;
+  for (int y = cvFloor(centre.y - radius); y <= cvCeil(centre.y + radius); ++y)
+    for (int x = cvFloor(centre.x - radius); x <= cvCeil(centre.x + radius); ++x) {
+      const cv::Point2f s{float(x), float(y)};
+      if ((s - centre).dot(s - centre) <= radius * radius && use(s)) levels.push_back(luma(frame, x, y));
+    }
+  if (levels.empty()) return std::nullopt;
+  std::nth_element(levels.begin(), levels.begin() + levels.size() / 2, levels.end());
+  return levels[levels.size() / 2];
+}
+
+}  // namespace
+
+WidenedEye::WidenedEye(const cv::Mat& source, const VisibleEye& eye, const std::vector<cv::Point2f>& from,
+                       const std::vector<cv::Point2f>& wider)
+    : source_(source), eye_(eye), from_(from), wider_(wider) {
+  // The corners: the two points of the opening farthest apart.
+  cv::Point2f a = eye.opening[0], b = eye.opening[0];
+  for (const cv::Point2f& p : eye.opening)
+    for (const cv::Point2f& q : eye.opening)
+      if ((q - p).dot(q - p) > (b - a).dot(b - a)) a = p, b = q;
+  axes_.centre = 0.5f * (a + b);
+  axes_.across = (b - a) / std::max(1e-6f, float(cv::norm(b - a)));
+  axes_.up = {axes_.across.y, -axes_.across.x};
+  if (axes_.up.y > 0) axes_.up = -axes_.up;  // toward the frame's top
+  // Some 2 px at 720p, where an iris is 9-10 px across.
+  edge_ = std::max(1.5f, 0.1f * eye.iris_radius);
+  iris_luma_ = 255.0f;
+  if (source.type() == CV_8UC3)
+    iris_luma_ = median_luma(source, eye.iris_centre, eye.iris_radius - edge_, [&](const cv::Point2f& s) {
+                   return clear(s);
+                 }).value_or(255.0f);
+}
+
+// Whether `s` lies inside the landmarks' opening by `margin` or more (clear:
+// by the edge, where the frame shows the eye).
+bool WidenedEye::inside(const cv::Point2f& s, float margin) const {
+  return cv::pointPolygonTest(eye_.opening, s, true) >= margin;
+}
+
+// Whether what the frame shows at `s` (the four pixels it is interpolated
+// from) holds a catchlight: a reflection on the cornea, far brighter than
+// the iris. Copied into the iris a lid uncovers, it would show twice.
+bool WidenedEye::glint(const cv::Point2f& s) const {
+  if (source_.type() != CV_8UC3) return false;
+  const int x = cvFloor(s.x), y = cvFloor(s.y);
+  for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}})
+    if (luma(source_, x + dx, y + dy) > iris_luma_ + kGlintAboveIris) return true;
+  return false;
+}
+
+// Whether `s` lies above the opening's middle where it is across the eye.
+bool WidenedEye::above_middle(const cv::Point2f& s) const {
+  const float u = axes_.u(s);
+  const std::optional<float> top = crossing(eye_.opening, axes_, u, true);
+  const std::optional<float> bottom = crossing(eye_.opening, axes_, u, false);
+  return top && bottom && axes_.v(s) > 0.5f * (*top + *bottom);
+}
+
+// How far the upper lid rose where `p` is across the eye (0 where it did not).
+float WidenedEye::rise(const cv::Point2f& p) const {
+  const float u = axes_.u(p);
+  const std::optional<float> old_top = crossing(from_, axes_, u, true), new_top = crossing(wider_, axes_, u, true);
+  return old_top && new_top ? std::max(0.0f, *new_top - *old_top) : 0.0f;
+}
+
+// Where output pixel `p`, which a raised lid uncovered, takes the eye
+// from (`below`: the pixel the eye's content there would come from if it
+// moved as the lid did): the iris where the frame shows it clear of the
+// lids, at the pixel itself, else (not a catchlight) its mirror image
+// across the disc's horizontal diameter, or at the same distance from the
+// centre toward the side; off the disc, where `below` lies on it (or on its
+// edge), the white as far outside the disc as the pixel is, on `below`'s
+// row or, above the disc, turned toward the side; else `below`.
+cv::Point2f WidenedEye::uncovered(const cv::Point2f& p, const cv::Point2f& below) const {
+  const float r = eye_.iris_radius;
+  const cv::Point2f c = eye_.iris_centre;
+  const cv::Point2f d = p - c;
+  const float from_centre = std::sqrt(d.dot(d));
+  const float side = d.x >= 0 ? 1.0f : -1.0f;  // p's side of the iris
+  // The first point at `radius` from the iris's centre that `usable`
+  // accepts, turning from p's direction toward the horizontal on p's side.
+  const auto turned_to_the_side = [&](float radius, const auto& usable) -> std::optional<cv::Point2f> {
+    const float angle = std::atan2(d.y, side * d.x);
+    for (int step = 1; step <= 8; ++step) {
+      const float turned = angle * (1.0f - step / 8.0f);
+      const cv::Point2f q(c.x + side * radius * std::cos(turned), c.y + radius * std::sin(turned));
+      if (usable(q)) return q;
+    }
+    return std::nullopt;
+  };
+  const auto white = [&](const cv::Point2f& s) { return clear(s); };
+  if (from_centre <= r) {
+    if (clear(p)) return p;
+    // The iris elsewhere, but not its catchlights.
+    const auto iris = [&](const cv::Point2f& s) { return clear(s) && !glint(s); };
+    const cv::Point2f mirrored(p.x, 2 * c.y - p.y);
+    if (iris(mirrored)) return mirrored;
+    // Under both lids: the iris at the same distance from its centre (off
+    // its blurred rim), turned toward the side (the iris is much the same
+    // all round; moved with the lid, a pupil would be drawn stretched here).
+    return turned_to_the_side(std::max(0.0f, std::min(from_centre, r - edge_)), iris).value_or(below);
+  }
+  const float rim = r + edge_, row = below.y - c.y;
+  if (std::abs(row) >= rim) return below;
+  const float half_chord = std::sqrt(rim * rim - row * row);
+  if (std::abs(below.x - c.x) >= half_chord) return below;
+  const cv::Point2f beside(c.x + side * (half_chord + (from_centre - r)), below.y);
+  if (white(beside)) return beside;
+  // Above the disc, where that row shows no white: the white as far out
+  // from the disc, turned toward the side.
+  return turned_to_the_side(from_centre + edge_, white).value_or(below);
+}
+
+cv::Point2f WidenedEye::source_of(const cv::Point2f& p, const cv::Point2f& fan) const {
+  const float lid_rise = rise(p);
+  if (lid_rise > 0) {
+    const cv::Point2f lowered = p - lid_rise * axes_.up;
+    // The band, to a pixel off the opening: what the pixel's interpolation
+    // reaches of the eye below it (a catchlight under the lid's edge) would
+    // come up with the lid and show twice.
+    if (!inside(lowered, -1.0f) && above_middle(lowered)) return lowered;
+    if (inside(p)) return p;
+    if (inside(lowered)) return uncovered(p, lowered);
+  }
+  if (!clear(fan)) return fan;
+  return uncovered(p, fan);
+}
+
+}  // namespace facecap
