@@ -1,11 +1,11 @@
 #include "facecap/compose/mouth_warp.hpp"
 
-#include "facecap/compose/eye_source.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+
+#include "facecap/compose/eye_source.hpp"
 
 namespace facecap {
 
