@@ -265,4 +265,69 @@ TEST(WidenOpening, ARaisedLidKeepsItsEdgeAndLashesAsThick) {
   }
 }
 
+// The same eye turned in the frame (a head rolled 20 or 70 degrees, or
+// nearly upside down): the lid rises along the eye's own up-direction, and
+// its edge moves whole along it; the iris stays round.
+TEST(WidenOpening, ARolledEyesLidMovesWholeAlongTheEyesOwnUp) {
+  const RaisedLid upright;
+  const cv::Point2f centre(160, 120);
+  for (const double degrees : {20.0, 70.0, 160.0}) {
+    SCOPED_TRACE(degrees);
+    const cv::Mat turn = cv::getRotationMatrix2D(centre, degrees, 1.0);
+    const cv::Mat back = cv::getRotationMatrix2D(centre, -degrees, 1.0);
+    const auto turned = [&](const std::vector<cv::Point2f>& points) {
+      std::vector<cv::Point2f> out;
+      cv::transform(points, out, turn);
+      return out;
+    };
+    cv::Mat frame;
+    cv::warpAffine(upright.eye.frame, frame, turn, upright.eye.frame.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    const std::vector<cv::Point2f> contour = turned(upright.eye.contour), wider = turned(upright.wider);
+    const VisibleEye visible{centre, RealEye::kIrisRadius, turned(upright.eye.visible)};
+    // An image turned upright again, grey.
+    const auto upright_grey = [&](const cv::Mat& image) {
+      cv::Mat grey;
+      cv::warpAffine(image, grey, back, image.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+      cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
+      return grey;
+    };
+    const auto widened = [&](const VisibleEye* shown) {
+      FaceLayer layer = rerendered_lids(frame, cv::Rect(60, 40, 200, 160), wider);
+      widen_opening(frame, contour, wider, layer, shown);
+      cv::Mat out = frame.clone();
+      layer.colour.copyTo(out(layer.box));
+      return upright_grey(out);
+    };
+    const cv::Mat fan = widened(nullptr), kept = widened(&visible);
+    // The frame turned and back again, blurred as the outputs are. Beside
+    // the iris, from the skin's loop down to the white: the fan stretches
+    // the lid's edge band with the opening; moved whole along the turned
+    // eye's up-direction, it stays as thick. (The lash line alone, blurred
+    // by three resamplings, is too faint here to count.)
+    const cv::Mat frame_grey = upright_grey(frame);
+    for (const int x : {122, 198}) {
+      SCOPED_TRACE(x);
+      const float height = std::sqrt(1 - std::pow((x - 160) / 60.0f, 2.0f));
+      const int old_loop = cvCeil(120 - 20 * height), new_loop = cvCeil(120 - 45 * height);
+      const int band = rows_to_white(frame_grey, x, old_loop);
+      ASSERT_GE(band, 4);
+      EXPECT_GE(rows_to_white(fan, x, new_loop), 2 * band);
+      EXPECT_LE(std::abs(rows_to_white(kept, x, new_loop) - band), 1);
+    }
+    // The iris uncovered above the old lid's edge: dark (the iris), not
+    // white, and no white above it turned dark.
+    cv::Mat iris(kept.size(), CV_8U, cv::Scalar(0)), white(kept.size(), CV_8U, cv::Scalar(255));
+    cv::circle(iris, {160, 120}, int(RealEye::kIrisRadius) - 3, cv::Scalar(255), cv::FILLED);
+    cv::circle(white, {160, 120}, int(RealEye::kIrisRadius) + 3, cv::Scalar(0), cv::FILLED);
+    cv::Mat opened = facecap::inside(upright.lid_edge, cv::Rect({}, kept.size()));
+    cv::erode(opened, opened, cv::Mat(), {-1, -1}, 8);
+    opened &= ~facecap::inside(upright.eye.visible, cv::Rect({}, kept.size()));
+    const cv::Mat opened_iris = opened & iris, opened_white = opened & white;
+    ASSERT_GT(cv::countNonZero(opened_iris), 150);
+    ASSERT_GT(cv::countNonZero(opened_white), 80);
+    EXPECT_GT(cv::countNonZero((kept < 120) & opened_iris), 0.97 * cv::countNonZero(opened_iris));
+    EXPECT_LT(cv::countNonZero((kept < 120) & opened_white), 0.02 * cv::countNonZero(opened_white));
+  }
+}
+
 }  // namespace facecap

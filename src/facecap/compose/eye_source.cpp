@@ -66,8 +66,12 @@ WidenedEye::WidenedEye(const cv::Mat& source, const VisibleEye& eye, const std::
       if ((q - p).dot(q - p) > (b - a).dot(b - a)) a = p, b = q;
   axes_.centre = 0.5f * (a + b);
   axes_.across = (b - a) / std::max(1e-6f, float(cv::norm(b - a)));
+  // Up: toward the lid that moved out (the upper one, whatever the face's
+  // roll; on a tie, the frame's top).
   axes_.up = {axes_.across.y, -axes_.across.x};
-  if (axes_.up.y > 0) axes_.up = -axes_.up;  // toward the frame's top
+  float outward = 0.0f;
+  for (size_t i = 0; i < from.size() && i < wider.size(); ++i) outward += (wider[i] - from[i]).dot(axes_.up);
+  if (outward < 0.0f || (outward == 0.0f && axes_.up.y > 0)) axes_.up = -axes_.up;
   // Some 2 px at 720p, where an iris is 9-10 px across.
   edge_ = std::max(1.5f, 0.1f * eye.iris_radius);
   iris_luma_ = 255.0f;
@@ -113,23 +117,27 @@ float WidenedEye::rise(const cv::Point2f& p) const {
 // from (`below`: the pixel the eye's content there would come from if it
 // moved as the lid did): the iris where the frame shows it clear of the
 // lids, at the pixel itself, else (not a catchlight) its mirror image
-// across the disc's horizontal diameter, or at the same distance from the
-// centre toward the side; off the disc, where `below` lies on it (or on its
-// edge), the white as far outside the disc as the pixel is, on `below`'s
-// row or, above the disc, turned toward the side; else `below`.
+// across the disc's diameter along the eye (through its corners), or at the
+// same distance from the centre turned toward a corner; off the disc, where
+// `below` lies on it (or on its edge), the white as far outside the disc as
+// the pixel is, on `below`'s row across the eye or, above the disc, turned
+// toward a corner; else `below`. All in the eye's own axes: a face rolled
+// in the frame gets what an upright one does.
 cv::Point2f WidenedEye::uncovered(const cv::Point2f& p, const cv::Point2f& below) const {
   const float r = eye_.iris_radius;
   const cv::Point2f c = eye_.iris_centre;
-  const cv::Point2f d = p - c;
-  const float from_centre = std::sqrt(d.dot(d));
-  const float side = d.x >= 0 ? 1.0f : -1.0f;  // p's side of the iris
+  // In the eye's axes from the iris's centre: across (du) and up (dv).
+  const auto at = [&](float du, float dv) { return c + du * axes_.across + dv * axes_.up; };
+  const float du = (p - c).dot(axes_.across), dv = (p - c).dot(axes_.up);
+  const float from_centre = std::hypot(du, dv);
+  const float side = du >= 0 ? 1.0f : -1.0f;  // p's side of the iris
   // The first point at `radius` from the iris's centre that `usable`
-  // accepts, turning from p's direction toward the horizontal on p's side.
+  // accepts, turning from p's direction toward the eye's corner on p's side.
   const auto turned_to_the_side = [&](float radius, const auto& usable) -> std::optional<cv::Point2f> {
-    const float angle = std::atan2(d.y, side * d.x);
+    const float angle = std::atan2(dv, side * du);
     for (int step = 1; step <= 8; ++step) {
       const float turned = angle * (1.0f - step / 8.0f);
-      const cv::Point2f q(c.x + side * radius * std::cos(turned), c.y + radius * std::sin(turned));
+      const cv::Point2f q = at(side * radius * std::cos(turned), radius * std::sin(turned));
       if (usable(q)) return q;
     }
     return std::nullopt;
@@ -139,18 +147,18 @@ cv::Point2f WidenedEye::uncovered(const cv::Point2f& p, const cv::Point2f& below
     if (clear(p)) return p;
     // The iris elsewhere, but not its catchlights.
     const auto iris = [&](const cv::Point2f& s) { return clear(s) && !glint(s); };
-    const cv::Point2f mirrored(p.x, 2 * c.y - p.y);
+    const cv::Point2f mirrored = at(du, -dv);
     if (iris(mirrored)) return mirrored;
     // Under both lids: the iris at the same distance from its centre (off
     // its blurred rim), turned toward the side (the iris is much the same
     // all round; moved with the lid, a pupil would be drawn stretched here).
     return turned_to_the_side(std::max(0.0f, std::min(from_centre, r - edge_)), iris).value_or(below);
   }
-  const float rim = r + edge_, row = below.y - c.y;
+  const float rim = r + edge_, row = (below - c).dot(axes_.up);
   if (std::abs(row) >= rim) return below;
   const float half_chord = std::sqrt(rim * rim - row * row);
-  if (std::abs(below.x - c.x) >= half_chord) return below;
-  const cv::Point2f beside(c.x + side * (half_chord + (from_centre - r)), below.y);
+  if (std::abs((below - c).dot(axes_.across)) >= half_chord) return below;
+  const cv::Point2f beside = at(side * (half_chord + (from_centre - r)), row);
   if (white(beside)) return beside;
   // Above the disc, where that row shows no white: the white as far out
   // from the disc, turned toward the side.

@@ -38,7 +38,8 @@ class WidenedEye {
   cv::Point2f source_of(const cv::Point2f& p, const cv::Point2f& fan) const;
 
  private:
-  // The eye's own axes: across through its corners, up perpendicular to it.
+  // The eye's own axes: across through its corners, up perpendicular to
+  // it, toward the lid that moved out (whatever the face's roll).
   struct Axes {
     cv::Point2f centre, across, up;
     float u(const cv::Point2f& p) const { return (p - centre).dot(across); }
