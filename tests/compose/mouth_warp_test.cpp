@@ -330,4 +330,25 @@ TEST(WidenOpening, ARolledEyesLidMovesWholeAlongTheEyesOwnUp) {
   }
 }
 
+// What the frame shows of an eye may be degenerate (landmarks collapsed on a
+// closed or lost eye, an iris found off the opening or larger than it): the
+// widening still paints the opening, from the frame, and nothing breaks.
+TEST(WidenOpening, ADegenerateEyeStillWidensFromTheFrame) {
+  const RaisedLid raised;
+  const std::vector<VisibleEye> eyes = {
+      {{160, 120}, RealEye::kIrisRadius, std::vector<cv::Point2f>(6, cv::Point2f(160, 120))},
+      {{160, 120}, RealEye::kIrisRadius, {{100, 120}, {220, 120}, {160, 120}}},
+      {{-500, 900}, 0.5f, raised.eye.visible},
+      {{160, 120}, 500.0f, raised.eye.visible},
+  };
+  for (size_t k = 0; k < eyes.size(); ++k) {
+    SCOPED_TRACE(k);
+    FaceLayer layer = rerendered_lids(raised.eye.frame, raised.content, raised.wider);
+    const int unset = cv::countNonZero(layer.mask == 0);
+    widen_opening(raised.eye.frame, raised.eye.contour, raised.wider, layer, &eyes[k]);
+    EXPECT_GT(cv::countNonZero(layer.mask == 0), 0);
+    EXPECT_LT(cv::countNonZero(layer.mask == 0), unset / 2) << "the uncovered opening is painted";
+  }
+}
+
 }  // namespace facecap

@@ -39,13 +39,18 @@ float luma(const cv::Mat& frame, int x, int y) {
   return 0.114f * c[0] + 0.587f * c[1] + 0.299f * c[2];
 }
 
-// The median brightness of the pixels `use` accepts in the disc of `radius` around `centre`; none where it accepts
-// none.
+// The median brightness of the pixels `use` accepts in the disc of
+// `radius` around `centre`, within `bounds`; none where it accepts none.
 template <class Accept>
-std::optional<float> median_luma(const cv::Mat& frame, const cv::Point2f& centre, float radius, const Accept& use) {
+std::optional<float> median_luma(const cv::Mat& frame, const cv::Point2f& centre, float radius, const cv::Rect& bounds,
+                                 const Accept& use) {
   std::vector<float> levels;
-  for (int y = cvFloor(centre.y - radius); y <= cvCeil(centre.y + radius); ++y)
-    for (int x = cvFloor(centre.x - radius); x <= cvCeil(centre.x + radius); ++x) {
+  const int y0 = std::max(cvFloor(centre.y - radius), bounds.y),
+            y1 = std::min(cvCeil(centre.y + radius), bounds.br().y);
+  const int x0 = std::max(cvFloor(centre.x - radius), bounds.x),
+            x1 = std::min(cvCeil(centre.x + radius), bounds.br().x);
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
       const cv::Point2f s{float(x), float(y)};
       if ((s - centre).dot(s - centre) <= radius * radius && use(s)) levels.push_back(luma(frame, x, y));
     }
@@ -76,9 +81,9 @@ WidenedEye::WidenedEye(const cv::Mat& source, const VisibleEye& eye, const std::
   edge_ = std::max(1.5f, 0.1f * eye.iris_radius);
   iris_luma_ = 255.0f;
   if (source.type() == CV_8UC3)
-    iris_luma_ = median_luma(source, eye.iris_centre, eye.iris_radius - edge_, [&](const cv::Point2f& s) {
-                   return clear(s);
-                 }).value_or(255.0f);
+    iris_luma_ = median_luma(source, eye.iris_centre, eye.iris_radius - edge_, cv::boundingRect(eye.opening),
+                             [&](const cv::Point2f& s) { return clear(s); })
+                     .value_or(255.0f);  // only the opening can be clear
 }
 
 // Whether `s` lies inside the landmarks' opening by `margin` or more (clear:
