@@ -262,6 +262,8 @@ TEST(WidenOpening, ARaisedLidKeepsItsEdgeAndLashesAsThick) {
     EXPECT_LE(std::abs(rows_to_white(kept, col, new_loop) - band), 1);
     EXPECT_GE(dark_rows(fan, col, new_loop, middle), lashes + 2);
     EXPECT_LE(std::abs(dark_rows(kept, col, new_loop, middle) - lashes), 1);
+    // The lashes went up with the lid: none stays behind where it was.
+    EXPECT_EQ(dark_rows(kept, col, old_loop, middle), 0);
   }
 }
 

@@ -103,6 +103,12 @@ bool WidenedEye::glint(const cv::Point2f& s) const {
   return false;
 }
 
+// Whether `s` lies on the iris's disc.
+bool WidenedEye::on_disc(const cv::Point2f& s) const {
+  const cv::Point2f d = s - eye_.iris_centre;
+  return d.dot(d) <= eye_.iris_radius * eye_.iris_radius;
+}
+
 // Whether `s` lies above the opening's middle where it is across the eye.
 bool WidenedEye::above_middle(const cv::Point2f& s) const {
   const float u = axes_.u(s);
@@ -178,8 +184,12 @@ cv::Point2f WidenedEye::source_of(const cv::Point2f& p, const cv::Point2f& fan) 
     // reaches of the eye below it (a catchlight under the lid's edge) would
     // come up with the lid and show twice.
     if (!inside(lowered, -1.0f) && above_middle(lowered)) return lowered;
-    if (inside(p)) return p;
-    if (inside(lowered)) return uncovered(p, lowered);
+    // What the frame showed of the eye stays: on the iris's disc up to the
+    // lid's line (a catchlight just under it included; the lashes' blur
+    // there is as dark as the iris), on the white only off the lid's edge
+    // (its blur there would stay behind as a second lash line).
+    if (clear(p) || (inside(p) && on_disc(p))) return p;
+    if (inside(lowered, -1.0f)) return uncovered(p, lowered);
   }
   if (!clear(fan)) return fan;
   return uncovered(p, fan);

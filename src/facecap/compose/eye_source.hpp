@@ -49,6 +49,7 @@ class WidenedEye {
   bool inside(const cv::Point2f& s, float margin = 0.0f) const;
   bool clear(const cv::Point2f& s) const { return inside(s, edge_); }
   bool glint(const cv::Point2f& s) const;
+  bool on_disc(const cv::Point2f& s) const;
   bool above_middle(const cv::Point2f& s) const;
   float rise(const cv::Point2f& p) const;
   cv::Point2f uncovered(const cv::Point2f& p, const cv::Point2f& below) const;
