@@ -353,4 +353,30 @@ TEST(WidenOpening, ADegenerateEyeStillWidensFromTheFrame) {
   }
 }
 
+// Just under the lid's line (within the lid's edge of the landmarks'
+// opening) the frame shows the lid's blur: its lashes and its pale wet rim,
+// which go up with the lid; and sometimes a catchlight on the cornea, which
+// stays where it is.
+TEST(WidenOpening, ARaisedLidTakesItsPaleRimAlongAndLeavesTheCatchlightUnderIt) {
+  RaisedLid raised;
+  const cv::Rect box = raised.box;
+  // A pale rim (grey 100: paler than the iris, 67, darker than the lid's
+  // skin, 107) along the upper lid's line over the iris, 1 px inside it,
+  // and a catchlight (250) just under the line, at x = 170.
+  std::vector<cv::Point2f> rim;
+  for (float x = 140; x <= 180; x += 1) rim.emplace_back(x, 120 - 16 * std::sqrt(1 - std::pow((x - 160) / 60, 2)) + 1);
+  cv::polylines(raised.eye.frame, std::vector<std::vector<cv::Point>>{polygon(rim)}, false, cv::Scalar(100, 100, 100));
+  cv::circle(raised.eye.frame, {170, 106}, 1, cv::Scalar(250, 250, 250), cv::FILLED);
+  cv::Mat frame_grey;
+  cv::cvtColor(raised.eye.frame(box), frame_grey, cv::COLOR_BGR2GRAY);
+  const cv::Mat out = raised.widened(&raised.visible);
+  for (const int x : {150, 155, 165}) {  // the rim, off the catchlight
+    SCOPED_TRACE(x);
+    const int y = cvRound(120 - 16 * std::sqrt(1 - std::pow((x - 160) / 60.0, 2)) + 1);
+    ASSERT_NEAR(frame_grey.at<uchar>(y - box.y, x - box.x), 100, 3);
+    EXPECT_LT(out.at<uchar>(y - box.y, x - box.x), 85) << "the iris where the rim was";
+  }
+  EXPECT_GT(out.at<uchar>(106 - box.y, 170 - box.x), 240) << "the catchlight stays";
+}
+
 }  // namespace facecap

@@ -39,12 +39,13 @@ float luma(const cv::Mat& frame, int x, int y) {
   return 0.114f * c[0] + 0.587f * c[1] + 0.299f * c[2];
 }
 
-// The median brightness of the pixels `use` accepts in the disc of
-// `radius` around `centre`, within `bounds`; none where it accepts none.
+// A pixel of median brightness (BT.601 luma) among those `use` accepts in
+// the disc of `radius` around `centre`, within `bounds`, and that
+// brightness; none where it accepts none.
 template <class Accept>
-std::optional<float> median_luma(const cv::Mat& frame, const cv::Point2f& centre, float radius, const cv::Rect& bounds,
-                                 const Accept& use) {
-  std::vector<float> levels;
+std::optional<std::pair<cv::Point2f, float>> median_pixel(const cv::Mat& frame, const cv::Point2f& centre, float radius,
+                                                          const cv::Rect& bounds, const Accept& use) {
+  std::vector<std::pair<float, cv::Point2f>> levels;
   const int y0 = std::max(cvFloor(centre.y - radius), bounds.y),
             y1 = std::min(cvCeil(centre.y + radius), bounds.br().y);
   const int x0 = std::max(cvFloor(centre.x - radius), bounds.x),
@@ -52,11 +53,13 @@ std::optional<float> median_luma(const cv::Mat& frame, const cv::Point2f& centre
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const cv::Point2f s{float(x), float(y)};
-      if ((s - centre).dot(s - centre) <= radius * radius && use(s)) levels.push_back(luma(frame, x, y));
+      if ((s - centre).dot(s - centre) <= radius * radius && use(s)) levels.emplace_back(luma(frame, x, y), s);
     }
   if (levels.empty()) return std::nullopt;
-  std::nth_element(levels.begin(), levels.begin() + levels.size() / 2, levels.end());
-  return levels[levels.size() / 2];
+  const auto middle = levels.begin() + levels.size() / 2;
+  std::nth_element(levels.begin(), middle, levels.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  return std::pair{middle->second, middle->first};
 }
 
 }  // namespace
@@ -80,10 +83,42 @@ WidenedEye::WidenedEye(const cv::Mat& source, const VisibleEye& eye, const std::
   // Some 2 px at 720p, where an iris is 9-10 px across.
   edge_ = std::max(1.5f, 0.1f * eye.iris_radius);
   iris_luma_ = 255.0f;
-  if (source.type() == CV_8UC3)
-    iris_luma_ = median_luma(source, eye.iris_centre, eye.iris_radius - edge_, cv::boundingRect(eye.opening),
-                             [&](const cv::Point2f& s) { return clear(s); })
-                     .value_or(255.0f);  // only the opening can be clear
+  if (source.type() == CV_8UC3) {
+    const auto median = median_pixel(source, eye.iris_centre, eye.iris_radius - edge_,
+                                     cv::boundingRect(eye.opening),  // only the opening can be clear
+                                     [&](const cv::Point2f& s) { return clear(s); });
+    if (median) iris_median_at_ = median->first, iris_luma_ = median->second;
+    lid_luma_ = bright_lid_luma();
+  }
+}
+
+// The lid's bright skin: the 90th percentile of the brightness between the
+// skin's loop and the lids' line, above the opening's middle (its lashes
+// and its pale wet rim lie below that), on every other pixel of every other
+// row (a quarter of the cost, the same percentile to a level or two); 255
+// where none shows.
+float WidenedEye::bright_lid_luma() const {
+  std::vector<float> levels;
+  const cv::Rect box = cv::boundingRect(from_) & cv::Rect(0, 0, source_.cols, source_.rows);
+  for (int y = box.y; y < box.br().y; y += 2)
+    for (int x = box.x; x < box.br().x; x += 2) {
+      const cv::Point2f s{float(x), float(y)};
+      if (!inside(s, -1.0f) && cv::pointPolygonTest(from_, s, false) >= 0 && above_middle(s))
+        levels.push_back(luma(source_, x, y));
+    }
+  if (levels.empty()) return 255.0f;
+  const auto at = levels.begin() + (levels.size() * 9) / 10;
+  std::nth_element(levels.begin(), at, levels.end());
+  return *at;
+}
+
+// Whether the frame shows a catchlight at pixel `s` itself: brighter than
+// the iris by the glint's margin and than the lid's bright skin, which a
+// lid's pale rim is not.
+bool WidenedEye::catchlight(const cv::Point2f& s) const {
+  if (source_.type() != CV_8UC3) return false;
+  const float level = luma(source_, cvRound(s.x), cvRound(s.y));
+  return level > iris_luma_ + kGlintAboveIris && level > lid_luma_;
 }
 
 // Whether `s` lies inside the landmarks' opening by `margin` or more (clear:
@@ -101,12 +136,6 @@ bool WidenedEye::glint(const cv::Point2f& s) const {
   for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}})
     if (luma(source_, x + dx, y + dy) > iris_luma_ + kGlintAboveIris) return true;
   return false;
-}
-
-// Whether `s` lies on the iris's disc.
-bool WidenedEye::on_disc(const cv::Point2f& s) const {
-  const cv::Point2f d = s - eye_.iris_centre;
-  return d.dot(d) <= eye_.iris_radius * eye_.iris_radius;
 }
 
 // Whether `s` lies above the opening's middle where it is across the eye.
@@ -163,7 +192,11 @@ cv::Point2f WidenedEye::uncovered(const cv::Point2f& p, const cv::Point2f& below
     // Under both lids: the iris at the same distance from its centre (off
     // its blurred rim), turned toward the side (the iris is much the same
     // all round; moved with the lid, a pupil would be drawn stretched here).
-    return turned_to_the_side(std::max(0.0f, std::min(from_centre, r - edge_)), iris).value_or(below);
+    if (const auto turned = turned_to_the_side(std::max(0.0f, std::min(from_centre, r - edge_)), iris)) return *turned;
+    // Catchlights all round (a small iris, its lights under the lid): the
+    // iris below if it is none, else the iris's median pixel.
+    if (iris(below)) return below;
+    return iris_median_at_.value_or(below);
   }
   const float rim = r + edge_, row = (below - c).dot(axes_.up);
   if (std::abs(row) >= rim) return below;
@@ -184,11 +217,12 @@ cv::Point2f WidenedEye::source_of(const cv::Point2f& p, const cv::Point2f& fan) 
     // reaches of the eye below it (a catchlight under the lid's edge) would
     // come up with the lid and show twice.
     if (!inside(lowered, -1.0f) && above_middle(lowered)) return lowered;
-    // What the frame showed of the eye stays: on the iris's disc up to the
-    // lid's line (a catchlight just under it included; the lashes' blur
-    // there is as dark as the iris), on the white only off the lid's edge
-    // (its blur there would stay behind as a second lash line).
-    if (clear(p) || (inside(p) && on_disc(p))) return p;
+    // What the frame showed of the eye stays, off the lid's edge: the
+    // edge's blur (lashes, the lid's pale wet rim) would stay behind as a
+    // second line, across the white and the iris. But a catchlight just
+    // under the lid's line stays: it is on the cornea, and the eye looks
+    // dull without it.
+    if (clear(p) || (inside(p) && catchlight(p))) return p;
     if (inside(lowered, -1.0f)) return uncovered(p, lowered);
   }
   if (!clear(fan)) return fan;

@@ -4,6 +4,7 @@
 // the eye stays, and the eye the lid uncovers is drawn from what the frame
 // shows of it, the iris round and without a second catchlight.
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 namespace facecap {
@@ -49,7 +50,8 @@ class WidenedEye {
   bool inside(const cv::Point2f& s, float margin = 0.0f) const;
   bool clear(const cv::Point2f& s) const { return inside(s, edge_); }
   bool glint(const cv::Point2f& s) const;
-  bool on_disc(const cv::Point2f& s) const;
+  bool catchlight(const cv::Point2f& s) const;
+  float bright_lid_luma() const;
   bool above_middle(const cv::Point2f& s) const;
   float rise(const cv::Point2f& p) const;
   cv::Point2f uncovered(const cv::Point2f& p, const cv::Point2f& below) const;
@@ -59,8 +61,10 @@ class WidenedEye {
   const std::vector<cv::Point2f>& from_;
   const std::vector<cv::Point2f>& wider_;
   Axes axes_;
-  float edge_;       // the lid's edge and the iris's blurred rim, px
-  float iris_luma_;  // the iris's own brightness
+  float edge_;                                 // the lid's edge and the iris's blurred rim, px
+  float iris_luma_;                            // the iris's own brightness (its median)
+  std::optional<cv::Point2f> iris_median_at_;  // a pixel of the iris that bright
+  float lid_luma_ = 255.0f;                    // the lid's bright skin (bright_lid_luma)
 };
 
 }  // namespace facecap
