@@ -121,11 +121,12 @@ bool WidenedEye::catchlight(const cv::Point2f& s) const {
   return level > iris_luma_ + kGlintAboveIris && level > lid_luma_;
 }
 
+// How far `s` lies inside the landmarks' opening (negative: outside).
+float WidenedEye::depth_in(const cv::Point2f& s) const { return float(cv::pointPolygonTest(eye_.opening, s, true)); }
+
 // Whether `s` lies inside the landmarks' opening by `margin` or more (clear:
 // by the edge, where the frame shows the eye).
-bool WidenedEye::inside(const cv::Point2f& s, float margin) const {
-  return cv::pointPolygonTest(eye_.opening, s, true) >= margin;
-}
+bool WidenedEye::inside(const cv::Point2f& s, float margin) const { return depth_in(s) >= margin; }
 
 // Whether what the frame shows at `s` (the four pixels it is interpolated
 // from) holds a catchlight: a reflection on the cornea, far brighter than
@@ -216,14 +217,16 @@ cv::Point2f WidenedEye::source_of(const cv::Point2f& p, const cv::Point2f& fan) 
     // The band, to a pixel off the opening: what the pixel's interpolation
     // reaches of the eye below it (a catchlight under the lid's edge) would
     // come up with the lid and show twice.
-    if (!inside(lowered, -1.0f) && above_middle(lowered)) return lowered;
+    const bool lowered_near_eye = depth_in(lowered) >= -1.0f;
+    if (!lowered_near_eye && above_middle(lowered)) return lowered;
     // What the frame showed of the eye stays, off the lid's edge: the
     // edge's blur (lashes, the lid's pale wet rim) would stay behind as a
     // second line, across the white and the iris. But a catchlight just
     // under the lid's line stays: it is on the cornea, and the eye looks
     // dull without it.
-    if (clear(p) || (inside(p) && catchlight(p))) return p;
-    if (inside(lowered, -1.0f)) return uncovered(p, lowered);
+    const float p_depth = depth_in(p);
+    if (p_depth >= edge_ || (p_depth >= 0.0f && catchlight(p))) return p;
+    if (lowered_near_eye) return uncovered(p, lowered);
   }
   if (!clear(fan)) return fan;
   return uncovered(p, fan);

@@ -47,6 +47,7 @@ class WidenedEye {
     float v(const cv::Point2f& p) const { return (p - centre).dot(up); }
   };
 
+  float depth_in(const cv::Point2f& s) const;
   bool inside(const cv::Point2f& s, float margin = 0.0f) const;
   bool clear(const cv::Point2f& s) const { return inside(s, edge_); }
   bool glint(const cv::Point2f& s) const;
