@@ -1,5 +1,7 @@
 #include "facecap/compose/eye_source.hpp"
 
+#include "facecap/core/statistics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -106,10 +108,7 @@ float WidenedEye::bright_lid_luma() const {
       if (!inside(s, -1.0f) && cv::pointPolygonTest(from_, s, false) >= 0 && above_middle(s))
         levels.push_back(luma(source_, x, y));
     }
-  if (levels.empty()) return 255.0f;
-  const auto at = levels.begin() + (levels.size() * 9) / 10;
-  std::nth_element(levels.begin(), at, levels.end());
-  return *at;
+  return levels.empty() ? 255.0f : quantile(levels, 0.9f);
 }
 
 // Whether the frame shows a catchlight at pixel `s` itself: brighter than
