@@ -84,6 +84,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--appearance-frames", a->options.swap.appearance_frames,
                   "Target frames over which the appearance is harmonised, then held (counted once the target's "
                   "albedo, which its lighting is estimated against, is fixed: its first 4 frames with a face)")
+      ->check(whole_number_at_least(1))
       ->capture_default_str();
   cmd->add_flag("--no-warp", a->no_warp, "Do not warp the target background to the new face outline");
   cmd->add_flag("--wrinkles", a->options.swap.wrinkles,
@@ -93,7 +94,6 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
                 "single photo does not fix a face's absolute size)");
   add_swap_texture_flags(*cmd, a->options.swap);
   cmd->callback([a, &global] {
-    if (a->options.swap.appearance_frames < 1) throw Error("--appearance-frames must be at least 1");
     a->options.swap.warp_background = !a->no_warp;
     a->options.swap.match_target_size = !a->photo_size;
     a->options.capture.quiet = global.quiet;

@@ -49,7 +49,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   CLI::Option* to =
       cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
   CLI::Option* from = cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();
-  cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")->capture_default_str();
+  cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")
+      ->check(number_between(0, 1))
+      ->capture_default_str();
   CLI::Option* schedule = cmd->add_option("--schedule", a->schedule,
                                           "File of 'seconds target intensity' keys with transitions between them");
   CLI::Option* method = cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
@@ -61,7 +63,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       "0-5, in every frame: AU12=3,AU6=2 adds a smile, AU4=0 smooths a frown; the lips stay in sync as with --to, "
       "which may hold back a unit that moves them (AU12, AU15, AU26 ...). With --intensity");
   units->excludes(to)->excludes(from)->excludes(schedule)->excludes(method);
-  cmd->add_option("--window", a->window, "Smoothing window half-width k (2k + 1 frames)")->capture_default_str();
+  cmd->add_option("--window", a->window, "Smoothing window half-width k (2k + 1 frames)")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
   CLI::Option* plot =
       cmd->add_option("--plot", a->plot, "Write a PNG of weight curves (tracked, mapped, lip-corrected, smoothed)");
   CLI::Option* gltf =
@@ -97,8 +101,6 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       ->check(face_value_check());
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to), from = emotion_argument("--from", a->from);
-    if (!(a->intensity >= 0 && a->intensity <= 1)) throw Error("--intensity must be between 0 and 1");
-    if (a->window < 0 || a->window > 10) throw Error("--window must be between 0 and 10");
     TransformJobOptions& o = a->options;
     o.transform.from = from;
     o.transform.schedule =

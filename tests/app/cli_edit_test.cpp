@@ -50,7 +50,6 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
   const std::string out = (dir.path() / "out.mp4").string();
   for (const std::string& args :
        {"transform " + video.string() + " --to contempt -o " + out,
-        "transform " + video.string() + " --to anger --intensity 2 -o " + out,
         "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
         "transform " + video.string() + " --to happiness --init-frames 0 -o " + out,

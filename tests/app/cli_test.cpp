@@ -199,6 +199,10 @@ TEST(Cli, NumbersOutOfRangeOrNotNumbersAreRefusedByName) {
       {swap + "--photo-detail 1.5", "--photo-detail: must be a number from 0 to 1, not 1.5"},
       {"eval track --synthetic 3 --noise nan", "--noise: must be a number from 0 to 100, not nan"},
       {"eval track --synthetic 3 --noise -1", "--noise: must be a number from 0 to 100, not -1"},
+      {"transform in.mp4 -o x.mp4 --to anger --intensity 2", "--intensity: must be a number from 0 to 1, not 2"},
+      {"transform in.mp4 -o x.mp4 --to anger --intensity nan", "--intensity: must be a number from 0 to 1, not nan"},
+      {"transform in.mp4 -o x.mp4 --window 11", "--window: Value 11 not in range 0 to 10"},
+      {swap + "--appearance-frames 0", "--appearance-frames: must be a whole number of at least 1, not 0"},
   };
   for (const auto& [args, message] : usage) {
     const RunResult r = run(args);
