@@ -126,6 +126,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       ->check(number_between(0, 100))
       ->capture_default_str();
   cmd->add_option("--still-frames", a->options.still_frames, "Still-head frames for the jitter measurement")
+      ->check(whole_number_at_least(0))
       ->capture_default_str();
   cmd->add_flag("!--no-gaze", a->options.capture.gaze,
                 "Skip the irises, the gaze and its pull on the eyeLook weights (with truth landmarks it renders "
@@ -137,9 +138,11 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   cmd->add_flag("--map-size", a->map_size,
                 "Keep the identity solve's own face size, without the size correction (diagnostic)");
   cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
+      ->check(number_between(0, 60))
       ->capture_default_str();
   cmd->add_option("--roll", a->options.synth.camera_roll_deg,
                   "The synthetic camera turned about its axis by this many degrees (90: on its side)")
+      ->check(number_between(-180, 180))
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
   cmd->add_option("--photos", a->photos,
@@ -253,6 +256,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video")
       ->check(whole_number_at_least(0));
   cmd->add_option("--albedo-frames", a->options.refine.albedo.frames, "Frames before the albedo is fixed")
+      ->check(whole_number_at_least(1))
       ->capture_default_str();
   add_device_option(*cmd, a->options.refine.device);
   cmd->add_option("--save-problems", a->save_problems,
@@ -412,6 +416,7 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--source-frames", a->self_source_frames,
                   "--self: the source is the video's first N frames as photos (identity from all N, appearance "
                   "from the first); 1 is the single photo of the paper's experiment")
+      ->check(whole_number_at_least(1))
       ->capture_default_str();
   cmd->add_option("--source", a->source, "Source portrait photo");
   cmd->add_option("--target", a->target, "Target video");

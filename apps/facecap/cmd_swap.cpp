@@ -48,6 +48,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
       ->required();
   cmd->add_option("--source-frames", a->options.source_frames,
                   "Frames of a source video or folder the identity is solved from (the appearance is its first)")
+      ->check(whole_number_at_least(1))
       ->capture_default_str();
   add_face_option(*cmd, a->options.source_face, "--source-face",
                   "Which face of the source to use where it shows several (a group photo): largest (default), left, "

@@ -219,7 +219,7 @@ TEST(Cli, SwapTakesItsSourceFromAVideo) {
   EXPECT_NE(mark.find("\"expression_ratio\": \"true\""), std::string::npos) << mark;  // the default
   const RunResult bad =
       run("swap --source " + source.string() + " --source-frames 0 --target " + target.string() + " -o " + out);
-  EXPECT_EQ(bad.code, 1) << bad.out;
+  EXPECT_EQ(bad.code, 2) << bad.out;  // a usage error, before any work
   EXPECT_NE(bad.out.find("--source-frames"), std::string::npos) << bad.out;
   EXPECT_TRUE(std::filesystem::exists(out));  // the good output of the first run is kept
 

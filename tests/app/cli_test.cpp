@@ -203,6 +203,19 @@ TEST(Cli, NumbersOutOfRangeOrNotNumbersAreRefusedByName) {
       {"transform in.mp4 -o x.mp4 --to anger --intensity nan", "--intensity: must be a number from 0 to 1, not nan"},
       {"transform in.mp4 -o x.mp4 --window 11", "--window: Value 11 not in range 0 to 10"},
       {swap + "--appearance-frames 0", "--appearance-frames: must be a whole number of at least 1, not 0"},
+      {swap + "--source-frames 0", "--source-frames: must be a whole number of at least 1, not 0"},
+      {"eval swap --self in.mp4 --source-frames 0", "--source-frames: must be a whole number of at least 1, not 0"},
+      {"eval refine --synthetic 2 --albedo-frames 0", "--albedo-frames: must be a whole number of at least 1, not 0"},
+      {"eval track --synthetic 3 --still-frames -1", "--still-frames: must be a whole number of at least 0, not -1"},
+      {"eval track --synthetic 3 --yaw nan", "--yaw: must be a number from 0 to 60, not nan"},
+      {"eval track --synthetic 3 --roll 200", "--roll: must be a number from -180 to 180, not 200"},
+      {"synth -o x --frames 0", "--frames: must be a whole number of at least 1, not 0"},
+      {"synth -o x --fps 0", "--fps: must be a number from 0.1 to 240, not 0"},
+      {"synth -o x --focal -1", "--focal: must be a number from 0 to 1e+06, not -1"},
+      {"synth -o x --yaw 90", "--yaw: must be a number from 0 to 60, not 90"},
+      {"synth -o x --roll nan", "--roll: must be a number from -180 to 180, not nan"},
+      {"synth -o x --noise 60", "--noise: must be a number from 0 to 50, not 60"},
+      {"demo --frames -5", "--frames: must be a whole number of at least 1, not -5"},
   };
   for (const auto& [args, message] : usage) {
     const RunResult r = run(args);
