@@ -54,6 +54,7 @@ void add_init_frames_option(CLI::App& cmd, int& init_frames) {
   cmd.add_option("--init-frames", init_frames,
                  "Frames with a face the identity and focal length are solved from, before the first output; more "
                  "frames show more head poses, and weigh together as much as 30")
+      ->check(whole_number_at_least(1))
       ->capture_default_str();
 }
 
@@ -63,6 +64,7 @@ CLI::Option* add_smooth_frames_option(CLI::App& cmd, int& smooth_frames) {
                   "Frames fitted forward and then smoothed backward before they come out (each tied to the next "
                   "frame as well as the previous one: steadier and without lag, this many frames later); 0 fits each "
                   "frame as it comes, tied to the one before only")
+      ->check(whole_number_at_least(0))
       ->capture_default_str();
 }
 

@@ -52,8 +52,6 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
        {"transform " + video.string() + " --to contempt -o " + out,
         "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
-        "transform " + video.string() + " --to happiness --init-frames 0 -o " + out,
-        "transform " + video.string() + " --to happiness --smooth-frames -1 -o " + out,
         "transform " + video.string() + " --to happiness --gltf /proc/facecap-test/a.glb -o " + out,
         "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out,
         "transform " + video.string() + " --all-faces --face-schedule 1=" + (dir.path() / "none.txt").string() +
@@ -162,14 +160,6 @@ TEST(Cli, SwapRejectsAPhotoWithoutAFaceWithOneLine) {
   }
   EXPECT_NE(run("swap --target " + video.string() + " -o " + out).code, 0);  // --source is required
   FACECAP_REQUIRE_DATA(portrait, "portrait_biden.jpg");
-  for (const auto& [option, value] : {std::pair{"--init-frames", " 0"}, std::pair{"--smooth-frames", " -1"}}) {
-    const RunResult r =
-        run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out + " " + option + value);
-    EXPECT_EQ(r.code, 1) << r.out;
-    EXPECT_EQ(lines(r.out), 1) << r.out;
-    EXPECT_NE(r.out.find(option), std::string::npos) << r.out;
-    EXPECT_FALSE(std::filesystem::exists(out));
-  }
   // A glTF path that cannot be written fails before the work, naming it.
   const RunResult no_gltf = run("swap --source " + portrait.string() + " --target " + video.string() + " -o " + out +
                                 " --gltf /proc/facecap-test/a.glb");
