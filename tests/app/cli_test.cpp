@@ -59,7 +59,7 @@ TEST(Cli, UnwritableOutputFolderIsAClearError) {
 TEST(Cli, BadOptionValuesAreNamed) {
   FACECAP_REQUIRE_MODEL(model);
   const RunResult r = run("synth -o /tmp/x --frames 0");
-  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("--frames"), std::string::npos) << r.out;
   EXPECT_NE(run("synth -o /tmp/x --size huge").out.find("--size"), std::string::npos);
   // Usage errors exit with 2, whichever CLI11 error they are: a missing
