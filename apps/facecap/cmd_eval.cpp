@@ -144,7 +144,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                   "The synthetic camera turned about its axis by this many degrees (90: on its side)")
       ->check(number_between(-180, 180))
       ->capture_default_str();
-  cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
+  cmd->add_option("--size", a->size, "Synthetic frame size WxH")->check(synthetic_frame_size())->capture_default_str();
   cmd->add_option("--photos", a->photos,
                   "--synthetic: instead, fit every K-th frame alone, as a photo (a swap's source) is, and report "
                   "how far each photo's identity lies from the true face (size removed), for calm and expressive "
@@ -252,7 +252,7 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--synthetic", a->synthetic, "Render and refine N synthetic frames")->check(whole_number_at_least(1));
   cmd->add_option("--video", a->video, "Track and refine real footage");
   cmd->add_option("--seed", a->options.seed, "Seed of the synthetic performance")->capture_default_str();
-  cmd->add_option("--size", a->size, "Synthetic frame size WxH")->capture_default_str();
+  cmd->add_option("--size", a->size, "Synthetic frame size WxH")->check(synthetic_frame_size())->capture_default_str();
   cmd->add_option("--max-frames", a->capture.max_frames, "Stop after this many frames of --video")
       ->check(whole_number_at_least(0));
   cmd->add_option("--albedo-frames", a->options.refine.albedo.frames, "Frames before the albedo is fixed")

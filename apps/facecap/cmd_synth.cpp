@@ -22,7 +22,7 @@ void register_synth(CLI::App& app, GlobalOptions& global) {
       ->check(whole_number_at_least(1))
       ->capture_default_str();
   cmd->add_option("--seed", a->options.seed, "Random seed (identity, motion, lighting, albedo)")->capture_default_str();
-  cmd->add_option("--size", a->size, "Frame size WxH")->capture_default_str();
+  cmd->add_option("--size", a->size, "Frame size WxH")->check(synthetic_frame_size())->capture_default_str();
   cmd->add_option("--fps", a->options.fps, "Frame rate")->check(number_between(0.1, 240))->capture_default_str();
   cmd->add_option("--focal", a->options.focal, "Focal length in pixels (default, or 0: 1.1 x width)")
       ->check(number_between(0, 1e6));

@@ -49,7 +49,7 @@ Emotion emotion_argument(const std::string& option, const std::string& value);
 void add_encoding_options(CLI::App& cmd, VideoEncoding& encoding, const std::string& what,
                           CLI::Option* needs = nullptr);
 // --init-frames: the frames the identity and focal length are solved from
-// (CoarseFitOptions::init_frames; checked by CoarseFitOptions::check).
+// (CoarseFitOptions::init_frames).
 void add_init_frames_option(CLI::App& cmd, int& init_frames);
 // --smooth-frames (CoarseFitOptions::smooth_frames).
 CLI::Option* add_smooth_frames_option(CLI::App& cmd, int& smooth_frames);
@@ -59,6 +59,9 @@ CLI::Validator whole_number_at_least(int least);
 // Refuses a value that is not a number from `least` to `most` (NaN among
 // them, which CLI11's Range lets through).
 CLI::Validator number_between(double least, double most);
+// Refuses a synthetic frame size that is not WxH from 64 to 8192 a side
+// (SynthOptions::check's range), naming it.
+CLI::Validator synthetic_frame_size();
 // --start SECONDS: where track, transform, swap and bench track start reading
 // a video (CaptureOptions::start_seconds).
 void add_start_option(CLI::App& cmd, double& start_seconds);

@@ -250,6 +250,18 @@ CLI::Validator whole_number_at_least(int least) {
                    : ">=" + std::to_string(least));
 }
 
+CLI::Validator synthetic_frame_size() {
+  return CLI::Validator(
+      [](std::string& text) {
+        int width = 0, height = 0;
+        char tail = 0;
+        const bool ok = std::sscanf(text.c_str(), "%dx%d%c", &width, &height, &tail) == 2 && width >= 64 &&
+                        height >= 64 && width <= 8192 && height <= 8192;
+        return ok ? std::string() : "must be WxH, 64 to 8192 a side (as 640x480), not " + text;
+      },
+      "WxH");
+}
+
 CLI::Validator number_between(double least, double most) {
   const auto bound = [](double v) {
     char text[32];
