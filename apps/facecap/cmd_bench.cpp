@@ -328,7 +328,9 @@ void register_bench_transform(CLI::App& bench, GlobalOptions& global) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("INPUT", a->input, "Video file or image folder")->required();
-  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
+  cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())
+      ->check(emotion_value())
+      ->capture_default_str();
   cmd->add_flag("--all-faces", a->all_faces,
                 "Every face, on one decoding pass (as transform --all-faces): the shared capture stages, each "
                 "face's, and the edit's summed over the faces");

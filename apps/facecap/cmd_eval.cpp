@@ -336,8 +336,9 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--video", a->video, "Footage of a speaking face")->required();
-  CLI::Option* to =
-      cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
+  CLI::Option* to = cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())
+                        ->check(emotion_value())
+                        ->capture_default_str();
   CLI::Option* method = cmd->add_option("--method", a->method, "cyclegan, or the linear baseline of eq. 5.5")
                             ->check(CLI::IsMember({"cyclegan", "linear"}))
                             ->capture_default_str();

@@ -46,9 +46,12 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                   "Output video (.mp4, .m4v, .mov or .mkv), or for a photo also an image (.png, .jpg, .jpeg) marked "
                   "as synthetic in its metadata; OUT.json is its synthetic-media sidecar")
       ->required();
-  CLI::Option* to =
-      cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())->capture_default_str();
-  CLI::Option* from = cmd->add_option("--from", a->from, "Source expression of the input")->capture_default_str();
+  CLI::Option* to = cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())
+                        ->check(emotion_value())
+                        ->capture_default_str();
+  CLI::Option* from = cmd->add_option("--from", a->from, "Source expression of the input")
+                          ->check(emotion_value())
+                          ->capture_default_str();
   cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")
       ->check(number_between(0, 1))
       ->capture_default_str();

@@ -59,6 +59,9 @@ CLI::Validator whole_number_at_least(int least);
 // Refuses a value that is not a number from `least` to `most` (NaN among
 // them, which CLI11's Range lets through).
 CLI::Validator number_between(double least, double most);
+// Refuses an expression that is not one of parse_emotion's names, naming
+// the choices.
+CLI::Validator emotion_value();
 // Refuses a synthetic frame size that is not WxH from 64 to 8192 a side
 // (SynthOptions::check's range), naming it.
 CLI::Validator synthetic_frame_size();

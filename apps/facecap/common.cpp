@@ -250,6 +250,15 @@ CLI::Validator whole_number_at_least(int least) {
                    : ">=" + std::to_string(least));
 }
 
+CLI::Validator emotion_value() {
+  return CLI::Validator(
+      [](std::string& text) {
+        return parse_emotion(text) ? std::string()
+                                   : std::string("must be one of ") + emotion_choices() + ", not '" + text + "'";
+      },
+      "EMOTION");
+}
+
 CLI::Validator synthetic_frame_size() {
   return CLI::Validator(
       [](std::string& text) {

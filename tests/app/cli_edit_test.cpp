@@ -49,8 +49,7 @@ TEST(Cli, TransformRejectsBadRequestsWithOneLine) {
   TempDir dir;
   const std::string out = (dir.path() / "out.mp4").string();
   for (const std::string& args :
-       {"transform " + video.string() + " --to contempt -o " + out,
-        "transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
+       {"transform " + video.string() + " --to fear --models " + (dir.path() / "none").string() + " -o " + out,
         "transform " + video.string() + " --schedule " + (dir.path() / "none.txt").string() + " -o " + out,
         "transform " + video.string() + " --to happiness --gltf /proc/facecap-test/a.glb -o " + out,
         "transform " + (dir.path() / "missing.mp4").string() + " --to happiness -o " + out,
@@ -73,10 +72,21 @@ TEST(Cli, TransformTakesAnAdjectiveAndNamesTheChoicesOtherwise) {
   TempDir dir;
   const std::string out = (dir.path() / "out.mp4").string();
   const RunResult bad = run("transform " + video.string() + " --to contempt -o " + out);
-  EXPECT_EQ(bad.code, 1);
-  EXPECT_NE(bad.out.find("--to must be one of"), std::string::npos) << bad.out;
+  EXPECT_EQ(bad.code, 2);  // a usage error, before any work
+  EXPECT_NE(bad.out.find("--to: must be one of"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("happy"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("not 'contempt'"), std::string::npos) << bad.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // So does every command that takes an expression, before any work.
+  const std::pair<std::string, std::string> others[] = {
+      {"transform " + video.string() + " --from glee --to anger -o " + out, "--from: must be one of"},
+      {"eval transform --video " + video.string() + " --to contempt", "--to: must be one of"},
+      {"bench transform " + video.string() + " --to contempt", "--to: must be one of"}};
+  for (const auto& [args, message] : others) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(r.out.rfind(message, 0), 0u) << r.out;
+  }
   const RunResult good = run("transform " + video.string() + " --to Happy --max-frames 8 -o " + out);
   ASSERT_EQ(good.code, 0) << good.out;
   std::ifstream sidecar(out + ".json");
