@@ -37,11 +37,18 @@ FaceModel load_model(const GlobalOptions& global) {
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
 
-void parse_size(const std::string& s, int& w, int& h) {
+namespace {
+
+// "WxH" read into `w` and `h`, both positive; false otherwise.
+bool read_size(const std::string& s, int& w, int& h) {
   char tail = 0;
-  if (std::sscanf(s.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0) {
-    throw Error("--size must look like 640x480, got '" + s + "'");
-  }
+  return std::sscanf(s.c_str(), "%dx%d%c", &w, &h, &tail) == 2 && w > 0 && h > 0;
+}
+
+}  // namespace
+
+void parse_size(const std::string& s, int& w, int& h) {
+  if (!read_size(s, w, h)) throw Error("--size must look like 640x480, got '" + s + "'");
 }
 
 Emotion emotion_argument(const std::string& option, const std::string& value) {
@@ -263,9 +270,8 @@ CLI::Validator synthetic_frame_size() {
   return CLI::Validator(
       [](std::string& text) {
         int width = 0, height = 0;
-        char tail = 0;
-        const bool ok = std::sscanf(text.c_str(), "%dx%d%c", &width, &height, &tail) == 2 && width >= 64 &&
-                        height >= 64 && width <= 8192 && height <= 8192;
+        const bool ok =
+            read_size(text, width, height) && width >= 64 && height >= 64 && width <= 8192 && height <= 8192;
         return ok ? std::string() : "must be WxH, 64 to 8192 a side (as 640x480), not " + text;
       },
       "WxH");

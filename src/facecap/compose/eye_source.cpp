@@ -1,12 +1,12 @@
 #include "facecap/compose/eye_source.hpp"
 
-#include "facecap/core/statistics.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <utility>
+
+#include "facecap/core/statistics.hpp"
 
 namespace facecap {
 
