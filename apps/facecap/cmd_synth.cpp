@@ -25,7 +25,7 @@ void register_synth(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--size", a->size, "Frame size WxH")->check(synthetic_frame_size())->capture_default_str();
   cmd->add_option("--fps", a->options.fps, "Frame rate")->check(number_between(0.1, 240))->capture_default_str();
   cmd->add_option("--focal", a->options.focal, "Focal length in pixels (default, or 0: 1.1 x width)")
-      ->check(number_between(0, 1e6));
+      ->check(number_between(0, 100000));
   cmd->add_option("--yaw", a->options.max_yaw_deg, "Head turns sweep +-this many degrees")
       ->check(number_between(0, 60))
       ->capture_default_str();

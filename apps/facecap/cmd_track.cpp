@@ -241,7 +241,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
   add_device_option(*cmd, a->options.refine_options.device);
   cmd->add_option("--focal", a->options.capture.fit.focal_guess,
                   "Focal length in pixels: a starting guess, or the value to keep with --focal-known (0: none given)")
-      ->check(number_between(0, 1e6));
+      ->check(number_between(0, 100000));
   cmd->add_flag("--focal-known", a->options.capture.fit.focal_known, "Hold --focal fixed (a calibrated camera)");
   add_frame_range_options(*cmd, a->options.capture);
   const FitCliOptions fit = add_fit_options(*cmd, a->options.capture);

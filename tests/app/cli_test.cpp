@@ -218,7 +218,7 @@ TEST(Cli, NumbersOutOfRangeOrNotNumbersAreRefusedByName) {
       {"eval track --synthetic 3 --roll 200", "--roll: must be a number from -180 to 180, not 200"},
       {"synth -o x --frames 0", "--frames: must be a whole number of at least 1, not 0"},
       {"synth -o x --fps 0", "--fps: must be a number from 0.1 to 240, not 0"},
-      {"synth -o x --focal -1", "--focal: must be a number from 0 to 1e+06, not -1"},
+      {"synth -o x --focal -1", "--focal: must be a number from 0 to 100000, not -1"},
       {"synth -o x --yaw 90", "--yaw: must be a number from 0 to 60, not 90"},
       {"synth -o x --roll nan", "--roll: must be a number from -180 to 180, not nan"},
       {"synth -o x --noise 60", "--noise: must be a number from 0 to 50, not 60"},
@@ -228,9 +228,9 @@ TEST(Cli, NumbersOutOfRangeOrNotNumbersAreRefusedByName) {
       {"eval track --synthetic 3 --size 640x", "--size: must be WxH, 64 to 8192 a side (as 640x480), not 640x"},
       {"eval refine --synthetic 3 --size 640x480x2",
        "--size: must be WxH, 64 to 8192 a side (as 640x480), not 640x480x2"},
-      {"track in.mp4 -o x --focal nan", "--focal: must be a number from 0 to 1e+06, not nan"},
-      {"track in.mp4 -o x --focal inf", "--focal: must be a number from 0 to 1e+06, not inf"},
-      {"track in.mp4 -o x --focal -3", "--focal: must be a number from 0 to 1e+06, not -3"},
+      {"track in.mp4 -o x --focal nan", "--focal: must be a number from 0 to 100000, not nan"},
+      {"track in.mp4 -o x --focal inf", "--focal: must be a number from 0 to 100000, not inf"},
+      {"track in.mp4 -o x --focal -3", "--focal: must be a number from 0 to 100000, not -3"},
   };
   for (const auto& [args, message] : usage) {
     const RunResult r = run(args);
