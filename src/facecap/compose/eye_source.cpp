@@ -105,7 +105,8 @@ float WidenedEye::bright_lid_luma() const {
   for (int y = box.y; y < box.br().y; y += 2)
     for (int x = box.x; x < box.br().x; x += 2) {
       const cv::Point2f s{float(x), float(y)};
-      if (!inside(s, -1.0f) && cv::pointPolygonTest(from_, s, false) >= 0 && above_middle(s))
+      // The loop's test first: it needs no distance, and it rules out the box's corners.
+      if (cv::pointPolygonTest(from_, s, false) >= 0 && !inside(s, -1.0f) && above_middle(s))
         levels.push_back(luma(source_, x, y));
     }
   return levels.empty() ? 255.0f : quantile(levels, 0.9f);
