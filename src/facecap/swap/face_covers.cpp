@@ -24,6 +24,9 @@ FaceCovers::FaceCovers(const FaceModel& model, CoverOptions options)
       skin_(skin_mesh(model)),
       occlusion_(skin_, mean_face_mm_per_uv(model, skin_)) {}
 
+FaceCovers::FaceCovers(const FaceModel& model, CoverOptions options, double mm_per_uv)
+    : model_(&model), options_(options), skin_(skin_mesh(model)), occlusion_(skin_, mm_per_uv) {}
+
 std::unique_ptr<FramePreparation> FaceCovers::new_preparation() const {
   return std::make_unique<FramePreparation>(*model_, skin_, occlusion_.grid(), options_.moving_covers);
 }

@@ -23,14 +23,19 @@ struct CoverOptions {
 
 class FaceCovers {
  public:
+  // On a grid at the mean face's scale (about a millimetre a texel).
   FaceCovers(const FaceModel& model, CoverOptions options);
+  // On a grid at `mm_per_uv` (a swap's: the source face's, which its
+  // expression ratio shares).
+  FaceCovers(const FaceModel& model, CoverOptions options, double mm_per_uv);
 
   // Each frame's unshading and motion, for any thread, frames in order
   // (FramePreparation::prepare, with the face region's camera-space points).
   std::unique_ptr<FramePreparation> new_preparation() const;
 
   // How covered each texel of the skin is in this frame (OcclusionMask::
-  // covered), frames in order. `lighting_final`: false while the frame's
+  // covered), frames in order; the first CoverOptions::reference_frames of
+  // a shot are its references. `lighting_final`: false while the frame's
   // lighting is provisional (Refinement::albedo_final), whose unshading is
   // then no reference for the frames that follow.
   cv::Mat covered(const PreparedFrame& prepared, bool lighting_final);
@@ -39,6 +44,7 @@ class FaceCovers {
   void restart();
 
   const TriangleMesh& skin() const { return skin_; }
+  const MillimetreGrid& grid() const { return occlusion_.grid(); }
 
  private:
   const FaceModel* model_;

@@ -12,6 +12,7 @@
 #include "facecap/render/uv_raster.hpp"
 #include "facecap/swap/background_warp.hpp"
 #include "facecap/swap/expression_ratio.hpp"
+#include "facecap/swap/face_covers.hpp"
 #include "facecap/swap/face_render.hpp"
 #include "facecap/swap/face_texture.hpp"
 #include "facecap/swap/frame_preparation.hpp"
@@ -105,8 +106,8 @@ struct FaceSwapper::Impl {
   SizeMatch size;                           // SwapOptions::match_target_size
   std::optional<ResidualShading> residual;  // SwapOptions::residual_shading_mm
   std::optional<ExpressionRatio> ratio;     // SwapOptions::expression_ratio
-  std::optional<OcclusionMask> occlusion;   // SwapOptions::keep_occluders
-  // With `occlusion`, where a frame comes without TargetFrame::prepared
+  std::optional<FaceCovers> covers;         // SwapOptions::keep_occluders
+  // With `covers`, where a frame comes without TargetFrame::prepared
   // (made on the first such frame: a swap's stream prepares its frames itself).
   std::unique_ptr<FramePreparation> preparation;
 
@@ -137,7 +138,10 @@ struct FaceSwapper::Impl {
     const double mm_per_uv =
         millimetres_per_uv(skin, model.with_expression(source_identity_shape, Eigen::VectorXf(), regions::kFace));
     if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
-    if (options.keep_occluders) occlusion.emplace(skin, mm_per_uv);
+    if (options.keep_occluders) {
+      // The appearance frames are the covers' references too.
+      covers.emplace(model, CoverOptions{true, options.moving_covers, options.appearance_frames}, mm_per_uv);
+    }
     // The warp's anchors: the landmarks and every second boundary vertex
     // (every third raised the seam ratio of Obama into address_720p_b,
     // 30 frames, 1.38 -> 1.43; every one lowered it to 1.36 for 0.7 ms more).
@@ -157,15 +161,12 @@ struct FaceSwapper::Impl {
   void restart_appearance() {
     texture.restart();
     if (ratio) ratio->clear_reference();
-    if (occlusion) occlusion->clear_reference();
+    if (covers) covers->restart();
   }
 
-  std::unique_ptr<FramePreparation> new_preparation() const {
-    if (!occlusion) return nullptr;
-    return std::make_unique<FramePreparation>(model, skin, occlusion->grid(), options.moving_covers);
-  }
+  std::unique_ptr<FramePreparation> new_preparation() const { return covers ? covers->new_preparation() : nullptr; }
 
-  // What covers the target face (occlusion_mask.hpp, on `occlusion`'s grid),
+  // What covers the target face (face_covers.hpp, on `covers`' grid),
   // and the face's skin texture seen in the frame with the covers left out,
   // which the expression ratio can use on the same grid.
   struct Cover {
@@ -173,8 +174,7 @@ struct FaceSwapper::Impl {
     std::optional<FaceTexture> skin;
     bool motion_measured = false;  // PreparedFrame's
   };
-  Cover find_cover(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
-                   bool appearance_frame) {
+  Cover find_cover(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points) {
     PreparedFrame own;
     const PreparedFrame* prepared = target.prepared;
     if (!prepared) {
@@ -186,8 +186,7 @@ struct FaceSwapper::Impl {
     Cover c;
     c.skin = FaceTexture{seen.albedo, seen.weight.clone()};
     drop_non_skin(*c.skin);
-    if (appearance_frame) occlusion->add_reference(seen);
-    c.cover = occlusion->covered(seen, prepared->moving);
+    c.cover = covers->covered(*prepared, target.lighting_final);
     c.motion_measured = prepared->motion_measured;
     c.skin->weight.setTo(0, c.cover > 0);  // the expression ratio's change is the face's, not a cover's
     return c;
@@ -198,7 +197,7 @@ struct FaceSwapper::Impl {
   cv::Mat expression_gains(const cv::Mat& frame, const TargetFrame& target, const Positions& target_points,
                            const std::vector<std::vector<cv::Point>>& holes,
                            const std::optional<FaceTexture>& uncovered_skin, bool appearance_frame) {
-    const FaceTexture now = uncovered_skin && occlusion->grid_size() == ratio->grid_size()
+    const FaceTexture now = uncovered_skin && covers->grid().map.size == ratio->grid_size()
                                 ? *uncovered_skin
                                 : ratio->unshade(frame, target_points, target.camera, target.lighting, holes);
     if (appearance_frame) ratio->add_reference(now);
@@ -306,8 +305,8 @@ SwappedFrame FaceSwapper::swap(const cv::Mat& frame, const TargetFrame& target, 
   const std::vector<std::vector<cv::Point>> holes = feature_holes(m.model, target_points, target.camera);
   const bool appearance_frame = m.texture.target_frames() < m.options.appearance_frames;
   auto t0 = std::chrono::steady_clock::now();
-  const Impl::Cover cover = m.occlusion ? m.find_cover(frame, target, target_points, appearance_frame) : Impl::Cover{};
-  const double occlusion_ms = m.occlusion ? ms_since(t0) : 0.0;
+  const Impl::Cover cover = m.covers ? m.find_cover(frame, target, target_points) : Impl::Cover{};
+  const double occlusion_ms = m.covers ? ms_since(t0) : 0.0;
   t.occlusion_ms += occlusion_ms;
   t.flow_frames += cover.motion_measured ? 1 : 0;
   t0 = std::chrono::steady_clock::now();
