@@ -18,6 +18,10 @@ namespace {
 // as faint speckles in an iris a lid uncovered far (AU5 at 5).
 constexpr float kGlintAboveIris = 30.0f;
 
+// Whether a pixel at `level` is as bright as a catchlight in an iris whose
+// median is `iris_luma`.
+bool glint_bright(float level, float iris_luma) { return level > iris_luma + kGlintAboveIris; }
+
 // Where the line up through `u` across the eye meets a closed contour: the
 // height (v) of its highest crossing (`highest`) or its lowest; none where
 // it misses.
@@ -118,7 +122,7 @@ float WidenedEye::bright_lid_luma() const {
 bool WidenedEye::catchlight(const cv::Point2f& s) const {
   if (source_.type() != CV_8UC3) return false;
   const float level = luma(source_, cvRound(s.x), cvRound(s.y));
-  return level > iris_luma_ + kGlintAboveIris && level > lid_luma_;
+  return glint_bright(level, iris_luma_) && level > lid_luma_;
 }
 
 // How far `s` lies inside the landmarks' opening (negative: outside).
@@ -135,7 +139,7 @@ bool WidenedEye::glint(const cv::Point2f& s) const {
   if (source_.type() != CV_8UC3) return false;
   const int x = cvFloor(s.x), y = cvFloor(s.y);
   for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}})
-    if (luma(source_, x + dx, y + dy) > iris_luma_ + kGlintAboveIris) return true;
+    if (glint_bright(luma(source_, x + dx, y + dy), iris_luma_)) return true;
   return false;
 }
 
