@@ -17,7 +17,11 @@ namespace facecap::cli {
 
 namespace {
 
-constexpr const char* kFacePhotoNeedsSynthetic = "--face-photo needs --synthetic: it is the skin of the renders";
+// Option combinations that cannot work are usage errors (exit 2), refused
+// before any work as a bad value is.
+[[noreturn]] void refuse_face_photo_without_synthetic() {
+  throw CLI::ValidationError("--face-photo", "needs --synthetic: it is the skin of the renders");
+}
 
 // The per-region NME keys both landmark evaluations print.
 nlohmann::json region_json(const RegionNme& r) {
@@ -59,7 +63,7 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
       print_json(j);
       return;
     }
-    if (!a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
+    if (!a->face_photo.empty()) refuse_face_photo_without_synthetic();
     if (!a->image.empty() && a->pts.empty() && std::filesystem::is_directory(a->image)) {
       const FaceModel model = load_model(global);
       const LandmarkFolderEval r = evaluate_landmark_folder(model, a->image, global.quiet);
@@ -88,7 +92,7 @@ void register_eval_landmarks(CLI::App& eval, GlobalOptions& global) {
       return;
     }
     if (a->image.empty() || a->pts.empty())
-      throw Error("eval landmarks needs IMAGE and PTS, a folder of annotated images, or --synthetic N");
+      throw CLI::ValidationError("eval landmarks needs IMAGE and PTS, a folder of annotated images, or --synthetic N");
     const LandmarkEvalResult r = evaluate_landmarks(a->image, a->pts);
     nlohmann::json j = {{"image", a->image},
                         {"faces", r.faces},
@@ -152,11 +156,17 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       ->check(whole_number_at_least(1));
   add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
+    if (!a->video.empty()) {
+      if (!a->face_photo.empty()) refuse_face_photo_without_synthetic();
+      if (a->photos > 0) throw CLI::ValidationError("--photos", "fits synthetic frames: use it with --synthetic N");
+    } else if (a->synthetic <= 0) {
+      throw CLI::ValidationError("eval track needs --synthetic N or --video PATH");
+    }
+    if (a->photos > 0 && a->landmarks != "truth")
+      throw CLI::ValidationError("--photos", "fits the true landmarks; drop --landmarks dlib");
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     if (!a->video.empty()) {
-      if (!a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
-      if (a->photos > 0) throw Error("eval track --photos fits synthetic frames: use it with --synthetic N");
       const VideoEvalResult r = evaluate_track_video(model, a->video, a->options.capture);
       const StageTimings& t = r.summary.timings;
       print_json({{"video", a->video},
@@ -171,7 +181,6 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
                   {"fps", t.fps()}});
       return;
     }
-    if (a->synthetic <= 0) throw Error("eval track needs --synthetic N or --video PATH");
     a->options.frames = a->synthetic;
     parse_size(a->size, a->options.synth.width, a->options.synth.height);
     use_face_photo(model, a->face_photo, a->options.synth);
@@ -183,7 +192,6 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     }
     a->options.capture.fit.unbiased_size = !a->map_size;
     if (a->photos > 0) {
-      if (a->landmarks != "truth") throw Error("eval track --photos fits the true landmarks; drop --landmarks dlib");
       const PhotoIdentityEvalResult r = evaluate_photo_identity_synthetic(model, a->options, a->photos);
       print_json({{"frames", a->options.frames},
                   {"seed", a->options.seed},
@@ -267,11 +275,13 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                 "are still made and reported), to measure the displacement solve alone");
   add_face_photo_option(*cmd, a->face_photo);
   cmd->callback([a, &global] {
+    if (a->video.empty() && a->synthetic <= 0)
+      throw CLI::ValidationError("eval refine needs --synthetic N or --video PATH");
     if (!a->video.empty() && a->options.true_shading)
-      throw Error("--true-shading needs --synthetic: real footage has no true shading");
-    if (!a->video.empty() && !a->face_photo.empty()) throw Error(kFacePhotoNeedsSynthetic);
+      throw CLI::ValidationError("--true-shading", "needs --synthetic: real footage has no true shading");
+    if (!a->video.empty() && !a->face_photo.empty()) refuse_face_photo_without_synthetic();
     if (!a->save_problems.empty()) {
-      if (a->video.empty()) throw Error("--save-problems needs --video");
+      if (a->video.empty()) throw CLI::ValidationError("--save-problems", "needs --video");
       ensure_writable_dir(a->save_problems);
       a->options.refine.on_displacement_problem = [dir = std::filesystem::path(a->save_problems)](
                                                       int frame, int level, const DisplacementProblem& problem,
@@ -295,7 +305,6 @@ void register_eval_refine(CLI::App& eval, GlobalOptions& global) {
                   {"device", to_string(a->options.refine.device)}});
       return;
     }
-    if (a->synthetic <= 0) throw Error("eval refine needs --synthetic N or --video PATH");
     a->options.frames = a->synthetic;
     parse_size(a->size, a->options.width, a->options.height);
     a->options.face_texture = face_photo_texture(model, a->face_photo);
@@ -430,8 +439,9 @@ void register_eval_swap(CLI::App& eval, GlobalOptions& global) {
   cmd->callback([a, &global] {
     const bool self = !a->self.empty();
     if (self == (!a->source.empty() || !a->target.empty()))
-      throw Error("give either --self VIDEO, or --source PHOTO and --target VIDEO");
-    if (!self && (a->source.empty() || a->target.empty())) throw Error("--source and --target go together");
+      throw CLI::ValidationError("eval swap needs either --self VIDEO, or --source PHOTO and --target VIDEO");
+    if (!self && (a->source.empty() || a->target.empty()))
+      throw CLI::ValidationError("--source and --target go together");
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     if (self) {

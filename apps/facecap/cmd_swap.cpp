@@ -102,7 +102,7 @@ void register_swap(CLI::App& app, GlobalOptions& global) {
     for (const std::string& text : a->face_sources) {
       const auto [face, photo] = parse_face_value(text);
       if (!sources.emplace(face, photo).second)
-        throw Error("face " + std::to_string(face) + " is given two sources (--face-source)");
+        throw CLI::ValidationError("--face-source", "face " + std::to_string(face) + " is given two sources");
     }
     const FaceModel model = load_model(global);
     if (a->all_faces) {

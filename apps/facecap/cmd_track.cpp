@@ -277,7 +277,7 @@ void register_track(CLI::App& app, GlobalOptions& global) {
     a->options.capture.fit.check();
     a->options.capture.quiet = global.quiet;
     if (a->options.livelink_stream) {
-      if (a->subject.empty()) throw Error("--livelink-subject must not be empty");
+      if (a->subject.empty()) throw CLI::ValidationError("--livelink-subject", "must not be empty");
       a->options.livelink_stream->subject = a->subject;
     }
     const FaceModel model = load_model(global);

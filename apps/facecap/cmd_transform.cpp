@@ -119,7 +119,8 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     auto add_face = [&o](const std::pair<int, std::string>& face, const ExpressionSchedule& schedule,
                          const std::string& description) {
       if (!o.face_expressions.emplace(face.first, TransformJobOptions::FaceExpression{schedule, description}).second)
-        throw Error("face " + std::to_string(face.first) + " is given two expressions (--face-to, --face-schedule)");
+        throw CLI::ValidationError("face " + std::to_string(face.first) +
+                                   " is given two expressions (--face-to, --face-schedule)");
     };
     for (const std::string& text : a->face_to) {
       const auto face = parse_face_value(text);

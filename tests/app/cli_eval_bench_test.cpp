@@ -15,21 +15,14 @@
 namespace facecap {
 
 // eval track --photos fits each K-th synthetic frame alone and reports the
-// photos' identity errors as JSON; it has no meaning for real footage or
-// dlib's landmarks, which are refused in one line.
+// photos' identity errors as JSON (with real footage or dlib's landmarks it
+// is a usage error: Cli.OptionsThatCannotGoTogetherAreRefusedByName).
 TEST(Cli, EvalTrackFitsSyntheticFramesAsPhotos) {
   FACECAP_REQUIRE_MODEL(model);
   const nlohmann::json j = json_from("eval track --synthetic 6 --photos 3 --size 640x480");
   EXPECT_EQ(j.at("photos"), 2) << j.dump();
   EXPECT_GT(j.at("shape_error_mm").get<double>(), 0.0);
   EXPECT_LT(j.at("shape_error_mm").get<double>(), 5.0);
-  for (const std::string& bad : {std::string("eval track --synthetic 6 --photos 3 --landmarks dlib"),
-                                 std::string("eval track --video none.mp4 --photos 3")}) {
-    const RunResult refused = run(bad);
-    EXPECT_EQ(refused.code, 1) << bad << ": " << refused.out;
-    EXPECT_EQ(lines(refused.out), 1) << refused.out;
-    EXPECT_NE(refused.out.find("--photos"), std::string::npos) << refused.out;
-  }
 }
 
 // eval transform --units: a FACS edit's report, unit by unit in the order
