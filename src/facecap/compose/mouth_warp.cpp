@@ -17,17 +17,60 @@ cv::Point2f centroid(const std::vector<cv::Point2f>& points) {
   return c;
 }
 
-// Barycentric weights of `p` in the triangle (a, b, c); false where it
-// lies outside (by more than `slack` of the triangle's own weights) or the
-// triangle has no area.
-bool barycentric(const cv::Point2f& p, const cv::Point2f& a, const cv::Point2f& b, const cv::Point2f& c,
-                 cv::Vec3f& weights, float slack = 1e-4f) {
+// Barycentric weights of `p` in the triangle (a, b, c), inside it or not;
+// none where the triangle has no area.
+std::optional<cv::Vec3f> weights_in(const cv::Point2f& p, const cv::Point2f& a, const cv::Point2f& b,
+                                    const cv::Point2f& c) {
   const cv::Point2f ab = b - a, ac = c - a, ap = p - a;
   const float area = ab.cross(ac);
-  if (std::abs(area) < 1e-6f) return false;
+  if (std::abs(area) < 1e-6f) return std::nullopt;
   const float wb = ap.cross(ac) / area, wc = ab.cross(ap) / area;
-  weights = {1 - wb - wc, wb, wc};
-  return weights[0] >= -slack && wb >= -slack && wc >= -slack;
+  return cv::Vec3f{1 - wb - wc, wb, wc};
+}
+
+// A triangle of a contour's fan around `centre` (centre, contour[i],
+// contour[i + 1]) and a point's barycentric weights in it.
+struct FanPoint {
+  size_t triangle = 0;
+  cv::Vec3f weights;
+};
+
+// The fan triangle that holds `p` (by `slack` of its own weights), the
+// first where triangles overlap; none where no triangle does.
+std::optional<FanPoint> in_fan(const cv::Point2f& p, const cv::Point2f& centre, const std::vector<cv::Point2f>& contour,
+                               float slack = 1e-4f) {
+  for (size_t i = 0; i < contour.size(); ++i) {
+    const std::optional<cv::Vec3f> w = weights_in(p, centre, contour[i], contour[(i + 1) % contour.size()]);
+    if (w && (*w)[0] >= -slack && (*w)[1] >= -slack && (*w)[2] >= -slack) return FanPoint{i, *w};
+  }
+  return std::nullopt;
+}
+
+// For `p` beside the fan (a smoothed fill's edge pixel): the fan triangle
+// nearest it and its weights clamped into that triangle. Unclamped, the map
+// of a sliver (a closed mouth's fan) carries such pixels far off: across
+// the lips, from the seam.
+std::optional<FanPoint> nearest_in_fan(const cv::Point2f& p, const cv::Point2f& centre,
+                                       const std::vector<cv::Point2f>& contour) {
+  std::optional<FanPoint> nearest;
+  float nearest_distance = 0;
+  for (size_t i = 0; i < contour.size(); ++i) {
+    const cv::Point2f& a = contour[i];
+    const cv::Point2f& b = contour[(i + 1) % contour.size()];
+    const std::optional<cv::Vec3f> w = weights_in(p, centre, a, b);
+    if (!w) continue;
+    cv::Vec3f clamped(std::max((*w)[0], 0.0f), std::max((*w)[1], 0.0f), std::max((*w)[2], 0.0f));
+    clamped /= clamped[0] + clamped[1] + clamped[2];
+    const float distance = float(cv::norm(clamped[0] * centre + clamped[1] * a + clamped[2] * b - p));
+    if (!nearest || distance < nearest_distance) nearest = FanPoint{i, clamped}, nearest_distance = distance;
+  }
+  return nearest;
+}
+
+// The point at `at`'s weights in the same triangle of another fan.
+cv::Point2f on_fan(const FanPoint& at, const cv::Point2f& centre, const std::vector<cv::Point2f>& contour) {
+  return at.weights[0] * centre + at.weights[1] * contour[at.triangle] +
+         at.weights[2] * contour[(at.triangle + 1) % contour.size()];
 }
 
 }  // namespace
@@ -36,28 +79,47 @@ void warp_mouth(const cv::Mat& source, const std::vector<cv::Point2f>& from, con
                 FaceLayer& layer) {
   const size_t n = from.size();
   if (n < 3 || to.size() != n || layer.box.area() == 0) return;
-  const cv::Point2f offset(float(layer.box.x), float(layer.box.y));
+  const cv::Rect window(0, 0, layer.box.width, layer.box.height);
+  const cv::Rect box = (cv::boundingRect(to) - layer.box.tl()) & window;
+  if (box.area() == 0) return;
   const cv::Point2f cf = centroid(from), ct = centroid(to);
+  // What the fan covers: each triangle's smoothed fill, in its own box.
+  cv::Mat painted(box.size(), CV_8U, cv::Scalar(0));
   for (size_t i = 0; i < n; ++i) {
-    const cv::Point2f src[3] = {cf, from[i], from[(i + 1) % n]};
-    const cv::Point2f dst[3] = {ct - offset, to[i] - offset, to[(i + 1) % n] - offset};
-    const cv::Rect box =
-        cv::boundingRect(std::vector<cv::Point2f>(dst, dst + 3)) & cv::Rect(0, 0, layer.box.width, layer.box.height);
-    if (box.area() == 0) continue;
-    // Source frame pixels to this triangle's box in the layer.
-    cv::Mat affine = cv::getAffineTransform(src, dst);
-    affine.at<double>(0, 2) -= box.x;
-    affine.at<double>(1, 2) -= box.y;
-    cv::Mat patch;
-    cv::warpAffine(source, patch, affine, box.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-    cv::Mat triangle(box.size(), CV_8U, cv::Scalar(0));
+    const cv::Point2f corners[3] = {ct, to[i], to[(i + 1) % n]};
+    const cv::Rect own = (cv::boundingRect(std::vector<cv::Point2f>(corners, corners + 3)) - layer.box.tl()) & window;
+    if (own.area() == 0) continue;
+    cv::Mat triangle(own.size(), CV_8U, cv::Scalar(0));
     std::vector<cv::Point> pts;
-    for (const cv::Point2f& p : dst) pts.emplace_back(cvRound(p.x - box.x), cvRound(p.y - box.y));
+    for (const cv::Point2f& p : corners)
+      pts.emplace_back(cvRound(p.x - layer.box.x - own.x), cvRound(p.y - layer.box.y - own.y));
     cv::fillConvexPoly(triangle, pts, cv::Scalar(255), cv::LINE_AA);
-    patch.copyTo(layer.colour(box), triangle);
-    cv::Mat mask = layer.mask(box);
-    cv::bitwise_or(mask, triangle, mask);
+    cv::Mat covered = painted(own - box.tl());
+    cv::bitwise_or(covered, triangle, covered);
   }
+  // Each covered pixel from the frame through the fan triangle that holds
+  // it, or beside the fan the nearest one: one mapping per pixel, whatever
+  // order the triangles come in.
+  cv::Mat map_x(box.size(), CV_32F, cv::Scalar(0)), map_y(box.size(), CV_32F, cv::Scalar(0));
+  for (int y = 0; y < box.height; ++y)
+    for (int x = 0; x < box.width; ++x) {
+      if (painted.at<uchar>(y, x) == 0) continue;
+      const cv::Point2f p(float(layer.box.x + box.x + x), float(layer.box.y + box.y + y));
+      std::optional<FanPoint> at = in_fan(p, ct, to);
+      if (!at) at = nearest_in_fan(p, ct, to);
+      if (!at) {  // a fan without area: nothing to map through
+        painted.at<uchar>(y, x) = 0;
+        continue;
+      }
+      const cv::Point2f q = on_fan(*at, cf, from);
+      map_x.at<float>(y, x) = q.x;
+      map_y.at<float>(y, x) = q.y;
+    }
+  cv::Mat patch;
+  cv::remap(source, patch, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  patch.copyTo(layer.colour(box), painted);
+  cv::Mat mask = layer.mask(box);
+  cv::bitwise_or(mask, painted, mask);
 }
 
 void widen_opening(const cv::Mat& source, const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to,
@@ -91,18 +153,15 @@ void widen_opening(const cv::Mat& source, const std::vector<cv::Point2f>& from, 
     for (int x = 0; x < box.width; ++x) {
       if (unset[x] != 0) continue;
       const cv::Point2f p = cv::Point2f(float(box.x + x), float(box.y + y)) + offset;
-      for (size_t i = 0; i < n; ++i) {
-        const size_t j = (i + 1) % n;
-        cv::Vec3f w;
-        if (!barycentric(p, centre, wider[i], wider[j], w)) continue;
-        if (wider[i] == from[i] && wider[j] == from[j]) break;  // this part of the eye stays
-        const cv::Point2f fan = w[0] * centre + w[1] * from[i] + w[2] * from[j];
-        const cv::Point2f q = widened ? widened->source_of(p, fan) : fan;
-        map_x.at<float>(y, x) = q.x;
-        map_y.at<float>(y, x) = q.y;
-        painted.at<uchar>(y, x) = 255;
-        break;
-      }
+      const std::optional<FanPoint> at = in_fan(p, centre, wider);
+      if (!at) continue;
+      const size_t i = at->triangle, j = (i + 1) % n;
+      if (wider[i] == from[i] && wider[j] == from[j]) continue;  // this part of the eye stays
+      const cv::Point2f fan = on_fan(*at, centre, from);
+      const cv::Point2f q = widened ? widened->source_of(p, fan) : fan;
+      map_x.at<float>(y, x) = q.x;
+      map_y.at<float>(y, x) = q.y;
+      painted.at<uchar>(y, x) = 255;
     }
   }
   cv::Mat patch;
