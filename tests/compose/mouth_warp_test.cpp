@@ -155,6 +155,20 @@ TEST(MouthWarp, AClosedMouthPaintsItsSeamNotWhatLiesAcrossTheLips) {
   EXPECT_LE(brightest, 41.0);
 }
 
+// A contour without area (its points on one line, as a shut mouth's may be)
+// has no triangle to map a pixel through: the layer is left as it was.
+TEST(MouthWarp, AMouthWithoutAreaPaintsNothing) {
+  cv::Mat frame(120, 160, CV_8UC3);
+  cv::RNG(3).fill(frame, cv::RNG::UNIFORM, 0, 255);
+  const std::vector<cv::Point2f> line = {{60, 60}, {70, 60}, {80, 60}, {90, 60}, {80, 60}, {70, 60}};
+  FaceLayer layer = make_layer(frame, cv::Rect(50, 45, 60, 35), 8);
+  layer.mask.setTo(0);
+  const cv::Mat before = layer.colour.clone();
+  warp_mouth(frame, line, line, layer);
+  EXPECT_EQ(cv::countNonZero(layer.mask), 0);
+  EXPECT_EQ(cv::norm(layer.colour, before, cv::NORM_INF), 0.0);
+}
+
 TEST(WidenOpening, ARaisedLidOpensOntoTheEyeNotOntoTheOldLid) {
   const Eye eye;
   const std::vector<cv::Point2f> wider = eye.upper_lid_moved(-6);
