@@ -155,7 +155,7 @@ TEST(MouthWarp, AClosedMouthPaintsItsSeamNotWhatLiesAcrossTheLips) {
   EXPECT_LE(brightest, 41.0);
 }
 
-// A contour without area (its points on one line, as a shut mouth's may be)
+// A contour without area (its points on one row, as a shut mouth's may be)
 // has no triangle to map a pixel through: the layer is left as it was.
 TEST(MouthWarp, AMouthWithoutAreaPaintsNothing) {
   cv::Mat frame(120, 160, CV_8UC3);
@@ -167,6 +167,27 @@ TEST(MouthWarp, AMouthWithoutAreaPaintsNothing) {
   warp_mouth(frame, line, line, layer);
   EXPECT_EQ(cv::countNonZero(layer.mask), 0);
   EXPECT_EQ(cv::norm(layer.colour, before, cv::NORM_INF), 0.0);
+}
+
+// Seven points on one row: their centroid's rounding puts the fan's centre
+// a hair above it (59.99999), in the row before, and the fan's slivers have
+// a little area. The fan's box holds its centre (a box of the contour alone
+// did not, and the layer's window was cut outside it: an exception), and
+// what the smoothed fill paints beside the row comes from the row.
+TEST(MouthWarp, AMouthOnOneRowPaintsThatRow) {
+  cv::Mat frame(120, 160, CV_8UC3);
+  cv::RNG(3).fill(frame, cv::RNG::UNIFORM, 0, 255);
+  const std::vector<cv::Point2f> line = {{60, 60}, {70, 60}, {80, 60}, {90, 60}, {80, 60}, {70, 60}, {65, 60}};
+  FaceLayer layer = make_layer(frame, cv::Rect(50, 45, 60, 35), 8);
+  layer.mask.setTo(0);
+  ASSERT_NO_THROW(warp_mouth(frame, line, line, layer));
+  for (int y = 0; y < layer.box.height; ++y)
+    for (int x = 0; x < layer.box.width; ++x) {
+      if (layer.mask.at<uchar>(y, x) == 0) continue;
+      const cv::Vec3b painted = layer.colour.at<cv::Vec3b>(y, x);
+      const cv::Vec3b row = frame.at<cv::Vec3b>(60, layer.box.x + x);
+      EXPECT_LE(cv::norm(painted, row, cv::NORM_INF), 1.0) << "at " << layer.box.x + x << ", " << layer.box.y + y;
+    }
 }
 
 TEST(WidenOpening, ARaisedLidOpensOntoTheEyeNotOntoTheOldLid) {

@@ -46,23 +46,36 @@ std::optional<FanPoint> in_fan(const cv::Point2f& p, const cv::Point2f& centre, 
   return std::nullopt;
 }
 
-// For `p` beside the fan (a smoothed fill's edge pixel): the fan triangle
-// nearest it and its weights clamped into that triangle. Unclamped, the map
-// of a sliver (a closed mouth's fan) carries such pixels far off: across
-// the lips, from the seam.
+// The point of the segment (a, b) nearest `p`: how far along it, 0 to 1.
+float along_segment(const cv::Point2f& p, const cv::Point2f& a, const cv::Point2f& b) {
+  const cv::Point2f ab = b - a;
+  const float length2 = ab.dot(ab);
+  return length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0f, 1.0f) : 0.0f;
+}
+
+// For `p` beside the fan (a smoothed fill's edge pixel): the point of the
+// fan nearest it, as weights in its triangle (on the triangle's nearest
+// edge). Through the triangle's own map, unbounded beside it, a sliver (a
+// closed mouth's fan) carries such pixels far off: across the lips, from
+// the seam. Triangles without area are left out.
 std::optional<FanPoint> nearest_in_fan(const cv::Point2f& p, const cv::Point2f& centre,
                                        const std::vector<cv::Point2f>& contour) {
   std::optional<FanPoint> nearest;
   float nearest_distance = 0;
   for (size_t i = 0; i < contour.size(); ++i) {
-    const cv::Point2f& a = contour[i];
-    const cv::Point2f& b = contour[(i + 1) % contour.size()];
-    const std::optional<cv::Vec3f> w = weights_in(p, centre, a, b);
-    if (!w) continue;
-    cv::Vec3f clamped(std::max((*w)[0], 0.0f), std::max((*w)[1], 0.0f), std::max((*w)[2], 0.0f));
-    clamped /= clamped[0] + clamped[1] + clamped[2];
-    const float distance = float(cv::norm(clamped[0] * centre + clamped[1] * a + clamped[2] * b - p));
-    if (!nearest || distance < nearest_distance) nearest = FanPoint{i, clamped}, nearest_distance = distance;
+    const cv::Point2f corners[3] = {centre, contour[i], contour[(i + 1) % contour.size()]};
+    if (!weights_in(p, corners[0], corners[1], corners[2])) continue;
+    for (int e = 0; e < 3; ++e) {
+      const int f = (e + 1) % 3;
+      const float t = along_segment(p, corners[e], corners[f]);
+      const float distance = float(cv::norm(corners[e] + t * (corners[f] - corners[e]) - p));
+      if (nearest && distance >= nearest_distance) continue;
+      cv::Vec3f weights(0, 0, 0);
+      weights[e] = 1 - t;
+      weights[f] = t;
+      nearest = FanPoint{i, weights};
+      nearest_distance = distance;
+    }
   }
   return nearest;
 }
@@ -79,10 +92,14 @@ void warp_mouth(const cv::Mat& source, const std::vector<cv::Point2f>& from, con
                 FaceLayer& layer) {
   const size_t n = from.size();
   if (n < 3 || to.size() != n || layer.box.area() == 0) return;
-  const cv::Rect window(0, 0, layer.box.width, layer.box.height);
-  const cv::Rect box = (cv::boundingRect(to) - layer.box.tl()) & window;
-  if (box.area() == 0) return;
   const cv::Point2f cf = centroid(from), ct = centroid(to);
+  // The fan's box, its centre counted (which rounding may put a hair
+  // outside a contour on one line), so that it holds each triangle's.
+  std::vector<cv::Point2f> outline = to;
+  outline.push_back(ct);
+  const cv::Rect window(0, 0, layer.box.width, layer.box.height);
+  const cv::Rect box = (cv::boundingRect(outline) - layer.box.tl()) & window;
+  if (box.area() == 0) return;
   // What the fan covers: each triangle's smoothed fill, in its own box.
   cv::Mat painted(box.size(), CV_8U, cv::Scalar(0));
   for (size_t i = 0; i < n; ++i) {
