@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_layer.hpp"
+#include "facecap/compose/surface_exposure.hpp"
 #include "facecap/model/regions.hpp"
 #include "test_support.hpp"
 
@@ -80,6 +81,45 @@ TEST(FaceReshading, ASmileChangesTheMouthCornersNotTheForehead) {
   EXPECT_GT(change_near(lm[54]), 5.0);
   EXPECT_LT(change_near(lm[19]), 1.0);  // brows: untouched
   EXPECT_LT(change_near(lm[24]), 1.0);
+}
+
+// Closing the eyes unfolds the lids, which ICT folds away while the eye is
+// open: the frame shows them edge-on. A highlight there (a white spot where
+// the least seen lid vertex in view lay in the frame) is not stretched over
+// the closed lid: that vertex's pixel takes its colour from the skin around.
+TEST(FaceReshading, AClosingLidDoesNotStretchWhatTheFrameSawEdgeOn) {
+  FACECAP_REQUIRE_MODEL(model);
+  Scene s = make_scene(*model);
+  Eigen::VectorXf blink = Eigen::VectorXf::Zero(model->num_expressions());
+  blink[expression(*model, "eyeBlink_L")] = 1;
+  blink[expression(*model, "eyeBlink_R")] = 1;
+  const Positions open = posed(*model, s, Eigen::VectorXf::Zero(model->num_expressions()));
+  const Positions closed = posed(*model, s, blink);
+  const std::vector<float> exposure = vertex_exposure(open, closed, s.face.triangles, s.camera);
+  // The least seen vertex whose own triangle is what the closed face shows at its pixel.
+  RasterBuffers shown;
+  shown.resize(s.frame.cols, s.frame.rows);
+  rasterize(closed, s.face.triangles, s.camera, shown);
+  auto in_view = [&](int v) {
+    const Vec2f q = s.camera.project(Vec3f(closed.col(v)));
+    const int x = cvRound(q.x()), y = cvRound(q.y());
+    if (x < 0 || y < 0 || x >= shown.width || y >= shown.height || !shown.covered(x, y)) return false;
+    const Triangle& t = s.face.triangles[shown.triangle[size_t(y) * shown.width + x]];
+    return std::find(t.begin(), t.end(), v) != t.end();
+  };
+  int lid = -1;
+  for (int v = 0; v < int(exposure.size()); ++v)
+    if (in_view(v) && (lid < 0 || exposure[v] < exposure[lid])) lid = v;
+  ASSERT_GE(lid, 0);
+  ASSERT_LT(exposure_trust(exposure[lid]), 0.25f) << exposure[lid];
+  const Vec2f then = s.camera.project(Vec3f(open.col(lid))), now = s.camera.project(Vec3f(closed.col(lid)));
+  ASSERT_GT((now - then).norm(), 2.0f) << "the lid moves as it closes";
+  cv::circle(s.frame, cv::Point(cvRound(then.x()), cvRound(then.y())), 2, cv::Scalar(255, 255, 255), cv::FILLED);
+  const FaceLayer layer = reshade_face(s.frame, open, closed, s.face.triangles, s.lighting, s.camera);
+  const cv::Point at(cvRound(now.x()) - layer.box.x, cvRound(now.y()) - layer.box.y);
+  ASSERT_GT(layer.mask.at<uchar>(at), 0);
+  const cv::Vec3b lid_colour = layer.colour.at<cv::Vec3b>(at);
+  EXPECT_LT(std::max({lid_colour[0], lid_colour[1], lid_colour[2]}), 200) << lid_colour;
 }
 
 }  // namespace facecap

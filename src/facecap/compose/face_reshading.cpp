@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "facecap/compose/surface_exposure.hpp"
 #include "facecap/core/image_sampling.hpp"
 #include "facecap/core/parallel.hpp"
 #include "facecap/render/shading.hpp"
@@ -47,6 +48,9 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
   rasterize(new_points, triangles, window, buffers);
   const Positions old_normals = vertex_normals(old_points, triangles);
   const Positions new_normals = vertex_normals(new_points, triangles);
+  // Where the frame saw the new surface edge-on or not at all (surface_exposure.hpp).
+  const std::vector<float> exposure = vertex_exposure(old_points, new_points, triangles, camera);
+  cv::Mat trust(layer.box.size(), CV_32F, cv::Scalar(1.0f));
   parallel_for(
       layer.box.height,
       [&](int y0, int y1) {
@@ -70,10 +74,17 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
                                cv::saturate_cast<uchar>(rgb.y() * ratio * 255),
                                cv::saturate_cast<uchar>(rgb.x() * ratio * 255));
             mask[x] = 255;
+            const Triangle& t = triangles[buffers.triangle[i]];
+            const Vec2f w = buffers.bary[i];
+            trust.ptr<float>(y)[x] = exposure_trust((1.0f - w.x() - w.y()) * exposure[t[0]] + w.x() * exposure[t[1]] +
+                                                    w.y() * exposure[t[2]]);
           }
         }
       },
       16);
+  // What the frame did not show, from the skin around it: a Gaussian of a
+  // fortieth of the face's width (7 px at 720p), about the width of a lid.
+  fill_untrusted(layer.colour, trust, 0.025 * projected_bounds(new_points, camera).width);
   return layer;
 }
 

@@ -5,6 +5,8 @@
 // of the new and the old normal (I_new = I_old * s_new / s_old: the albedo
 // cancels). The paper re-renders from the recovered albedo; at the coarse
 // mesh's resolution that would blur skin texture that the source frame has.
+// Where the frame saw the new surface edge-on or not at all (a closing lid
+// unfolds), its colour comes from the skin around it (surface_exposure.hpp).
 #include <opencv2/core.hpp>
 
 #include "facecap/compose/face_layer.hpp"
