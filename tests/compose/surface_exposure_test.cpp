@@ -63,8 +63,9 @@ TEST(SurfaceExposure, TrustFallsSmoothlyFromSeenToUnseen) {
 }
 
 // A pale spot where the trust is 0 (a stretched highlight) takes the colour
-// of the trusted skin around it; the trusted pixels keep theirs, and where
-// the trust is partial the two mix.
+// of the trusted skin around it, not of what lies beyond the surface (an
+// eye, the background: magenta below); the trusted pixels keep theirs, and
+// where the trust is partial the two mix.
 TEST(SurfaceExposure, AnUntrustedSpotTakesTheColourAroundIt) {
   cv::Mat colour(80, 80, CV_8UC3, cv::Scalar(60, 90, 150));
   cv::circle(colour, {40, 40}, 6, cv::Scalar(235, 235, 235), cv::FILLED);
@@ -72,11 +73,15 @@ TEST(SurfaceExposure, AnUntrustedSpotTakesTheColourAroundIt) {
   cv::circle(trust, {40, 40}, 10, cv::Scalar(0.0f), cv::FILLED);
   trust.at<float>(10, 10) = 0.5f;
   colour.at<cv::Vec3b>(10, 10) = cv::Vec3b(0, 0, 0);
+  cv::Mat surface(80, 80, CV_8U, cv::Scalar(255));
+  cv::rectangle(surface, cv::Rect(0, 60, 80, 20), cv::Scalar(0), cv::FILLED);  // not skin: counts for nothing
+  colour(cv::Rect(0, 60, 80, 20)).setTo(cv::Scalar(255, 0, 255));
   const cv::Mat before = colour.clone();
-  fill_untrusted(colour, trust, 5.0);
+  fill_untrusted(colour, trust, surface, 5.0);
   EXPECT_EQ(colour.at<cv::Vec3b>(40, 40), cv::Vec3b(60, 90, 150));
   EXPECT_EQ(colour.at<cv::Vec3b>(30, 40), cv::Vec3b(60, 90, 150));
-  EXPECT_EQ(colour.at<cv::Vec3b>(10, 10), cv::Vec3b(30, 45, 75));  // half its own, half the skin's
+  EXPECT_EQ(colour.at<cv::Vec3b>(49, 40), cv::Vec3b(60, 90, 150));  // 11 px from the magenta
+  EXPECT_EQ(colour.at<cv::Vec3b>(10, 10), cv::Vec3b(30, 45, 75));   // half its own, half the skin's
   cv::Mat changed;
   cv::absdiff(colour, before, changed);
   cv::cvtColor(changed, changed, cv::COLOR_BGR2GRAY);

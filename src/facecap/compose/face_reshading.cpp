@@ -82,9 +82,10 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
         }
       },
       16);
-  // What the frame did not show, from the skin around it: a Gaussian of a
+  // What the frame did not show, from the skin around it (not the eyes or
+  // the background, which the layer holds beyond the mask): a Gaussian of a
   // fortieth of the face's width (7 px at 720p), about the width of a lid.
-  fill_untrusted(layer.colour, trust, 0.025 * projected_bounds(new_points, camera).width);
+  fill_untrusted(layer.colour, trust, layer.mask, 0.025 * projected_bounds(new_points, camera).width);
   return layer;
 }
 

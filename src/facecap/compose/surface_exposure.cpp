@@ -53,8 +53,9 @@ float exposure_trust(float exposure) {
   return t * t * (3 - 2 * t);  // smoothstep: no edge where the trust starts to fall
 }
 
-void fill_untrusted(cv::Mat& colour, const cv::Mat& trust, double sigma) {
-  CV_Assert(colour.type() == CV_8UC3 && trust.type() == CV_32F && colour.size() == trust.size());
+void fill_untrusted(cv::Mat& colour, const cv::Mat& trust, const cv::Mat& surface, double sigma) {
+  CV_Assert(colour.type() == CV_8UC3 && trust.type() == CV_32F && surface.type() == CV_8U &&
+            colour.size() == trust.size() && colour.size() == surface.size());
   std::vector<cv::Point> untrusted;
   cv::findNonZero(trust < 1.0f, untrusted);
   if (untrusted.empty() || !(sigma > 0)) return;
@@ -62,14 +63,18 @@ void fill_untrusted(cv::Mat& colour, const cv::Mat& trust, double sigma) {
   const cv::Rect window =
       cv::Rect(cv::boundingRect(untrusted) - cv::Point(reach, reach) + cv::Size(2 * reach, 2 * reach)) &
       cv::Rect(0, 0, colour.cols, colour.rows);
-  // Each pixel's colour times its trust, and its trust: the normalised
-  // convolution's numerator and denominator, blurred together.
+  // Each surface pixel's colour times its trust, and its trust: the
+  // normalised convolution's numerator and denominator, blurred together.
   cv::Mat weighted(window.size(), CV_32FC4);
   for (int y = 0; y < window.height; ++y) {
     const auto* c = colour.ptr<cv::Vec3b>(window.y + y) + window.x;
     const float* t = trust.ptr<float>(window.y + y) + window.x;
+    const uchar* on = surface.ptr<uchar>(window.y + y) + window.x;
     auto* out = weighted.ptr<cv::Vec4f>(y);
-    for (int x = 0; x < window.width; ++x) out[x] = cv::Vec4f(c[x][0] * t[x], c[x][1] * t[x], c[x][2] * t[x], t[x]);
+    for (int x = 0; x < window.width; ++x) {
+      const float w = on[x] ? t[x] : 0.0f;
+      out[x] = cv::Vec4f(c[x][0] * w, c[x][1] * w, c[x][2] * w, w);
+    }
   }
   // Blurred on an image `shrink` times smaller (a Gaussian this wide loses
   // nothing there) and read back at the untrusted pixels only: 1.8 ms a

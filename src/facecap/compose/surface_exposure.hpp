@@ -33,10 +33,11 @@ constexpr float kSeenExposure = 0.8f;
 float exposure_trust(float exposure);
 
 // Mixes into each pixel of `colour` (CV_8UC3) with `trust` (CV_32F, 0 to 1,
-// the same size) below 1 the colour of the trusted pixels around it, by
-// 1 - trust: their mean under a Gaussian of `sigma` pixels, each weighted
-// by its trust (a normalised convolution). Pixels with no trusted pixel
-// within reach keep their colour.
-void fill_untrusted(cv::Mat& colour, const cv::Mat& trust, double sigma);
+// the same size) below 1 the colour of the trusted pixels of `surface`
+// (CV_8U, non-zero: the re-rendered skin, not the eyes or the background
+// the layer also holds) around it, by 1 - trust: their mean under a
+// Gaussian of `sigma` pixels, each weighted by its trust (a normalised
+// convolution). Pixels with no such pixel within reach keep their colour.
+void fill_untrusted(cv::Mat& colour, const cv::Mat& trust, const cv::Mat& surface, double sigma);
 
 }  // namespace facecap
