@@ -39,7 +39,8 @@ cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera) 
 FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const Positions& new_points,
                        const std::vector<Triangle>& triangles, const ShCoeffs& lighting, const PinholeCamera& camera,
                        int margin) {
-  FaceLayer layer = make_layer(source, projected_bounds(new_points, camera), margin);
+  const cv::Rect face = projected_bounds(new_points, camera);
+  FaceLayer layer = make_layer(source, face, margin);
   if (layer.box.area() == 0) return layer;
   // Rasterise into the window: the same camera with its principal point shifted.
   const PinholeCamera window = camera.cropped(layer.box.x, layer.box.y);
@@ -85,7 +86,7 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
   // What the frame did not show, from the skin around it (not the eyes or
   // the background, which the layer holds beyond the mask): a Gaussian of a
   // fortieth of the face's width (7 px at 720p), about the width of a lid.
-  fill_untrusted(layer.colour, trust, layer.mask, 0.025 * projected_bounds(new_points, camera).width);
+  fill_untrusted(layer.colour, trust, layer.mask, 0.025 * face.width);
   return layer;
 }
 
