@@ -10,6 +10,7 @@
 #include "facecap/model/eye_margins.hpp"
 #include "facecap/pipeline/cover_preparation.hpp"
 #include "facecap/pipeline/refine_eval.hpp"
+#include "facecap/swap/skin_texture.hpp"
 #include "facecap/swap/weighted_channels.hpp"
 
 namespace facecap {
@@ -97,7 +98,8 @@ FaceTransformStream::FaceTransformStream(const FaceModel& model, const Expressio
   // thread.
   stage_ = std::make_unique<RefineStage>(model, lighting_only_refinement(), [this](const RefinedFrame& r) { take(r); });
   if (covers.keep_occluders) {
-    covers_ = std::make_unique<FaceCovers>(model, covers);
+    cover_skin_ = skin_mesh(model);
+    covers_ = std::make_unique<FaceCovers>(model, cover_skin_, covers, mean_face_mm_per_uv(model, cover_skin_));
     preparation_ = covers_->new_preparation();
     prepare_covers_beside(*stage_, *preparation_);
   }

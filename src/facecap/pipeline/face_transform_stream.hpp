@@ -98,6 +98,7 @@ class FaceTransformStream {
   std::vector<Triangle> skin_;  // the face region's skin triangles, re-shaded
   std::vector<int> inner_lips_;
   std::array<std::vector<int>, 2> eye_margins_;    // the skin's openings at eyes 0 and 1 (eye_margins.hpp)
+  TriangleMesh cover_skin_;                        // skin_mesh, with covers_
   std::unique_ptr<FaceCovers> covers_;             // CoverOptions::keep_occluders; used on the stage's thread
   std::unique_ptr<FramePreparation> preparation_;  // with covers_, on the stage's second thread
   std::map<int, Pending> pending_;

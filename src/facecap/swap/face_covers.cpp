@@ -2,33 +2,20 @@
 
 #include "facecap/model/regions.hpp"
 #include "facecap/render/uv_raster.hpp"
-#include "facecap/swap/skin_texture.hpp"
 
 namespace facecap {
 
-namespace {
-
-// Millimetres on the mean face per unit of UV: the grid's scale, which
-// needs no one's identity (about a millimetre a texel either way).
 double mean_face_mm_per_uv(const FaceModel& model, const TriangleMesh& skin) {
   const Eigen::VectorXf none;
   return millimetres_per_uv(skin,
                             model.with_expression(model.identity_shape(none, regions::kFace), none, regions::kFace));
 }
 
-}  // namespace
-
-FaceCovers::FaceCovers(const FaceModel& model, CoverOptions options)
-    : model_(&model),
-      options_(options),
-      skin_(skin_mesh(model)),
-      occlusion_(skin_, mean_face_mm_per_uv(model, skin_)) {}
-
-FaceCovers::FaceCovers(const FaceModel& model, CoverOptions options, double mm_per_uv)
-    : model_(&model), options_(options), skin_(skin_mesh(model)), occlusion_(skin_, mm_per_uv) {}
+FaceCovers::FaceCovers(const FaceModel& model, const TriangleMesh& skin, CoverOptions options, double mm_per_uv)
+    : model_(&model), options_(options), skin_(&skin), occlusion_(skin, mm_per_uv) {}
 
 std::unique_ptr<FramePreparation> FaceCovers::new_preparation() const {
-  return std::make_unique<FramePreparation>(*model_, skin_, occlusion_.grid(), options_.moving_covers);
+  return std::make_unique<FramePreparation>(*model_, *skin_, occlusion_.grid(), options_.moving_covers);
 }
 
 cv::Mat FaceCovers::covered(const PreparedFrame& prepared, bool lighting_final) {

@@ -21,13 +21,16 @@ struct CoverOptions {
   int reference_frames = 5;  // frames of a shot, from the first with final lighting, that show the face uncovered
 };
 
+// Millimetres on the mean face per unit of `skin`'s UV: a grid's scale
+// that needs no one's identity (about a millimetre a texel).
+double mean_face_mm_per_uv(const FaceModel& model, const TriangleMesh& skin);
+
 class FaceCovers {
  public:
-  // On a grid at the mean face's scale (about a millimetre a texel).
-  FaceCovers(const FaceModel& model, CoverOptions options);
-  // On a grid at `mm_per_uv` (a swap's: the source face's, which its
-  // expression ratio shares).
-  FaceCovers(const FaceModel& model, CoverOptions options, double mm_per_uv);
+  // On `skin` (skin_texture.hpp's skin_mesh, which must outlive this) with
+  // a grid at `mm_per_uv`: a swap's is the source face's, which its
+  // expression ratio shares; a transform's, mean_face_mm_per_uv.
+  FaceCovers(const FaceModel& model, const TriangleMesh& skin, CoverOptions options, double mm_per_uv);
 
   // Each frame's unshading and motion, for any thread, frames in order
   // (FramePreparation::prepare, with the face region's camera-space points).
@@ -43,13 +46,13 @@ class FaceCovers {
   // A shot cut: the next frames are references again.
   void restart();
 
-  const TriangleMesh& skin() const { return skin_; }
+  const TriangleMesh& skin() const { return *skin_; }
   const MillimetreGrid& grid() const { return occlusion_.grid(); }
 
  private:
   const FaceModel* model_;
   CoverOptions options_;
-  TriangleMesh skin_;
+  const TriangleMesh* skin_;
   OcclusionMask occlusion_;
   int references_ = 0;
 };

@@ -140,7 +140,7 @@ struct FaceSwapper::Impl {
     if (options.expression_ratio) ratio.emplace(skin, mm_per_uv);
     if (options.keep_occluders) {
       // The appearance frames are the covers' references too.
-      covers.emplace(model, CoverOptions{true, options.moving_covers, options.appearance_frames}, mm_per_uv);
+      covers.emplace(model, skin, CoverOptions{true, options.moving_covers, options.appearance_frames}, mm_per_uv);
     }
     // The warp's anchors: the landmarks and every second boundary vertex
     // (every third raised the seam ratio of Obama into address_720p_b,
@@ -157,11 +157,11 @@ struct FaceSwapper::Impl {
     for (const int v : anchors) anchor_uvs.push_back(v < skin.num_vertices ? vertex_uvs[v] : std::nullopt);
   }
 
-  // TargetFrame::lighting_final: what was gathered under provisional lighting starts again.
+  // TargetFrame::lighting_final: what was gathered under provisional
+  // lighting starts again (the covers' references too, in FaceCovers::covered).
   void restart_appearance() {
     texture.restart();
     if (ratio) ratio->clear_reference();
-    if (covers) covers->restart();
   }
 
   std::unique_ptr<FramePreparation> new_preparation() const { return covers ? covers->new_preparation() : nullptr; }

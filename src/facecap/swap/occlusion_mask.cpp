@@ -70,13 +70,12 @@ cv::Mat cover_in_front(const TriangleMesh& skin, const Positions& points, const 
   return in_front;
 }
 
-OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options)
-    : options_(options), skin_(skin) {
+OcclusionMask::OcclusionMask(const TriangleMesh& skin, double mm_per_uv, OcclusionOptions options) : options_(options) {
   if (!(mm_per_uv > 0)) throw Error("occlusion mask: the mesh has no UV extent");
   if (!(options_.texel_mm > 0 && options_.min_log_change > 0 && options_.slide_mm >= 0 && options_.min_extent_mm >= 0 &&
         options_.unseen_mm >= 0 && options_.margin_mm >= 0 && options_.feather_mm >= 0))
     throw Error("occlusion mask: needs a positive texel size and change, and no negative distance");
-  grid_ = millimetre_grid(skin_, mm_per_uv, options_.texel_mm);
+  grid_ = millimetre_grid(skin, mm_per_uv, options_.texel_mm);
 }
 
 void OcclusionMask::clear_reference() { low_ = high_ = log_sum_ = weight_sum_ = cv::Mat(); }

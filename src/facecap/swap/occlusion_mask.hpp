@@ -85,7 +85,6 @@ class OcclusionMask {
 
  private:
   OcclusionOptions options_;
-  TriangleMesh skin_;
   MillimetreGrid grid_;  // about options_.texel_mm per texel
   // Over the appearance frames so far, per texel and channel, the least and
   // the most log colour seen within slide_mm (CV_32FC3; +-inf where none
