@@ -104,6 +104,12 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
       ->check(face_value_check());
   cmd->callback([a, &global] {
     const Emotion to = emotion_argument("--to", a->to), from = emotion_argument("--from", a->from);
+    // An edit from an expression to itself changes nothing: a smiling clip
+    // asked `--to neutral` (from the default neutral) came out as it went in.
+    if (to == from && a->units.empty() && a->schedule.empty() && a->face_to.empty() && a->face_schedule.empty())
+      throw CLI::ValidationError(
+          "--to " + std::string(to_string(to)) + " is the input's expression already (--from " + to_string(from) +
+          "), so nothing would change; to take an emotion away, name it: " + "--from happiness --to neutral");
     TransformJobOptions& o = a->options;
     o.transform.from = from;
     o.transform.schedule =

@@ -149,6 +149,12 @@ TEST(Cli, OptionsThatCannotGoTogetherAreRefusedByName) {
        "--face-source: face 1 is given two sources"},
       {"transform in.mp4 -o x.mp4 --all-faces --face-to 1=sadness --face-to 1=anger",
        "face 1 is given two expressions (--face-to, --face-schedule)"},
+      {"transform in.mp4 -o x.mp4 --to neutral",
+       "--to neutral is the input's expression already (--from neutral), so nothing would change; to take an emotion "
+       "away, name it: --from happiness --to neutral"},
+      {"transform in.mp4 -o x.mp4 --from sad --to sadness",
+       "--to sadness is the input's expression already (--from sadness), so nothing would change; to take an emotion "
+       "away, name it: --from happiness --to neutral"},
       {"track in.mp4 -o x --livelink-udp 127.0.0.1:11111 --livelink-subject \"\"",
        "--livelink-subject: must not be empty"},
   };
