@@ -109,7 +109,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
     if (to == from && a->units.empty() && a->schedule.empty() && a->face_to.empty() && a->face_schedule.empty())
       throw CLI::ValidationError(
           "--to " + std::string(to_string(to)) + " is the input's expression already (--from " + to_string(from) +
-          "), so nothing would change; to take an emotion away, name it: " + "--from happiness --to neutral");
+          "), so nothing would change; to take an emotion away, name it: --from happiness --to neutral");
     TransformJobOptions& o = a->options;
     o.transform.from = from;
     o.transform.schedule =
