@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "facecap/compose/face_layer.hpp"
@@ -42,6 +43,27 @@ Positions posed(const FaceModel& model, const Scene& s, const Eigen::VectorXf& w
 int expression(const FaceModel& model, const std::string& name) { return model.expression_index(name); }
 
 }  // namespace
+
+// The shading ratio in full where the surface faces the camera, none at
+// all edge-on, and its power between (a smoothstep of the facing).
+TEST(FaceReshading, TheShadingRatioFadesOutTowardsEdgeOn) {
+  EXPECT_FLOAT_EQ(shading_ratio(0.2f, 0.3f, 0.9f), 1.5f);
+  EXPECT_FLOAT_EQ(shading_ratio(0.2f, 0.3f, kFacing), 1.5f);
+  EXPECT_FLOAT_EQ(shading_ratio(0.1f, 0.4f, 0.9f), 2.0f);   // clamped
+  EXPECT_FLOAT_EQ(shading_ratio(0.4f, 0.1f, 0.9f), 0.5f);   // clamped
+  EXPECT_FLOAT_EQ(shading_ratio(0.04f, 0.3f, 0.9f), 1.0f);  // no shading to divide by
+  const float halfway = 0.5f * (kFacing + kGrazingFacing);
+  EXPECT_NEAR(shading_ratio(0.1f, 0.2f, halfway), std::sqrt(2.0f), 1e-5f);
+  EXPECT_NEAR(shading_ratio(0.2f, 0.1f, halfway), std::sqrt(0.5f), 1e-5f);
+  EXPECT_FLOAT_EQ(shading_ratio(0.1f, 0.2f, kGrazingFacing), 1.0f);
+  EXPECT_FLOAT_EQ(shading_ratio(0.1f, 0.2f, -0.3f), 1.0f);
+  float last = 1.0f;
+  for (float facing = kGrazingFacing; facing <= kFacing; facing += 0.01f) {
+    const float r = shading_ratio(0.1f, 0.2f, facing);
+    EXPECT_GE(r, last) << facing;
+    last = r;
+  }
+}
 
 TEST(FaceReshading, TheSameGeometryReproducesTheFrame) {
   FACECAP_REQUIRE_MODEL(model);

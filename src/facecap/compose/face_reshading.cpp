@@ -36,6 +36,13 @@ cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera) 
                   cv::Point(c(std::ceil(x1)) + 1, c(std::ceil(y1)) + 1));
 }
 
+float shading_ratio(float s_old, float s_new, float facing) {
+  const float ratio = s_old > 0.05f ? std::clamp(s_new / s_old, 0.5f, 2.0f) : 1.0f;
+  const float t = std::clamp((facing - kGrazingFacing) / (kFacing - kGrazingFacing), 0.0f, 1.0f);
+  const float trust = t * t * (3 - 2 * t);
+  return trust < 1 ? std::pow(ratio, trust) : ratio;
+}
+
 FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const Positions& new_points,
                        const std::vector<Triangle>& triangles, const ShCoeffs& lighting, const PinholeCamera& camera,
                        int margin) {
@@ -70,7 +77,7 @@ FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const
             const Vec3f vo = to_viewer_frame(n_old), vn = to_viewer_frame(n_new);
             const float s_old = sh_shade(lighting, vo.x(), vo.y(), vo.z());
             const float s_new = sh_shade(lighting, vn.x(), vn.y(), vn.z());
-            const float ratio = s_old > 0.05f ? std::clamp(s_new / s_old, 0.5f, 2.0f) : 1.0f;
+            const float ratio = shading_ratio(s_old, s_new, std::min(vo.z(), vn.z()));
             out[x] = cv::Vec3b(cv::saturate_cast<uchar>(rgb.z() * ratio * 255),
                                cv::saturate_cast<uchar>(rgb.y() * ratio * 255),
                                cv::saturate_cast<uchar>(rgb.x() * ratio * 255));

@@ -15,6 +15,21 @@
 
 namespace facecap {
 
+// The shading ratio s_new / s_old (clamped to 0.5-2; 1 where s_old is
+// below 0.05) that scales a pixel's colour, taken only in part where the
+// surface is near edge-on to the camera, before or after (`facing`: the
+// lesser of the normals' components towards the viewer): there a degree of
+// normal error changes the shading most, and the frame's pixel mixes the
+// surface with what lies behind it. From kFacing (66 degrees off the view)
+// in full, towards kGrazingFacing (84 degrees) as ratio^trust, trust
+// falling smoothly to 0. Without it, the outer edge of a nose wing lowered
+// by `--from happiness --to neutral` on emotions_pexels (frame 330; old and
+// new facing 0.1-0.3, ratio 1.4-2) became a line of bright pixels, like a
+// nose ring.
+constexpr float kFacing = 0.4f;
+constexpr float kGrazingFacing = 0.1f;
+float shading_ratio(float s_old, float s_new, float facing);
+
 // The layer spans the new face's image bounding box grown by `margin` pixels.
 FaceLayer reshade_face(const cv::Mat& source, const Positions& old_points, const Positions& new_points,
                        const std::vector<Triangle>& triangles, const ShCoeffs& lighting, const PinholeCamera& camera,
