@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "facecap/core/allocator_tuning.hpp"
 #include "facecap/refine/displacement_backend.hpp"
 #include "facecap/refine/displacement_problem_io.hpp"
 
@@ -52,6 +53,7 @@ void solve_level(benchmark::State& state, ComputeDevice device, const Problems* 
 
 int main(int argc, char** argv) {
   using namespace facecap;
+  keep_large_allocations_resident();  // as facecap's own main does
   benchmark::Initialize(&argc, argv);
   const char* dir = std::getenv("FACECAP_DISPLACEMENT_PROBLEMS");
   if (dir == nullptr || *dir == '\0') {
