@@ -49,7 +49,9 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
   CLI::Option* to = cmd->add_option("--to", a->to, std::string("Target expression: ") + emotion_choices())
                         ->check(emotion_value())
                         ->capture_default_str();
-  CLI::Option* from = cmd->add_option("--from", a->from, "Source expression of the input")
+  CLI::Option* from = cmd->add_option("--from", a->from,
+                                      "Expression the input shows, to change from (a --to the same is refused: "
+                                      "nothing would change; --from happiness --to neutral takes a smile away)")
                           ->check(emotion_value())
                           ->capture_default_str();
   cmd->add_option("--intensity", a->intensity, "Share of the change, 0..1")
