@@ -38,8 +38,7 @@ cv::Rect projected_bounds(const Positions& points, const PinholeCamera& camera) 
 
 float shading_ratio(float s_old, float s_new, float facing) {
   const float ratio = s_old > 0.05f ? std::clamp(s_new / s_old, 0.5f, 2.0f) : 1.0f;
-  const float t = std::clamp((facing - kGrazingFacing) / (kFacing - kGrazingFacing), 0.0f, 1.0f);
-  const float trust = t * t * (3 - 2 * t);
+  const float trust = smoothstep(kGrazingFacing, kFacing, facing);
   return trust < 1 ? std::pow(ratio, trust) : ratio;
 }
 

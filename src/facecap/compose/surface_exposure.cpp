@@ -48,10 +48,7 @@ std::vector<float> vertex_exposure(const Positions& old_points, const Positions&
   return exposure;
 }
 
-float exposure_trust(float exposure) {
-  const float t = std::clamp((exposure - kUnseenExposure) / (kSeenExposure - kUnseenExposure), 0.0f, 1.0f);
-  return t * t * (3 - 2 * t);  // smoothstep: no edge where the trust starts to fall
-}
+float exposure_trust(float exposure) { return smoothstep(kUnseenExposure, kSeenExposure, exposure); }
 
 void fill_untrusted(cv::Mat& colour, const cv::Mat& trust, const cv::Mat& surface, double sigma) {
   CV_Assert(colour.type() == CV_8UC3 && trust.type() == CV_32F && surface.type() == CV_8U &&

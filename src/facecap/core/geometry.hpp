@@ -23,6 +23,13 @@ inline float view_facing(const Vec3f& camera_point, const Vec3f& normal) {
   return -normal.dot(camera_point) / std::max(1e-12f, normal.norm() * camera_point.norm());
 }
 
+// 0 up to `edge0`, 1 from `edge1`, Hermite-smooth between (no kink where a
+// fade starts or ends).
+inline float smoothstep(float edge0, float edge1, float x) {
+  const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+  return t * t * (3 - 2 * t);
+}
+
 // Rotation matrix of an axis-angle vector (direction = axis, norm = angle in radians).
 inline Mat3d rotation_from_axis_angle(const Vec3d& w) {
   const double angle = w.norm();

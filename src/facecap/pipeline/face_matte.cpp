@@ -26,10 +26,7 @@ Eigen::VectorXf matte_on(const FaceModel& model, const TriangleMesh& mesh, float
   const std::vector<double> distance =
       edge_path_distances(mm, vertex_adjacency(mesh.triangles, mesh.num_vertices), off_the_face);
   Eigen::VectorXf matte = Eigen::VectorXf::Zero(mesh.num_vertices);
-  for (int v = 0; v < narrow; ++v) {
-    const float t = std::min(1.0f, float(distance[size_t(v)]) / feather_mm);
-    matte[v] = t * t * (3 - 2 * t);
-  }
+  for (int v = 0; v < narrow; ++v) matte[v] = smoothstep(0.0f, feather_mm, float(distance[size_t(v)]));
   return matte;
 }
 
