@@ -74,6 +74,11 @@ TEST(SynthPerformance, BadOptionsAreRejectedByName) {
   o = SynthOptions{};
   o.width = 10;
   EXPECT_THROW(o.check(), Error);
+  o = SynthOptions{};
+  o.render_frames = o.frames + 1;  // more than the performance has
+  EXPECT_THROW(o.check(), Error);
+  o.render_frames = -1;
+  EXPECT_THROW(o.check(), Error);
   for (const double roll : {-181.0, 200.0, std::nan("")}) {
     o = SynthOptions{};
     o.camera_roll_deg = roll;

@@ -68,6 +68,7 @@ struct ExpressionEvent {
 
 void SynthOptions::check() const {
   require(frames >= 1 && frames <= 100000, "--frames must be between 1 and 100000");
+  require(render_frames >= 0 && render_frames <= frames, "the frames to render must be between 0 (all) and --frames");
   require(width >= 64 && height >= 64 && width <= 8192 && height <= 8192, "--size must be between 64x64 and 8192x8192");
   require(fps > 0 && fps <= 240, "fps must be in (0, 240]");
   require(focal >= 0, "--focal must be positive");

@@ -16,6 +16,9 @@ namespace facecap {
 
 struct SynthOptions {
   int frames = 90;
+  // Render only the first this many frames of the performance, whose course
+  // is still that of `frames` (0: all of them); the truth lists those rendered.
+  int render_frames = 0;
   uint64_t seed = 1;
   int width = 640;
   int height = 480;

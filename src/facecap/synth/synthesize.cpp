@@ -25,6 +25,7 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
 
   SynthTruth& truth = result.ground_truth;
   truth.performance = make_performance(model, options);
+  if (options.render_frames > 0) truth.performance.frames.resize(size_t(options.render_frames));
   truth.expression_names = model.expression_names;
   const SynthRenderer renderer(model, truth.performance);
 
@@ -33,6 +34,7 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
   mark.parameters = {{"seed", std::to_string(options.seed)},
                      {"frames", std::to_string(options.frames)},
                      {"detail", options.detail ? "true" : "false"}};
+  if (options.render_frames > 0) mark.parameters["rendered_frames"] = std::to_string(options.render_frames);
   if (options.face_texture.empty()) {
     mark.description = "A face rendered from the ICT face model with known parameters; no real person.";
   } else {
@@ -56,7 +58,7 @@ SynthJobResult synthesize(const FaceModel& model, const SynthOptions& options, c
   VideoWriter writer(result.video, vo);
 
   std::mt19937_64 noise_rng(options.seed * 104729ull + 3);
-  Progress progress("synth", options.frames, quiet);
+  Progress progress("synth", int(truth.performance.frames.size()), quiet);
   for (const SynthFrame& frame : truth.performance.frames) {
     writer.write(renderer.render(frame, noise_rng));
     truth.landmarks.push_back(renderer.landmarks(frame));

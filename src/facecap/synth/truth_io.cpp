@@ -42,6 +42,7 @@ void write_truth(const std::filesystem::path& path, const SynthTruth& truth) {
   j["version"] = 1;
   j["synthetic"] = true;
   j["options"] = {{"frames", o.frames},
+                  {"render_frames", o.render_frames},
                   {"seed", o.seed},
                   {"width", o.width},
                   {"height", o.height},
@@ -92,6 +93,7 @@ SynthTruth read_truth(const std::filesystem::path& path) {
     SynthPerformance& p = t.performance;
     const json& o = j.at("options");
     p.options.frames = o.at("frames");
+    p.options.render_frames = o.value("render_frames", 0);
     p.options.seed = o.at("seed");
     p.options.width = o.at("width");
     p.options.height = o.at("height");
