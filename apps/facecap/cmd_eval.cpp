@@ -360,6 +360,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
       ->check(whole_number_at_least(0));
   add_fit_options(*cmd, a->options.capture);
   add_transform_cover_flags(*cmd, a->options.covers);
+  add_lip_weight_option(*cmd, a->options.transform.lips);
   cmd->add_option("-o,--output", a->output, "Keep the transformed video here (default: a temporary file)");
   cmd->add_option("--models", a->options.models_dir, "Expression models folder");
   cmd->callback([a, &global] {

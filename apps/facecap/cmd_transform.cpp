@@ -80,6 +80,7 @@ void register_transform(CLI::App& app, GlobalOptions& global) {
                       "the first");
   add_matte_option(*cmd, a->options.matte, "re-rendered face");
   add_transform_cover_flags(*cmd, a->options.covers);
+  add_lip_weight_option(*cmd, a->options.transform.lips);
   add_encoding_options(*cmd, a->options.encoding, "the output video (a --matte is lossless)");
   cmd->add_option("--models", a->models, "Expression models folder (default: models/expressions)");
   add_frame_range_options(*cmd, a->options.capture);

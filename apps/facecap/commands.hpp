@@ -26,6 +26,7 @@ struct AllFacesSummary;
 struct SynthOptions;
 struct CaptureOptions;
 struct CoverOptions;
+struct LipCorrectionOptions;
 }  // namespace facecap
 
 namespace facecap::cli {
@@ -139,6 +140,9 @@ void add_cover_flags(CLI::App& cmd, bool& keep_occluders, bool& moving_covers, c
                      const std::string& cost);
 // The same for transform, bench transform and eval transform (TransformJobOptions::covers).
 void add_transform_cover_flags(CLI::App& cmd, CoverOptions& covers);
+// --lip-weight A: eq. 5.4's alpha, how strictly the key lip vertices are held
+// where the speaker put them (LipCorrectionOptions), for transform and eval transform.
+void add_lip_weight_option(CLI::App& cmd, LipCorrectionOptions& lips);
 // --device cpu|cuda: where the refinement's sampling, albedo and displacement solves run (default:
 // cuda when this build has it and a GPU answers, else cpu).
 void add_device_option(CLI::App& cmd, ComputeDevice& device);

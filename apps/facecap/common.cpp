@@ -7,11 +7,13 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/paths.hpp"
 #include "facecap/detect/face_tracker.hpp"
 #include "facecap/expr/action_units.hpp"
 #include "facecap/expr/emotions.hpp"
+#include "facecap/expr/lip_correction.hpp"
 #include "facecap/model/model_cache.hpp"
 #include "facecap/pipeline/capture_session.hpp"
 #include "facecap/pipeline/face_roster.hpp"
@@ -278,12 +280,7 @@ CLI::Validator synthetic_frame_size() {
 }
 
 CLI::Validator number_between(double least, double most) {
-  const auto bound = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", v);
-    return std::string(text);
-  };
-  const std::string range = bound(least) + " to " + bound(most);
+  const std::string range = csv_number(least) + " to " + csv_number(most);
   return CLI::Validator(
       [least, most, range](std::string& text) {
         char* end = nullptr;
@@ -344,6 +341,16 @@ void add_transform_cover_flags(CLI::App& cmd, CoverOptions& covers) {
                   "new expression,",
                   "on frames where some patch of the face changed colour; on a talking head at 720p on 2 cores, end "
                   "to end 27-28 fps against 28-29, and 31-32 with --no-occlusion");
+}
+
+void add_lip_weight_option(CLI::App& cmd, LipCorrectionOptions& lips) {
+  cmd.add_option("--lip-weight", lips.alpha,
+                 "How strictly the middle of the lips is held where the speaker put it (eq. 5.4's alpha, per cm^2: "
+                 "the paper's 1000 per FaceWarehouse unit^2). Higher keeps the speech's lips more exactly and lets "
+                 "less of the new expression reach the mouth (1000: pinned); 0: the lips go where the expression takes "
+                 "them")
+      ->check(number_between(0, 1e6))
+      ->capture_default_str();
 }
 
 void add_swap_texture_flags(CLI::App& cmd, SwapOptions& swap) {

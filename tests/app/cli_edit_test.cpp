@@ -87,11 +87,12 @@ TEST(Cli, TransformTakesAnAdjectiveAndNamesTheChoicesOtherwise) {
     EXPECT_EQ(r.code, 2) << args << ": " << r.out;
     EXPECT_EQ(r.out.rfind(message, 0), 0u) << r.out;
   }
-  const RunResult good = run("transform " + video.string() + " --to Happy --max-frames 8 -o " + out);
+  const RunResult good = run("transform " + video.string() + " --to Happy --max-frames 8 --lip-weight 30 -o " + out);
   ASSERT_EQ(good.code, 0) << good.out;
   std::ifstream sidecar(out + ".json");
   const std::string text((std::istreambuf_iterator<char>(sidecar)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("neutral to happiness"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"lip_weight\": \"30\""), std::string::npos) << text;  // the edit's parameters
 }
 
 // An output path that is a folder is refused up front, by name, for the

@@ -245,6 +245,8 @@ TEST(Cli, NumbersOutOfRangeOrNotNumbersAreRefusedByName) {
       {"transform in.mp4 -o x.mp4 --to anger --intensity 2", "--intensity: must be a number from 0 to 1, not 2"},
       {"transform in.mp4 -o x.mp4 --to anger --intensity nan", "--intensity: must be a number from 0 to 1, not nan"},
       {"transform in.mp4 -o x.mp4 --window 11", "--window: Value 11 not in range 0 to 10"},
+      {"transform in.mp4 -o x.mp4 --lip-weight -1", "--lip-weight: must be a number from 0 to 1e+06, not -1"},
+      {"eval transform --video in.mp4 --lip-weight nan", "--lip-weight: must be a number from 0 to 1e+06, not nan"},
       {swap + "--appearance-frames 0", "--appearance-frames: must be a whole number of at least 1, not 0"},
       {swap + "--source-frames 0", "--source-frames: must be a whole number of at least 1, not 0"},
       {"eval swap --self in.mp4 --source-frames 0", "--source-frames: must be a whole number of at least 1, not 0"},

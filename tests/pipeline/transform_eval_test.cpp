@@ -52,9 +52,10 @@ TEST(TransformEval, WebcamSpeechToHappiness) {
   EXPECT_LE(r.lip_error_mm, 1.0);
   EXPECT_GE(r.target_rise, 0.3);
   // The output tracked again with the input's face smiles too, by less than
-  // its weights say (0.10 against 0.42): the fit reads part of the change as
-  // other shapes (README, "What the tracker sees of an edit").
-  EXPECT_GE(r.retracked_rise, 0.05);
+  // its weights say (0.16 against 0.46): the fit reads part of the change as
+  // other shapes (README, "What the tracker sees of an edit"). With the lips
+  // pinned (a lip weight of 1000 per cm^2, 100 times the paper's) it was 0.10.
+  EXPECT_GE(r.retracked_rise, 0.13);
   EXPECT_LT(r.retracked_rise, r.target_rise);
   EXPECT_LT(r.smoothness, r.smoothness_raw);
   EXPECT_TRUE(r.marked_synthetic);
@@ -163,7 +164,7 @@ TEST(TransformEval, FacsUnitsAreSetTheLipsKeptAndTheTrackerSeesThem) {
   // lip vertices by a hair): 0.006 at most.
   EXPECT_NEAR(brows.output, 4.0, 0.02);
   EXPECT_NEAR(frown.output, 0.0, 0.02);
-  EXPECT_GT(smile.output, smile.input + 1.5);  // 2.13 against 0: the lips hold it under the 3 asked
+  EXPECT_GT(smile.output, smile.input + 1.5);  // 2.45 against 0: the lips hold it under the 3 asked
   // The sidecar names the edit.
   std::ifstream side(out.string() + ".json");
   const auto j = nlohmann::json::parse(side);

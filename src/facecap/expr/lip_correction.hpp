@@ -23,7 +23,16 @@ std::array<int, 4> key_lip_vertices(const FaceModel& model);
 Eigen::MatrixXd lip_basis(const FaceModel& model);
 
 struct LipCorrectionOptions {
-  double alpha = 1000.0;  // eq. 5.4 (positions in cm)
+  // eq. 5.4's alpha for positions in centimetres. The paper's 1000 is for
+  // FaceWarehouse's mesh unit, about 10 cm (as refine/displacement_solver.hpp
+  // reads it): a squared distance there is a hundredth of one in cm, so its
+  // 1000 is 10 here. Taken as 1000 in cm, the four points were pinned (0.006
+  // mm from the speaker's) and the other weights bent to hold them: the mapped
+  // smile of 0.6 came out as 0.4 (`talking_webcam`), where the paper's figure
+  // 5.7 shows the points moved toward the speaker's, not onto them. At 10
+  // they stay within 0.14-0.33 mm on average (README, the transformation's
+  // table). Larger: the lips kept more exactly; 0: no lip correction.
+  double alpha = 10.0;
 };
 
 // target: the smoothed mapped weights; source: the tracked weights.

@@ -7,6 +7,7 @@
 
 #include "facecap/compose/face_layer.hpp"
 #include "facecap/core/atomic_file.hpp"
+#include "facecap/core/csv_line.hpp"
 #include "facecap/core/error.hpp"
 #include "facecap/core/stopwatch.hpp"
 #include "facecap/io/edit_output.hpp"
@@ -67,6 +68,7 @@ SyntheticMark transform_mark(const std::string& input, const InputInfo& info, co
                      {"method", !options.transform.shape_targets.empty()             ? "facs-units"
                                 : options.transform.method == MappingMethod::kLinear ? "linear"
                                                                                      : "cyclegan"},
+                     {"lip_weight", csv_number(options.transform.lips.alpha)},
                      {"start_seconds", std::to_string(start_time(info))}};
   for (const auto& [face, expression] : options.face_expressions)
     mark.parameters["face_" + std::to_string(face)] = expression.description;
