@@ -390,6 +390,7 @@ void register_eval_transform(CLI::App& eval, GlobalOptions& global) {
     print_json({{"video", a->video},
                 {"to", facs ? nlohmann::json(nullptr) : nlohmann::json(to_string(to))},
                 {"method", facs ? "facs-units" : a->method},
+                {"lip_weight", a->options.transform.lips.alpha},
                 {"units", facs ? unit_rows : nlohmann::json(nullptr)},
                 {"frames", r.frames},
                 {"valid_frames", r.valid_frames},

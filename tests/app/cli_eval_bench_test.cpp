@@ -34,6 +34,7 @@ TEST(Cli, EvalTransformReportsAFacsEditUnitByUnit) {
   const nlohmann::json j =
       json_from("eval transform --video " + video.string() + " --units AU1=4,AU4=0 --max-frames 40");
   EXPECT_EQ(j.at("method"), "facs-units") << j.dump();
+  EXPECT_EQ(j.at("lip_weight"), 10.0);  // the paper's alpha, for positions in cm
   EXPECT_TRUE(j.at("to").is_null());
   EXPECT_TRUE(j.at("target_rise").is_null());
   EXPECT_TRUE(j.at("retracked_rise").is_null());
