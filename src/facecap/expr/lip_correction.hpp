@@ -30,7 +30,7 @@ struct LipCorrectionOptions {
   // mm from the speaker's) and the other weights bent to hold them: the mapped
   // smile of 0.6 came out as 0.4 (`talking_webcam`), where the paper's figure
   // 5.7 shows the points moved toward the speaker's, not onto them. At 10
-  // they stay 0.06-0.34 mm from the speaker's on average (README, "The lip
+  // they stay 0.14-0.34 mm from the speaker's on average (README, "The lip
   // weight"). Larger: the lips kept more exactly; 0: no lip correction.
   double alpha = 10.0;
 };
