@@ -61,7 +61,7 @@ TEST(LipCorrection, HoldsTheKeyLipVerticesAsFirmlyAsAlphaSays) {
   EXPECT_DOUBLE_EQ(before_default, before);
   EXPECT_DOUBLE_EQ(before_pinned, before);
   EXPECT_NEAR(free_lips, before, 1e-6);
-  EXPECT_LT(held, 0.5 * before);
+  EXPECT_LT(held, 0.1);  // within the 1 mm, even for these changes of up to 14 mm
   EXPECT_GT(held, 4 * pinned);
   EXPECT_LT(pinned, 0.02);
   std::printf("worst key lip movement: %.3f mm unheld, %.3f mm at alpha %.0f, %.4f mm at 1000\n", 10 * before,
