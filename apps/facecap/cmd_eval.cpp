@@ -139,6 +139,9 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
       ->check(whole_number_at_least(0));
   add_fit_options(*cmd, a->options.capture);
   cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
+  cmd->add_flag("--true-identity", a->options.true_identity,
+                "Hold the identity at the synthetic truth (diagnostic): the vertex error is then what the landmarks "
+                "give the expressions and the pose alone");
   cmd->add_flag("--map-size", a->map_size,
                 "Keep the identity solve's own face size, without the size correction (diagnostic)");
   cmd->add_option("--yaw", a->options.synth.max_yaw_deg, "Synthetic head turns sweep +-this many degrees")
@@ -159,11 +162,16 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     if (!a->video.empty()) {
       if (!a->face_photo.empty()) refuse_face_photo_without_synthetic();
       if (a->photos > 0) throw CLI::ValidationError("--photos", "fits synthetic frames: use it with --synthetic N");
+      if (a->true_focal || a->options.true_identity)
+        throw CLI::ValidationError(a->true_focal ? "--true-focal" : "--true-identity",
+                                   "needs --synthetic: real footage has no truth to hold");
     } else if (a->synthetic <= 0) {
       throw CLI::ValidationError("eval track needs --synthetic N or --video PATH");
     }
     if (a->photos > 0 && a->landmarks != "truth")
       throw CLI::ValidationError("--photos", "fits the true landmarks; drop --landmarks dlib");
+    if (a->photos > 0 && a->options.true_identity)
+      throw CLI::ValidationError("--true-identity", "cannot go with --photos, which measures the photos' identities");
     const FaceModel model = load_model(global);
     a->options.capture.quiet = global.quiet;
     if (!a->video.empty()) {
@@ -207,6 +215,8 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     print_json({{"frames", r.frames},
                 {"seed", a->options.seed},
                 {"landmarks", a->landmarks},
+                {"true_focal", a->true_focal},
+                {"true_identity", a->options.true_identity},
                 {"lost_frames", r.lost_frames},
                 {"vertex_error_mm", r.vertex_error_mm},
                 {"vertex_error_similarity_mm", r.vertex_error_similarity_mm},

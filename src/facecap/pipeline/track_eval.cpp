@@ -145,9 +145,14 @@ TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEval
   so.frames = options.frames;
   so.seed = options.seed;
   const SynthPerformance perf = make_performance(model, so);
+  TrackEvalOptions fit_options = options;
+  if (options.true_identity) {
+    const int modes = options.capture.fit.identity_modes;
+    fit_options.capture.fit.known_identity = perf.identity.head(modes).cast<double>();
+  }
   IdentityEstimate id;
   double fit_ms = 0;
-  const std::vector<CoarseFit> frames = fit_performance(model, perf, options, id, fit_ms);
+  const std::vector<CoarseFit> frames = fit_performance(model, perf, fit_options, id, fit_ms);
 
   r.focal = id.focal;
   r.focal_true = perf.camera.focal;

@@ -24,6 +24,12 @@ struct TrackEvalOptions {
   int still_frames = 30;           // still-head sequence for the jitter measurement (0: skip)
   SynthOptions synth;              // size, yaw range, ...; frames and seed are set from above
   CaptureOptions capture;          // capture.gaze: also the irises and gaze (truth landmarks: renders the frames)
+  // Diagnostic: hold the identity at the synthetic truth (its leading
+  // capture.fit.identity_modes values; capture.fit.known_identity), so that
+  // the vertex error measures what the landmarks give the expressions and
+  // the pose alone: the floor under the error of a fit that also solves the
+  // identity from the same landmarks.
+  bool true_identity = false;
 };
 
 // The least standard deviation (0-5 scale) of a unit's true intensity over
