@@ -13,16 +13,22 @@ namespace facecap {
 
 namespace {
 
-TrackEvalResult synthetic(const FaceModel& model, uint64_t seed, int still_frames = 30) {
+// A 1280x720 synthetic sweep fitted from the true landmarks with 1 px of
+// noise; 90 frames are a full +-30 degree yaw sweep.
+TrackEvalOptions sweep(uint64_t seed, int frames = 90, int still_frames = 30) {
   TrackEvalOptions o;
-  o.frames = 90;  // a full +-30 degree yaw sweep
+  o.frames = frames;
   o.seed = seed;
   o.synth.width = 1280;
   o.synth.height = 720;
   o.landmark_noise_px = 1.0;
   o.still_frames = still_frames;
   o.capture.quiet = true;
-  return evaluate_track_synthetic(model, o);
+  return o;
+}
+
+TrackEvalResult synthetic(const FaceModel& model, uint64_t seed, int still_frames = 30) {
+  return evaluate_track_synthetic(model, sweep(seed, 90, still_frames));
 }
 
 }  // namespace
@@ -103,13 +109,7 @@ INSTANTIATE_TEST_SUITE_P(TrackEval, TrueLandmarks, ::testing::Values(1u, 2u),
 // as given, with no size correction.
 TEST(TrackEval, TheTrueIdentityHeldLeavesTheExpressionsAndThePoseTheirOwnError) {
   FACECAP_REQUIRE_MODEL(model);
-  TrackEvalOptions o;
-  o.frames = 30;
-  o.seed = 2;
-  o.synth.width = 1280;
-  o.synth.height = 720;
-  o.still_frames = 0;
-  o.capture.quiet = true;
+  TrackEvalOptions o = sweep(2, 30, 0);
   o.capture.gaze = false;
   o.true_identity = true;
   const TrackEvalResult r = evaluate_track_synthetic(*model, o);
@@ -128,13 +128,7 @@ TEST(TrackEval, TheTrueIdentityHeldLeavesTheExpressionsAndThePoseTheirOwnError) 
 // error 2.023 -> 2.015 mm.
 TEST(TrackEval, SmoothingSteadiesAStillHeadWithoutLaggingAMovingOne) {
   FACECAP_REQUIRE_MODEL(model);
-  TrackEvalOptions o;
-  o.frames = 90;
-  o.seed = 7;
-  o.synth.width = 1280;
-  o.synth.height = 720;
-  o.still_frames = 30;
-  o.capture.quiet = true;
+  TrackEvalOptions o = sweep(7);
   o.capture.gaze = false;
   o.capture.fit.smooth_frames = 0;
   const TrackEvalResult forward = evaluate_track_synthetic(*model, o);
