@@ -113,7 +113,6 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     std::string video;
     std::string landmarks = "truth";
     std::string size = "1280x720";
-    bool true_focal = false;
     bool map_size = false;
     int photos = 0;
     std::string face_photo;
@@ -138,7 +137,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
   cmd->add_option("--max-frames", a->options.capture.max_frames, "Stop after this many frames of --video")
       ->check(whole_number_at_least(0));
   add_fit_options(*cmd, a->options.capture);
-  cmd->add_flag("--true-focal", a->true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
+  cmd->add_flag("--true-focal", a->options.true_focal, "Hold the focal length at the synthetic truth (diagnostic)");
   cmd->add_flag("--true-identity", a->options.true_identity,
                 "Hold the identity at the synthetic truth (diagnostic): the vertex error is then what the landmarks "
                 "give the expressions and the pose alone");
@@ -162,8 +161,8 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     if (!a->video.empty()) {
       if (!a->face_photo.empty()) refuse_face_photo_without_synthetic();
       if (a->photos > 0) throw CLI::ValidationError("--photos", "fits synthetic frames: use it with --synthetic N");
-      if (a->true_focal || a->options.true_identity)
-        throw CLI::ValidationError(a->true_focal ? "--true-focal" : "--true-identity",
+      if (a->options.true_focal || a->options.true_identity)
+        throw CLI::ValidationError(a->options.true_focal ? "--true-focal" : "--true-identity",
                                    "needs --synthetic: real footage has no truth to hold");
     } else if (a->synthetic <= 0) {
       throw CLI::ValidationError("eval track needs --synthetic N or --video PATH");
@@ -193,11 +192,6 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     parse_size(a->size, a->options.synth.width, a->options.synth.height);
     use_face_photo(model, a->face_photo, a->options.synth);
     a->options.landmarks = a->landmarks == "dlib" ? LandmarkSource::kDlib : LandmarkSource::kTruth;
-    if (a->true_focal) {
-      a->options.capture.fit.focal_known = true;
-      a->options.capture.fit.focal_guess =
-          (a->options.synth.focal > 0 ? a->options.synth.focal : 1.1 * a->options.synth.width);
-    }
     a->options.capture.fit.unbiased_size = !a->map_size;
     if (a->photos > 0) {
       const PhotoIdentityEvalResult r = evaluate_photo_identity_synthetic(model, a->options, a->photos);
@@ -215,7 +209,7 @@ void register_eval_track(CLI::App& eval, GlobalOptions& global) {
     print_json({{"frames", r.frames},
                 {"seed", a->options.seed},
                 {"landmarks", a->landmarks},
-                {"true_focal", a->true_focal},
+                {"true_focal", a->options.true_focal},
                 {"true_identity", a->options.true_identity},
                 {"lost_frames", r.lost_frames},
                 {"vertex_error_mm", r.vertex_error_mm},

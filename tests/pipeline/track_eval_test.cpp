@@ -102,18 +102,20 @@ INSTANTIATE_TEST_SUITE_P(TrackEval, TrueLandmarks, ::testing::Values(1u, 2u),
                            return "Seed" + std::to_string(seed.param);
                          });
 
-// `eval track --true-identity` holds the identity at the truth, so that the
-// vertex error is the expressions' and the pose's alone (0.27 mm on seeds 1
-// and 2 over 90 frames from the true landmarks; 1.9-2.7 mm on seeds 1-4 from
-// dlib's on the renders, docs/open-bars.md). Held, it must come out exactly
-// as given, with no size correction.
+// `eval track --true-identity --true-focal` holds the identity and the focal
+// length at the truth, so that the vertex error is the expressions' and the
+// pose's alone (0.27-0.33 mm on seeds 1-4 over 90 frames from the true
+// landmarks; 1.9-2.7 mm from dlib's on the renders, docs/open-bars.md).
+// Held, they must come out exactly as given, with no size correction.
 TEST(TrackEval, TheTrueIdentityHeldLeavesTheExpressionsAndThePoseTheirOwnError) {
   FACECAP_REQUIRE_MODEL(model);
   TrackEvalOptions o = sweep(2, 30, 0);
   o.capture.gaze = false;
   o.true_identity = true;
+  o.true_focal = true;
   const TrackEvalResult r = evaluate_track_synthetic(*model, o);
   EXPECT_EQ(r.lost_frames, 0);
+  EXPECT_EQ(r.focal, r.focal_true);
   EXPECT_EQ(r.identity_error, 0.0);
   EXPECT_EQ(r.size_factor, 1.0);
   EXPECT_NEAR(r.size_ratio, 1.0, 1e-5);

@@ -22,7 +22,7 @@ PhotoIdentityEvalResult evaluate_photo_identity_synthetic(const FaceModel& model
   const SynthRenderer renderer(model, perf);
   // As capture fits a still image (capture_session.cpp), from the truth's
   // landmarks.
-  CoarseFitOptions fit = fit_options_for_true_landmarks(options.capture.fit);
+  CoarseFitOptions fit = fit_options_for_true_landmarks(with_truth_held(options, perf).capture.fit);
   fit.set_single_image();
   std::mt19937_64 rng(perf.options.seed * 31 + 7);
   std::normal_distribution<float> noise(0.0f, float(options.landmark_noise_px));

@@ -139,20 +139,26 @@ CoarseFitOptions fit_options_for_true_landmarks(CoarseFitOptions fit) {
   return fit;
 }
 
+TrackEvalOptions with_truth_held(const TrackEvalOptions& options, const SynthPerformance& perf) {
+  TrackEvalOptions held = options;
+  CoarseFitOptions& fit = held.capture.fit;
+  if (options.true_focal) {
+    fit.focal_known = true;
+    fit.focal_guess = perf.camera.focal;
+  }
+  if (options.true_identity) fit.known_identity = perf.identity.head(fit.identity_modes).cast<double>();
+  return held;
+}
+
 TrackEvalResult evaluate_track_synthetic(const FaceModel& model, const TrackEvalOptions& options) {
   TrackEvalResult r;
   SynthOptions so = options.synth;
   so.frames = options.frames;
   so.seed = options.seed;
   const SynthPerformance perf = make_performance(model, so);
-  TrackEvalOptions fit_options = options;
-  if (options.true_identity) {
-    const int modes = options.capture.fit.identity_modes;
-    fit_options.capture.fit.known_identity = perf.identity.head(modes).cast<double>();
-  }
   IdentityEstimate id;
   double fit_ms = 0;
-  const std::vector<CoarseFit> frames = fit_performance(model, perf, fit_options, id, fit_ms);
+  const std::vector<CoarseFit> frames = fit_performance(model, perf, with_truth_held(options, perf), id, fit_ms);
 
   r.focal = id.focal;
   r.focal_true = perf.camera.focal;

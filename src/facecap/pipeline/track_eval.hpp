@@ -24,13 +24,19 @@ struct TrackEvalOptions {
   int still_frames = 30;           // still-head sequence for the jitter measurement (0: skip)
   SynthOptions synth;              // size, yaw range, ...; frames and seed are set from above
   CaptureOptions capture;          // capture.gaze: also the irises and gaze (truth landmarks: renders the frames)
-  // Diagnostic: hold the identity at the synthetic truth (its leading
-  // capture.fit.identity_modes values; capture.fit.known_identity), so that
-  // the vertex error measures what the landmarks give the expressions and
-  // the pose alone: the floor under the error of a fit that also solves the
-  // identity from the same landmarks.
+  // Diagnostics: hold the focal length at the synthetic camera's
+  // (capture.fit.focal_known), and the identity at the synthetic truth (its
+  // leading capture.fit.identity_modes values; capture.fit.known_identity),
+  // so that the vertex error measures what the landmarks give the
+  // expressions and the pose alone: the floor under the error of a fit that
+  // also solves the identity from the same landmarks.
+  bool true_focal = false;
   bool true_identity = false;
 };
+
+// `options` with capture.fit holding what true_focal and true_identity ask
+// of `perf`'s truth.
+TrackEvalOptions with_truth_held(const TrackEvalOptions& options, const SynthPerformance& perf);
 
 // The least standard deviation (0-5 scale) of a unit's true intensity over
 // the frames for TrackEvalResult::action_units_correlation to count it.
